@@ -1,0 +1,25 @@
+// Files a run writes: CSV tables written whole or not at all.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace nsm
+{
+  /// A table held in memory until it is written.
+  struct CsvTable
+  {
+    std::string                      file_name;
+    std::vector<std::string>         columns;
+    std::vector<std::vector<double>> rows;
+  };
+
+  /// Writes `table` to directory/file_name with full double precision:
+  /// first to a temporary file, then renamed, so no half-written file
+  /// remains. Throws NumericalError if any value is not finite (a NaN is
+  /// never written). Returns the path written.
+  std::string write_csv(const std::string &directory, const CsvTable &table);
+
+  /// Creates the directory (and parents) if missing; throws InputError.
+  void make_directory(const std::string &directory);
+} // namespace nsm

@@ -1,0 +1,150 @@
+// A scene: every parameter of one run, read once from a ParameterHandler file
+// and validated before any work is done.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace dealii
+{
+  class ParameterHandler;
+}
+
+namespace nsm
+{
+  /// Bad input: the message names the parameter and the allowed range.
+  class InputError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  /// A numerical failure that the run cannot recover from.
+  class NumericalError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  enum class ForceSign
+  {
+    physical, ///< the wall pushes the bar in -x: u_N = -gamma lambda
+    seed_eq5  ///< the paper's eq. (5) literally: u_N = +gamma lambda
+  };
+
+  enum class Refinement
+  {
+    none,
+    graded,
+    adaptive
+  };
+
+  enum class ReceptanceMethod
+  {
+    direct,
+    modal
+  };
+
+  enum class HarmonicBasis
+  {
+    cosine,
+    full
+  };
+
+  enum class Integration
+  {
+    sampled,
+    exact
+  };
+
+  enum class ContinuationMethod
+  {
+    sequential,
+    arclength
+  };
+
+  struct Scene
+  {
+    struct Bar
+    {
+      double      length        = 1.0;
+      double      young_modulus = 1.0;
+      double      density       = 1.0;
+      std::string cross_section = "1.5 - x";
+    } bar;
+
+    struct Contact
+    {
+      bool      enabled = true;
+      double    gap     = 1e-3;
+      double    alpha   = 1.0;
+      ForceSign sign    = ForceSign::physical;
+    } contact;
+
+    struct Discretisation
+    {
+      unsigned int degree            = 1;
+      unsigned int cells             = 4000;
+      unsigned int quadrature_points = 0; ///< 0: degree + 2
+      Refinement   refinement        = Refinement::none;
+      double       graded_ratio      = 0.8;
+      unsigned int graded_layers     = 0;
+      unsigned int adaptive_steps    = 10;
+      double       adaptive_tolerance = 1e-8;
+      double       adaptive_fraction  = 0.3;
+      double       adaptive_band_max  = 0.0; ///< 0: derived from the scene
+    } discretisation;
+
+    struct Receptance
+    {
+      ReceptanceMethod method = ReceptanceMethod::direct;
+      unsigned int     modes  = 0; ///< modal basis size, 0 = all
+    } receptance;
+
+    struct HarmonicBalance
+    {
+      unsigned int  harmonics    = 40;
+      unsigned int  time_samples = 0; ///< 0: chosen from the harmonics
+      HarmonicBasis basis        = HarmonicBasis::cosine;
+      Integration   integration  = Integration::exact;
+      double        tolerance    = 1e-10;
+      unsigned int  max_iterations = 30;
+      std::string   line_search  = "Full Step";
+    } harmonic_balance;
+
+    struct Continuation
+    {
+      ContinuationMethod method       = ContinuationMethod::sequential;
+      unsigned int       mode         = 1;
+      double             omega_min    = 0.0;
+      double             omega_max    = 2.2;
+      double             energy_max   = 1.0;
+      double             initial_step = 1e-3;
+      double             min_step     = 1e-7;
+      double             max_step     = 1e-2;
+      unsigned int       max_steps    = 2000;
+    } continuation;
+
+    struct Output
+    {
+      std::string         directory       = "output";
+      unsigned int        spectrum_modes  = 0;
+      std::vector<double> receptance_frequencies;
+      bool                backbone        = false;
+    } output;
+
+    /// Reads and validates a scene file; throws InputError.
+    static Scene from_file(const std::string &path);
+
+    /// Declares every parameter with its default and documentation.
+    static void declare(dealii::ParameterHandler &prm);
+
+    /// Time samples actually used by the harmonic balance.
+    unsigned int time_samples() const;
+  };
+
+  /// Parses "0, 0.5, 2:3:11" (a:b:n = n values from a to b) into a list.
+  std::vector<double> parse_frequency_list(const std::string &text,
+                                           const std::string &parameter);
+} // namespace nsm

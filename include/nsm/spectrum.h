@@ -1,0 +1,39 @@
+// Eigenpairs of K phi = w^2 M phi for the clamped-free and clamped-clamped
+// bar, from banded LAPACK (the 1D FE matrices have bandwidth p after
+// Cuthill-McKee ordering).
+#pragma once
+
+#include <nsm/discretisation.h>
+
+#include <vector>
+
+namespace nsm
+{
+  enum class EndCondition
+  {
+    clamped_free,
+    clamped_clamped
+  };
+
+  struct ModalData
+  {
+    /// Eigenvalues w_j^2, ascending.
+    std::vector<double> eigenvalues;
+    /// phi_j(L)^2 of the mass-normalised modes (clamped-free only): the
+    /// residues of the receptance, gamma(w) = sum_j r_j / (w_j^2 - w^2).
+    std::vector<double> contact_residues;
+  };
+
+  /// The lowest `count` eigenpairs (count = 0: all). Eigenvalues from LAPACK
+  /// dsbgvx, each refined, with its mode, by shifted inverse iteration on a
+  /// banded LU; residues only when asked for.
+  ModalData compute_spectrum(const Discretisation &discretisation,
+                             EndCondition          ends,
+                             unsigned int          count,
+                             bool                  with_contact_residues);
+
+  /// Eigenvalues w_j^2 <= omega_max^2 (unrefined: used to count poles).
+  std::vector<double> eigenvalues_below(const Discretisation &discretisation,
+                                        EndCondition          ends,
+                                        double                omega_max);
+} // namespace nsm

@@ -1,0 +1,56 @@
+#include <nsm/bar_model.h>
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/point.h>
+
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace nsm
+{
+  BarModel::BarModel(const Scene::Bar &bar)
+    : length_(bar.length)
+    , young_modulus_(bar.young_modulus)
+    , density_(bar.density)
+    , expression_(bar.cross_section)
+    , section_(std::make_unique<dealii::FunctionParser<1>>(1))
+  {
+    const std::map<std::string, double> constants = {{"pi", M_PI},
+                                                     {"L", length_}};
+    try
+      {
+        section_->initialize("x", expression_, constants);
+        // muparser reports some errors only on the first evaluation.
+        section_->value(dealii::Point<1>(0.0));
+      }
+    catch (const dealii::ExceptionBase &e)
+      {
+        std::ostringstream info;
+        e.print_info(info);
+        throw InputError("parameter 'Bar/Cross section' = '" + expression_ +
+                         "' is not a valid expression in x: " + info.str());
+      }
+    constexpr unsigned int samples = 1000;
+    for (unsigned int i = 0; i <= samples; ++i)
+      cross_section(length_ * i / samples);
+  }
+
+  BarModel::~BarModel() = default;
+
+  double BarModel::cross_section(const double x) const
+  {
+    const double a = section_->value(dealii::Point<1>(x));
+    if (!(std::isfinite(a) && a > 0))
+      {
+        std::ostringstream msg;
+        msg.precision(17);
+        msg << "parameter 'Bar/Cross section' = '" << expression_
+            << "' is out of range: allowed A(x) > 0 and finite on [0, L], "
+               "but A("
+            << x << ") = " << a;
+        throw InputError(msg.str());
+      }
+    return a;
+  }
+} // namespace nsm

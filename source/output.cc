@@ -1,0 +1,49 @@
+#include <nsm/output.h>
+#include <nsm/scene.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+namespace nsm
+{
+  void make_directory(const std::string &directory)
+  {
+    std::error_code error;
+    std::filesystem::create_directories(directory, error);
+    if (error || !std::filesystem::is_directory(directory))
+      throw InputError("parameter 'Output/Directory' = '" + directory +
+                       "' cannot be created: " + error.message());
+  }
+
+  std::string write_csv(const std::string &directory, const CsvTable &table)
+  {
+    for (const auto &row : table.rows)
+      for (const double v : row)
+        if (!std::isfinite(v))
+          throw NumericalError("a non-finite value was about to be written to " +
+                               table.file_name + "; nothing was written");
+
+    const std::string path      = directory + "/" + table.file_name;
+    const std::string temporary = path + ".partial";
+    {
+      std::ofstream out(temporary);
+      out.precision(std::numeric_limits<double>::max_digits10);
+      for (std::size_t c = 0; c < table.columns.size(); ++c)
+        out << (c ? "," : "") << table.columns[c];
+      out << '\n';
+      for (const auto &row : table.rows)
+        {
+          for (std::size_t c = 0; c < row.size(); ++c)
+            out << (c ? "," : "") << row[c];
+          out << '\n';
+        }
+      if (!out)
+        throw InputError("parameter 'Output/Directory': cannot write " + path);
+    }
+    std::filesystem::rename(temporary, path);
+    return path;
+  }
+} // namespace nsm

@@ -1,0 +1,185 @@
+#include <nsm/bar_model.h>
+#include <nsm/discretisation.h>
+#include <nsm/pipeline.h>
+#include <nsm/receptance.h>
+#include <nsm/spectrum.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <iomanip>
+#include <memory>
+#include <ostream>
+#include <sstream>
+
+namespace nsm
+{
+  namespace
+  {
+    /// Times one stage (wall and process CPU) into the report.
+    template <typename Work>
+    void timed(RunReport &report, const std::string &name, Work &&work)
+    {
+      const auto    wall0 = std::chrono::steady_clock::now();
+      const clock_t cpu0  = std::clock();
+      work();
+      report.stages.push_back(
+        {name,
+         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count(),
+         double(std::clock() - cpu0) / CLOCKS_PER_SEC});
+    }
+
+    std::string describe(const Discretisation &d)
+    {
+      std::ostringstream s;
+      s << "discretisation: FE_Q(" << d.fe().degree << "), " << d.n_cells()
+        << " cells, " << d.n_dofs() << " DoFs, h in [" << d.min_cell_size()
+        << ", " << d.max_cell_size() << "]";
+      return s.str();
+    }
+
+    /// Largest frequency at which the scene evaluates the receptance.
+    double band_max(const Scene &scene)
+    {
+      if (scene.discretisation.adaptive_band_max > 0)
+        return scene.discretisation.adaptive_band_max;
+      double w = 0;
+      for (const double f : scene.output.receptance_frequencies)
+        w = std::max(w, f);
+      if (scene.output.backbone)
+        w = std::max(w, scene.harmonic_balance.harmonics * scene.continuation.omega_max);
+      return w;
+    }
+
+    /// Kelly indicators of the receptance fields h(w) over the band, each
+    /// frequency weighted equally; stops when gamma of degree p and p + 1
+    /// agree to the tolerance (relative to the largest |gamma| in the band).
+    void refine_adaptively(Discretisation &d, const Scene &scene, RunReport &report)
+    {
+      const auto        &params = scene.discretisation;
+      const double       top    = band_max(scene);
+      constexpr unsigned samples = 16;
+      std::vector<double> band;
+      for (unsigned int i = 0; i < samples; ++i)
+        band.push_back(top * (i + 0.5) / samples);
+
+      for (unsigned int step = 0;; ++step)
+        {
+          const Scene::Receptance direct{ReceptanceMethod::direct, 0};
+          const Discretisation    richer(d, d.fe().degree + 1);
+          const Receptance        coarse(d, direct, 0.0), fine(richer, direct, 0.0);
+          double                  error = 0, scale = 0;
+          dealii::Vector<float>   indicators(d.n_cells());
+          for (const double w : band)
+            {
+              const dealii::Vector<double> h = coarse.field(w);
+              const double g_fine = fine(w).gamma;
+              error = std::max(error, std::abs(h[d.contact_dof()] - g_fine));
+              scale = std::max(scale, std::abs(g_fine));
+              dealii::Vector<float> eta = d.kelly_indicators(h);
+              eta /= std::max(double(eta.l1_norm()), 1e-300);
+              indicators += eta;
+            }
+          std::ostringstream note;
+          note << "adaptive step " << step << ": " << d.n_dofs()
+               << " DoFs, estimated relative error of gamma over [0, " << top
+               << "]: " << error / scale;
+          report.notes.push_back(note.str());
+          if (error <= params.adaptive_tolerance * scale ||
+              step == params.adaptive_steps)
+            break;
+          d.refine(indicators, params.adaptive_fraction);
+        }
+    }
+
+    CsvTable spectrum_table(const Discretisation &d, const unsigned int modes)
+    {
+      const ModalData free =
+        compute_spectrum(d, EndCondition::clamped_free, modes, false);
+      const ModalData clamped =
+        compute_spectrum(d, EndCondition::clamped_clamped, modes, false);
+      const std::size_t n = std::min(free.eigenvalues.size(), clamped.eigenvalues.size());
+      CsvTable table{"spectrum.csv",
+                     {"j", "omega_clamped_free", "omega_clamped_clamped"},
+                     {}};
+      for (std::size_t j = 0; j < n; ++j)
+        table.rows.push_back({double(j + 1),
+                              std::sqrt(free.eigenvalues[j]),
+                              std::sqrt(clamped.eigenvalues[j])});
+      return table;
+    }
+
+    CsvTable receptance_table(const Receptance &receptance, const Scene &scene)
+    {
+      CsvTable table{"receptance.csv", {"omega", "gamma", "dgamma_domega2"}, {}};
+      for (const double w : scene.output.receptance_frequencies)
+        {
+          const ReceptanceValue v = receptance(w);
+          table.rows.push_back({w, v.gamma, v.dgamma_domega2});
+        }
+      return table;
+    }
+  } // namespace
+
+  RunReport run_scene(const Scene &scene)
+  {
+    RunReport             report;
+    std::vector<CsvTable> tables;
+
+    const bool needs_spectrum   = scene.output.spectrum_modes > 0;
+    const bool needs_receptance = !scene.output.receptance_frequencies.empty();
+    const bool needs_mesh       = needs_spectrum || needs_receptance;
+    if (!needs_mesh)
+      {
+        report.notes.push_back("the scene requests no output: nothing to do");
+        return report;
+      }
+
+    const BarModel                  bar(scene.bar);
+    std::unique_ptr<Discretisation> discretisation;
+    timed(report, "mesh and assembly", [&] {
+      discretisation = std::make_unique<Discretisation>(bar, scene.discretisation);
+    });
+    if (scene.discretisation.refinement == Refinement::adaptive)
+      timed(report, "adaptive refinement", [&] {
+        refine_adaptively(*discretisation, scene, report);
+      });
+    report.notes.push_back(describe(*discretisation));
+
+    if (needs_spectrum)
+      timed(report, "spectrum", [&] {
+        tables.push_back(spectrum_table(*discretisation, scene.output.spectrum_modes));
+      });
+    if (needs_receptance)
+      timed(report, "receptance", [&] {
+        const Receptance receptance(*discretisation, scene.receptance, band_max(scene));
+        tables.push_back(receptance_table(receptance, scene));
+      });
+
+    timed(report, "output", [&] {
+      make_directory(scene.output.directory);
+      for (const CsvTable &table : tables)
+        report.files.push_back(write_csv(scene.output.directory, table));
+    });
+    return report;
+  }
+
+  void print_report(const RunReport &report, std::ostream &out)
+  {
+    out << "Run summary\n";
+    out << "  " << std::left << std::setw(24) << "stage" << std::right
+        << std::setw(12) << "wall [s]" << std::setw(12) << "cpu [s]" << '\n';
+    for (const StageTiming &s : report.stages)
+      out << "  " << std::left << std::setw(24) << s.name << std::right
+          << std::fixed << std::setprecision(4) << std::setw(12)
+          << s.wall_seconds << std::setw(12) << s.cpu_seconds << '\n';
+    out.unsetf(std::ios::fixed);
+    out << std::setprecision(6);
+    for (const std::string &note : report.notes)
+      out << "  " << note << '\n';
+    out << "  files written: " << (report.files.empty() ? "none" : "") << '\n';
+    for (const std::string &f : report.files)
+      out << "    " << f << '\n';
+  }
+} // namespace nsm
