@@ -1,0 +1,73 @@
+// Exact references for the tests (method.md section 2): the linearly tapered
+// bar A(x) = 1.5 - x with E = rho = L = 1, where u = c1 J0(w s) + c2 Y0(w s),
+// s = 1.5 - x, and the uniform bar, where gamma(w) = tan(w) / w.
+#pragma once
+
+#include <cmath>
+#include <functional>
+#include <vector>
+
+namespace exact
+{
+  inline double j0(double z) { return std::cyl_bessel_j(0.0, z); }
+  inline double j1(double z) { return std::cyl_bessel_j(1.0, z); }
+  inline double y0(double z) { return std::cyl_neumann(0.0, z); }
+  inline double y1(double z) { return std::cyl_neumann(1.0, z); }
+
+  inline double tapered_clamped_free(double w)
+  {
+    return j0(1.5 * w) * y1(0.5 * w) - y0(1.5 * w) * j1(0.5 * w);
+  }
+
+  inline double tapered_clamped_clamped(double w)
+  {
+    return j0(1.5 * w) * y0(0.5 * w) - y0(1.5 * w) * j0(0.5 * w);
+  }
+
+  /// gamma(w) of the tapered bar: u(0) = 0 and E A(L) u'(L) = 1.
+  inline double tapered_receptance(double w)
+  {
+    if (w == 0)
+      return std::log(3.0);
+    // c1 J0(1.5w) + c2 Y0(1.5w) = 0;  0.5 w (c1 J1(0.5w) + c2 Y1(0.5w)) = 1
+    const double a11 = j0(1.5 * w), a12 = y0(1.5 * w);
+    const double a21 = 0.5 * w * j1(0.5 * w), a22 = 0.5 * w * y1(0.5 * w);
+    const double det = a11 * a22 - a12 * a21;
+    const double c1 = -a12 / det, c2 = a11 / det;
+    return c1 * j0(0.5 * w) + c2 * y0(0.5 * w);
+  }
+
+  inline double uniform_receptance(double w)
+  {
+    return w == 0 ? 1.0 : std::tan(w) / w;
+  }
+
+  /// The first `count` roots of f on (0, inf): sign changes on a fine grid,
+  /// then bisection to machine precision.
+  inline std::vector<double> roots(const std::function<double(double)> &f,
+                                   unsigned int count,
+                                   double       step = 1e-3)
+  {
+    std::vector<double> found;
+    double a = step, fa = f(a);
+    while (found.size() < count)
+      {
+        const double b = a + step, fb = f(b);
+        if ((fa < 0) != (fb < 0))
+          {
+            double lo = a, hi = b, flo = fa;
+            for (int i = 0; i < 200 && hi - lo > 4e-16 * hi; ++i)
+              {
+                const double mid = 0.5 * (lo + hi), fm = f(mid);
+                if ((fm < 0) == (flo < 0))
+                  lo = mid, flo = fm;
+                else
+                  hi = mid;
+              }
+            found.push_back(0.5 * (lo + hi));
+          }
+        a = b, fa = fb;
+      }
+    return found;
+  }
+} // namespace exact

@@ -1,0 +1,30 @@
+// Small builders shared by the unit tests.
+#pragma once
+
+#include <nsm/scene.h>
+
+#include <fstream>
+#include <string>
+
+namespace testing_helpers
+{
+  /// The seed bar (A = 1.5 - x) or the uniform bar on a given mesh.
+  inline nsm::Scene bar_scene(const std::string &section,
+                              unsigned int       degree,
+                              unsigned int       cells)
+  {
+    nsm::Scene scene;
+    scene.bar.cross_section       = section;
+    scene.discretisation.degree   = degree;
+    scene.discretisation.cells    = cells;
+    return scene;
+  }
+
+  /// Writes a scene file with the given body and returns its path.
+  inline std::string write_scene(const std::string &name, const std::string &body)
+  {
+    const std::string path = "scene_" + name + ".prm";
+    std::ofstream(path) << body;
+    return path;
+  }
+} // namespace testing_helpers

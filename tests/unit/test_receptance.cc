@@ -1,0 +1,136 @@
+// The receptance gamma(w) against the exact references, and the direct
+// (UMFPACK) and modal methods against each other.
+#include <nsm/bar_model.h>
+#include <nsm/discretisation.h>
+#include <nsm/receptance.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "exact_bar.h"
+#include "scene_helpers.h"
+
+namespace
+{
+  struct Model
+  {
+    Model(const std::string &section, unsigned int degree, unsigned int cells)
+      : scene(testing_helpers::bar_scene(section, degree, cells))
+      , bar(scene.bar)
+      , discretisation(bar, scene.discretisation)
+    {}
+    nsm::Receptance receptance(nsm::ReceptanceMethod method, unsigned int modes = 0) const
+    {
+      return nsm::Receptance(discretisation, {method, modes}, 40.0);
+    }
+    nsm::Scene          scene;
+    nsm::BarModel       bar;
+    nsm::Discretisation discretisation;
+  };
+
+  // Between and near the poles (1.919, 4.874, 7.956) and zeros (3.097, 6.258).
+  const std::vector<double> tapered_frequencies = {
+    0.0, 0.5, 1.5, 1.9, 1.95, 2.5, 3.0, 3.1, 4.0, 4.86, 4.89, 6.0, 7.9};
+} // namespace
+
+TEST(Receptance, StaticValueIsLogThree)
+{
+  // gamma(0) = int dx / (E A) = ln 3. FE_Q(8) on 40 cells has a
+  // discretisation error ~ h^16, far below the round-off of the sparse solve
+  // (~100 eps measured), so the tolerance is the round-off level, 1e-12.
+  const Model model("1.5 - x", 8, 40);
+  EXPECT_NEAR(model.receptance(nsm::ReceptanceMethod::direct)(0.0).gamma,
+              std::log(3.0), 1e-12);
+}
+
+TEST(Receptance, TaperedBarMatchesBesselSolution)
+{
+  // Relative error of gamma ~ relative error of the nearest eigenvalue times
+  // w^2 / |w_j^2 - w^2|: the eigenvalues are exact to 1e-12 with FE_Q(8) on
+  // 40 cells, and the closest frequency here is 0.8 % from a pole, so 1e-9.
+  const Model model("1.5 - x", 8, 40);
+  const auto receptance = model.receptance(nsm::ReceptanceMethod::direct);
+  for (const double w : tapered_frequencies)
+    EXPECT_NEAR(receptance(w).gamma / exact::tapered_receptance(w), 1.0, 1e-9)
+      << "w = " << w;
+}
+
+TEST(Receptance, DerivativeMatchesFiniteDifferenceOfExact)
+{
+  // dgamma/d(w^2) = h^T M h against a centred difference of the exact gamma
+  // (step 1e-4 in w^2: truncation ~ 1e-8 relative).
+  const Model model("1.5 - x", 8, 40);
+  const auto receptance = model.receptance(nsm::ReceptanceMethod::direct);
+  for (const double w : {0.5, 1.5, 2.5, 4.0, 6.0})
+    {
+      const double s = w * w, ds = 1e-4;
+      const double fd = (exact::tapered_receptance(std::sqrt(s + ds)) -
+                         exact::tapered_receptance(std::sqrt(s - ds))) / (2 * ds);
+      EXPECT_NEAR(receptance(w).dgamma_domega2 / fd, 1.0, 1e-6) << "w = " << w;
+    }
+}
+
+TEST(Receptance, UniformBarIsTanOverOmega)
+{
+  // Uniform bar: gamma = tan(w) / w; FE_Q(8) on 20 cells, same reasoning.
+  const Model model("1", 8, 20);
+  const auto receptance = model.receptance(nsm::ReceptanceMethod::direct);
+  for (const double w : {0.0, 0.3, 1.0, 1.5, 1.6, 3.0, 4.6, 4.8, 7.0})
+    EXPECT_NEAR(receptance(w).gamma / exact::uniform_receptance(w), 1.0, 1e-9)
+      << "w = " << w;
+}
+
+TEST(Receptance, DirectAndModalAgree)
+{
+  // Full modal basis: the same discrete gamma, to 1e-10 relative away from
+  // poles (at least 1 % away here), for linear and high-order elements.
+  for (const auto &[degree, cells] : std::vector<std::pair<unsigned, unsigned>>{
+         {1, 400}, {2, 100}, {5, 20}, {10, 4}})
+    {
+      const Model model("1.5 - x", degree, cells);
+      const auto direct = model.receptance(nsm::ReceptanceMethod::direct);
+      const auto modal = model.receptance(nsm::ReceptanceMethod::modal);
+      for (const double w : tapered_frequencies)
+        {
+          const auto d = direct(w), m = modal(w);
+          EXPECT_NEAR(m.gamma / d.gamma, 1.0, 1e-10) << "p " << degree << ", w = " << w;
+          EXPECT_NEAR(m.dgamma_domega2 / d.dgamma_domega2, 1.0, 1e-10)
+            << "p " << degree << ", w = " << w;
+        }
+    }
+}
+
+TEST(Receptance, TruncatedModalBasisWithStaticCorrectionConverges)
+{
+  // With the static and first dynamic corrections, the modes left out above
+  // w_m contribute w^4 sum_{j>m} r_j / w_j^6 ~ m^-5 (r_j bounded, w_j ~ j):
+  // each doubling of the basis must divide the error by at least 16 (32
+  // expected), and gamma(0) stays exact.
+  const Model model("1.5 - x", 2, 100);
+  const auto  direct = model.receptance(nsm::ReceptanceMethod::direct);
+  double      previous = 0;
+  for (const unsigned int modes : {5u, 10u, 20u, 40u})
+    {
+      const auto modal = model.receptance(nsm::ReceptanceMethod::modal, modes);
+      EXPECT_NEAR(modal(0.0).gamma / direct(0.0).gamma, 1.0, 1e-12);
+      double error = 0;
+      for (const double w : {0.5, 2.5, 4.0, 6.0})
+        error = std::max(error, std::abs(modal(w).gamma - direct(w).gamma));
+      if (previous > 0)
+        {
+          EXPECT_LT(error, previous / 16) << modes << " modes";
+        }
+      previous = error;
+    }
+}
+
+TEST(Receptance, PolesCountedFromTheSpectrum)
+{
+  const Model model("1.5 - x", 4, 40);
+  const auto  receptance = model.receptance(nsm::ReceptanceMethod::direct);
+  const auto  w = exact::roots(exact::tapered_clamped_free, 3);
+  EXPECT_EQ(receptance.poles_below(w[0] * 0.99), 0u);
+  EXPECT_EQ(receptance.poles_below(w[0] * 1.01), 1u);
+  EXPECT_EQ(receptance.poles_below(w[2] * 1.01), 3u);
+}

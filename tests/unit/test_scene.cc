@@ -1,0 +1,136 @@
+// Bad input is rejected before any work, with a message that names the
+// parameter and the allowed range; the executable exits non-zero and writes
+// no output.
+#include <nsm/bar_model.h>
+#include <nsm/discretisation.h>
+#include <nsm/scene.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "scene_helpers.h"
+
+namespace
+{
+  struct BadInput
+  {
+    std::string name;
+    std::string body;
+    std::string expected_words; ///< the parameter's name in the message
+    std::string expected_range; ///< the allowed range in the message
+  };
+
+  std::vector<BadInput> bad_inputs()
+  {
+    return {
+      {"unknown_parameter", "subsection Bar\n set Lenght = 1\nend\n", "Lenght", "declared"},
+      {"unknown_subsection", "subsection Baar\n set Length = 1\nend\n", "Baar", ""},
+      {"malformed_section", "subsection Bar\n set Cross section = 1.5 - * x\nend\n", "Bar/Cross section", "expression"},
+      {"unknown_variable", "subsection Bar\n set Cross section = 1.5 - y\nend\n", "Bar/Cross section", "expression"},
+      {"section_negative", "subsection Bar\n set Cross section = 0.5 - x\nend\n", "Bar/Cross section", "A(x) > 0"},
+      {"section_zero_at_end", "subsection Bar\n set Cross section = 1 - x\nend\n", "Bar/Cross section", "A(x) > 0"},
+      {"section_nan", "subsection Bar\n set Cross section = sqrt(x - 0.5)\nend\n", "Bar/Cross section", "A(x) > 0"},
+      {"length_zero", "subsection Bar\n set Length = 0\nend\n", "Bar/Length", "> 0"},
+      {"length_text", "subsection Bar\n set Length = one\nend\n", "Length", "Double"},
+      {"young_negative", "subsection Bar\n set Young modulus = -1\nend\n", "Bar/Young modulus", "> 0"},
+      {"density_zero", "subsection Bar\n set Density = 0\nend\n", "Bar/Density", "> 0"},
+      {"gap_zero", "subsection Contact\n set Gap = 0\nend\n", "Contact/Gap", "> 0"},
+      {"alpha_negative", "subsection Contact\n set Alpha = -2\nend\n", "Contact/Alpha", "> 0"},
+      {"sign_unknown", "subsection Contact\n set Force sign = attractive\nend\n", "Force sign", "physical|seed-eq5"},
+      {"degree_zero", "subsection Discretisation\n set Degree = 0\nend\n", "Discretisation/Degree", "[1, 20]"},
+      {"degree_large", "subsection Discretisation\n set Degree = 21\nend\n", "Discretisation/Degree", "[1, 20]"},
+      {"cells_zero", "subsection Discretisation\n set Cells = 0\nend\n", "Discretisation/Cells", "[1, 1000000]"},
+      {"ratio_large", "subsection Discretisation\n subsection Graded\n  set Ratio = 1.5\n end\nend\n", "Graded/Ratio", "0 < ratio <= 1"},
+      {"layers_too_many", "subsection Discretisation\n set Cells = 4\n subsection Graded\n  set Layers = 5\n end\nend\n", "Graded/Layers", "[0, 4]"},
+      {"fraction_zero", "subsection Discretisation\n subsection Adaptive\n  set Refine fraction = 0\n end\nend\n", "Refine fraction", "0 < fraction <= 1"},
+      {"method_unknown", "subsection Receptance\n set Method = iterative\nend\n", "Method", "direct|modal"},
+      {"frequency_negative", "subsection Output\n set Receptance frequencies = 1, -2\nend\n", "Output/Receptance frequencies", ">= 0"},
+      {"frequency_text", "subsection Output\n set Receptance frequencies = 1, two\nend\n", "Output/Receptance frequencies", "finite number"},
+      {"frequency_range", "subsection Output\n set Receptance frequencies = 3:1:10\nend\n", "Output/Receptance frequencies", "a < b"},
+      {"harmonics_zero", "subsection Harmonic balance\n set Harmonics = 0\nend\n", "Harmonic balance/Harmonics", "[1, 1000]"},
+      {"samples_few", "subsection Harmonic balance\n set Harmonics = 10\n set Time samples = 20\nend\n", "Time samples", "[2 M + 1"},
+      {"tolerance_zero", "subsection Harmonic balance\n set Tolerance = 0\nend\n", "Harmonic balance/Tolerance", "> 0"},
+      {"omega_order", "subsection Continuation\n set Omega min = 3\n set Omega max = 2\nend\n", "Continuation/Omega max", "> Omega min"},
+      {"min_step_large", "subsection Continuation\n set Min step = 1\nend\n", "Continuation/Min step", "<= Initial step"},
+      {"mode_zero", "subsection Continuation\n set Mode = 0\nend\n", "Continuation/Mode", "[1, 100000]"},
+    };
+  }
+
+  /// Parses the scene and builds the bar and its mesh, as a run does before
+  /// any output.
+  void load(const std::string &path)
+  {
+    nsm::Scene scene = nsm::Scene::from_file(path);
+    scene.discretisation.cells = std::min(scene.discretisation.cells, 50u);
+    const nsm::BarModel       bar(scene.bar);
+    const nsm::Discretisation discretisation(bar, scene.discretisation);
+  }
+} // namespace
+
+TEST(Scene, DefaultsParse)
+{
+  const std::string path = testing_helpers::write_scene("empty", "");
+  const nsm::Scene  scene = nsm::Scene::from_file(path);
+  EXPECT_EQ(scene.bar.cross_section, "1.5 - x");
+  EXPECT_EQ(scene.discretisation.cells, 4000u);
+  EXPECT_EQ(scene.time_samples(), 1024u); // smallest power of 2 >= 16 * 40
+}
+
+TEST(Scene, FrequencyListsAndRanges)
+{
+  const auto w = nsm::parse_frequency_list("0, 0.5, 1:2:3", "p");
+  ASSERT_EQ(w.size(), 5u);
+  EXPECT_DOUBLE_EQ(w[2], 1.0);
+  EXPECT_DOUBLE_EQ(w[3], 1.5);
+  EXPECT_DOUBLE_EQ(w[4], 2.0);
+  EXPECT_TRUE(nsm::parse_frequency_list("", "p").empty());
+}
+
+TEST(Scene, EveryBadInputNamesItsParameterAndRange)
+{
+  for (const BadInput &bad : bad_inputs())
+    {
+      const std::string path = testing_helpers::write_scene(bad.name, bad.body);
+      try
+        {
+          load(path);
+          ADD_FAILURE() << bad.name << ": accepted";
+        }
+      catch (const nsm::InputError &e)
+        {
+          const std::string message = e.what();
+          EXPECT_NE(message.find(bad.expected_words), std::string::npos)
+            << bad.name << ": " << message;
+          EXPECT_NE(message.find(bad.expected_range), std::string::npos)
+            << bad.name << ": " << message;
+        }
+    }
+}
+
+TEST(Scene, ExecutableRejectsBadInputWithoutWritingOutput)
+{
+  for (const BadInput &bad : bad_inputs())
+    {
+      const std::string directory = "rejected_" + bad.name;
+      std::filesystem::remove_all(directory);
+      const std::string path = testing_helpers::write_scene(
+        bad.name,
+        bad.body + "subsection Output\n set Directory = " + directory +
+          "\n set Spectrum modes = 2\nend\n");
+      const std::string command = std::string(NSM_BAR_EXECUTABLE) + " " + path +
+                                  " > " + directory + ".log 2>&1";
+      const int status = std::system(command.c_str());
+      ASSERT_TRUE(WIFEXITED(status)) << bad.name;
+      EXPECT_EQ(WEXITSTATUS(status), 2) << bad.name;
+      EXPECT_FALSE(std::filesystem::exists(directory)) << bad.name;
+    }
+}
+
+TEST(Scene, ExecutableRejectsMissingFile)
+{
+  const int status =
+    std::system((std::string(NSM_BAR_EXECUTABLE) + " no_such_scene.prm > missing.log 2>&1").c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+}

@@ -1,0 +1,122 @@
+// Eigenfrequencies against the exact Bessel roots, and their convergence in
+// h (rate 2p) and in p (exponential) for the tapered seed bar.
+#include <nsm/bar_model.h>
+#include <nsm/discretisation.h>
+#include <nsm/spectrum.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "exact_bar.h"
+#include "scene_helpers.h"
+
+namespace
+{
+  const std::vector<double> &exact_clamped_free()
+  {
+    static const auto roots = exact::roots(exact::tapered_clamped_free, 10);
+    return roots;
+  }
+  const std::vector<double> &exact_clamped_clamped()
+  {
+    static const auto roots = exact::roots(exact::tapered_clamped_clamped, 10);
+    return roots;
+  }
+
+  std::vector<double> frequencies(unsigned int degree,
+                                  unsigned int cells,
+                                  nsm::EndCondition ends,
+                                  unsigned int count)
+  {
+    const nsm::Scene          scene = testing_helpers::bar_scene("1.5 - x", degree, cells);
+    const nsm::BarModel       bar(scene.bar);
+    const nsm::Discretisation d(bar, scene.discretisation);
+    std::vector<double> w = nsm::compute_spectrum(d, ends, count, false).eigenvalues;
+    for (double &v : w)
+      v = std::sqrt(v);
+    return w;
+  }
+
+  double mode_error(unsigned int mode, unsigned int degree, unsigned int cells)
+  {
+    return frequencies(degree, cells, nsm::EndCondition::clamped_free, mode)[mode - 1] /
+             exact_clamped_free()[mode - 1] - 1;
+  }
+} // namespace
+
+TEST(ExactReference, SeedBarFirstFrequenciesMatchMethodNote)
+{
+  // method.md: w1 = 1.919137 (clamped-free), 3.096918 (clamped-clamped).
+  EXPECT_NEAR(exact_clamped_free()[0], 1.919137, 5e-7);
+  EXPECT_NEAR(exact_clamped_clamped()[0], 3.096918, 5e-7);
+}
+
+TEST(Spectrum, FirstTenFrequenciesOfTheTaperedBar)
+{
+  // FE_Q(8) on 40 cells: a priori error ~ (w h / p)^(2p); for mode 10
+  // (w ~ 30, h = 1/40) that is < 1e-11. Tolerance: 1e-10 relative.
+  const auto free = frequencies(8, 40, nsm::EndCondition::clamped_free, 10);
+  const auto clamped = frequencies(8, 40, nsm::EndCondition::clamped_clamped, 10);
+  for (unsigned int j = 0; j < 10; ++j)
+    {
+      EXPECT_NEAR(free[j] / exact_clamped_free()[j], 1.0, 1e-10) << "mode " << j + 1;
+      EXPECT_NEAR(clamped[j] / exact_clamped_clamped()[j], 1.0, 1e-10) << "mode " << j + 1;
+    }
+}
+
+TEST(Spectrum, FrequenciesInterlace)
+{
+  // Clamped-free below clamped-clamped for each j (Rayleigh's separation).
+  const auto free = frequencies(2, 100, nsm::EndCondition::clamped_free, 10);
+  const auto clamped = frequencies(2, 100, nsm::EndCondition::clamped_clamped, 10);
+  for (unsigned int j = 0; j < 10; ++j)
+    {
+      EXPECT_LT(free[j], clamped[j]);
+      if (j + 1 < 10)
+        {
+          EXPECT_LT(clamped[j], free[j + 1]);
+        }
+    }
+}
+
+TEST(Spectrum, ConvergesLikeHToTheTwoP)
+{
+  // Rates of mode 5 from three meshes halving h, in the asymptotic range
+  // (w5 h / p < 1) and far above round-off (errors > 1e-11; the floor is
+  // ~1e-13). Accept within 10 % of 2p.
+  const std::vector<std::vector<unsigned int>> meshes = {
+    {16, 32, 64}, {16, 32, 64}, {16, 32, 64}, {8, 16, 32}};
+  for (unsigned int p = 1; p <= 4; ++p)
+    {
+      std::vector<double> errors;
+      for (const unsigned int cells : meshes[p - 1])
+        errors.push_back(mode_error(5, p, cells));
+      for (unsigned int i = 0; i + 1 < errors.size(); ++i)
+        {
+          ASSERT_GT(errors[i + 1], 1e-11) << "p = " << p;
+          const double rate = std::log2(errors[i] / errors[i + 1]);
+          EXPECT_NEAR(rate, 2.0 * p, 0.2 * p)
+            << "p = " << p << ", cells " << meshes[p - 1][i];
+        }
+    }
+}
+
+TEST(Spectrum, ConvergesExponentiallyInP)
+{
+  // Fixed mesh of 2 cells: each extra degree divides the error by at least 4
+  // until round-off, which is reached (< 1e-13) by p = 12.
+  double previous = std::abs(mode_error(1, 1, 2));
+  double best = previous;
+  for (unsigned int p = 2; p <= 12; ++p)
+    {
+      const double error = std::abs(mode_error(1, p, 2));
+      if (previous > 1e-11)
+        {
+          EXPECT_LT(error, previous / 4) << "p = " << p;
+        }
+      previous = error;
+      best = std::min(best, error);
+    }
+  EXPECT_LT(best, 1e-13);
+}
