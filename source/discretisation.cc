@@ -142,10 +142,10 @@ namespace nsm
   void Discretisation::refine(const dealii::Vector<float> &indicators,
                               const double                 fraction)
   {
-    dealii::GridRefinement::refine_and_coarsen_fixed_number(triangulation_,
-                                                            indicators,
-                                                            fraction,
-                                                            0.0);
+    // At least one cell, or small meshes would never refine.
+    const double at_least_one = (1 + 1e-9) / triangulation_.n_active_cells();
+    dealii::GridRefinement::refine_and_coarsen_fixed_number(
+      triangulation_, indicators, std::max(fraction, at_least_one), 0.0);
     triangulation_.execute_coarsening_and_refinement();
     setup_and_assemble();
   }

@@ -1,3 +1,4 @@
+#include <nsm/adaptive_refinement.h>
 #include <nsm/bar_model.h>
 #include <nsm/discretisation.h>
 #include <nsm/pipeline.h>
@@ -52,47 +53,6 @@ namespace nsm
       return w;
     }
 
-    /// Kelly indicators of the receptance fields h(w) over the band, each
-    /// frequency weighted equally; stops when gamma of degree p and p + 1
-    /// agree to the tolerance (relative to the largest |gamma| in the band).
-    void refine_adaptively(Discretisation &d, const Scene &scene, RunReport &report)
-    {
-      const auto        &params = scene.discretisation;
-      const double       top    = band_max(scene);
-      constexpr unsigned samples = 16;
-      std::vector<double> band;
-      for (unsigned int i = 0; i < samples; ++i)
-        band.push_back(top * (i + 0.5) / samples);
-
-      for (unsigned int step = 0;; ++step)
-        {
-          const Scene::Receptance direct{ReceptanceMethod::direct, 0};
-          const Discretisation    richer(d, d.fe().degree + 1);
-          const Receptance        coarse(d, direct, 0.0), fine(richer, direct, 0.0);
-          double                  error = 0, scale = 0;
-          dealii::Vector<float>   indicators(d.n_cells());
-          for (const double w : band)
-            {
-              const dealii::Vector<double> h = coarse.field(w);
-              const double g_fine = fine(w).gamma;
-              error = std::max(error, std::abs(h[d.contact_dof()] - g_fine));
-              scale = std::max(scale, std::abs(g_fine));
-              dealii::Vector<float> eta = d.kelly_indicators(h);
-              eta /= std::max(double(eta.l1_norm()), 1e-300);
-              indicators += eta;
-            }
-          std::ostringstream note;
-          note << "adaptive step " << step << ": " << d.n_dofs()
-               << " DoFs, estimated relative error of gamma over [0, " << top
-               << "]: " << error / scale;
-          report.notes.push_back(note.str());
-          if (error <= params.adaptive_tolerance * scale ||
-              step == params.adaptive_steps)
-            break;
-          d.refine(indicators, params.adaptive_fraction);
-        }
-    }
-
     CsvTable spectrum_table(const Discretisation &d, const unsigned int modes)
     {
       const ModalData free =
@@ -143,7 +103,9 @@ namespace nsm
     });
     if (scene.discretisation.refinement == Refinement::adaptive)
       timed(report, "adaptive refinement", [&] {
-        refine_adaptively(*discretisation, scene, report);
+        for (std::string &note :
+             refine_adaptively(*discretisation, scene.discretisation, band_max(scene)))
+          report.notes.push_back(std::move(note));
       });
     report.notes.push_back(describe(*discretisation));
 

@@ -323,6 +323,13 @@ namespace nsm
               format_value(d.graded_ratio));
       d.graded_layers = get_integer(
         prm, "Discretisation/Graded", "Layers", 0, d.cells);
+      // Cells much smaller than that make the mass matrix numerically singular.
+      require(std::pow(d.graded_ratio, d.graded_layers) >= 1e-8,
+              "Discretisation/Graded/Layers",
+              "Ratio^Layers >= 1e-8 (the smallest cell at least 1e-8 of "
+              "the others)",
+              std::to_string(d.graded_layers) + " with Ratio = " +
+                format_value(d.graded_ratio));
       prm.leave_subsection();
       prm.enter_subsection("Adaptive");
       d.adaptive_steps =

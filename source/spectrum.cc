@@ -93,8 +93,12 @@ namespace nsm
     {
       std::vector<double> k = p.k, m = p.m;
       const int           ld = p.bandwidth + 1;
-      const char          range = last > 0 ? 'I' : 'V';
-      const double        lower = -1.0, abstol = 2 * dlamch_("S", 1);
+      // All of them: 'A' with abstol = 0 takes LAPACK's QR path (dsterf),
+      // far faster than bisection; the refinement below restores accuracy.
+      const bool   all    = first == 1 && last == p.n;
+      const char   range  = all ? 'A' : last > 0 ? 'I' : 'V';
+      const double lower  = -1.0;
+      const double abstol = all ? 0.0 : 2 * dlamch_("S", 1);
       int                 found = 0, info = 0, ldq = 1, ldz = 1;
       std::vector<double> w(p.n), work(7 * p.n);
       std::vector<int>    iwork(5 * p.n), ifail(p.n);
@@ -145,14 +149,23 @@ namespace nsm
       bool                singular_ = false;
     };
 
-    std::vector<double> banded_product(const BandedPencil &p,
+    std::vector<double> banded_product(const BandedPencil       &p,
                                        const std::vector<double> &ab,
                                        const std::vector<double> &x)
     {
+      // Upper band storage: column j holds A(i, j) for j - bandwidth <= i <= j.
+      const int           ld = p.bandwidth + 1;
       std::vector<double> y(p.n, 0.0);
-      for (int i = 0; i < p.n; ++i)
-        for (int j = std::max(0, i - p.bandwidth); j <= std::min(p.n - 1, i + p.bandwidth); ++j)
-          y[i] += p.at(ab, i, j) * x[j];
+      for (int j = 0; j < p.n; ++j)
+        {
+          const double *column = &ab[j * ld + p.bandwidth - j];
+          y[j] += column[j] * x[j];
+          for (int i = std::max(0, j - p.bandwidth); i < j; ++i)
+            {
+              y[i] += column[i] * x[j];
+              y[j] += column[i] * x[i];
+            }
+        }
       return y;
     }
 
@@ -173,10 +186,11 @@ namespace nsm
     {
       double sigma = eigenvalue;
       ShiftedLU lu(p, sigma);
-      for (int attempt = 0; lu.singular() && attempt < 5; ++attempt)
+      // An exactly zero pivot: shift off the eigenvalue by a growing amount.
+      for (double shift = 1e-13; lu.singular() && shift < 1e-7; shift *= 10)
         {
-          sigma *= 1 + 1e-13;
-          lu = ShiftedLU(p, sigma);
+          sigma = eigenvalue * (1 + shift);
+          lu    = ShiftedLU(p, sigma);
         }
       if (lu.singular())
         throw NumericalError("K - w^2 M is singular at the eigenvalue " +
@@ -190,12 +204,13 @@ namespace nsm
         }
       for (int step = 0; step < 2; ++step)
         {
-          std::vector<double> y = banded_product(p, p.m, x);
+          const std::vector<double> mx = banded_product(p, p.m, x);
+          std::vector<double>       y  = mx;
           lu.solve(y);
-          const double      norm = std::sqrt(dot(y, banded_product(p, p.m, y)));
+          const std::vector<double> my = banded_product(p, p.m, y);
           if (step == 1)
-            eigenvalue = sigma + dot(x, banded_product(p, p.m, x)) /
-                                   dot(x, banded_product(p, p.m, y));
+            eigenvalue = sigma + dot(x, mx) / dot(x, my);
+          const double norm = std::sqrt(dot(y, my));
           for (double &v : y)
             v /= norm;
           x = std::move(y);

@@ -24,17 +24,18 @@ namespace exact
     return j0(1.5 * w) * y0(0.5 * w) - y0(1.5 * w) * j0(0.5 * w);
   }
 
-  /// gamma(w) of the tapered bar: u(0) = 0 and E A(L) u'(L) = 1.
-  inline double tapered_receptance(double w)
+  /// gamma(w) of the bar A(x) = a - x (a > 1): u(0) = 0, E A(L) u'(L) = 1.
+  inline double tapered_receptance(double w, double a = 1.5)
   {
+    const double b = a - 1; // A(L)
     if (w == 0)
-      return std::log(3.0);
-    // c1 J0(1.5w) + c2 Y0(1.5w) = 0;  0.5 w (c1 J1(0.5w) + c2 Y1(0.5w)) = 1
-    const double a11 = j0(1.5 * w), a12 = y0(1.5 * w);
-    const double a21 = 0.5 * w * j1(0.5 * w), a22 = 0.5 * w * y1(0.5 * w);
+      return std::log(a / b);
+    // c1 J0(a w) + c2 Y0(a w) = 0;  b w (c1 J1(b w) + c2 Y1(b w)) = 1
+    const double a11 = j0(a * w), a12 = y0(a * w);
+    const double a21 = b * w * j1(b * w), a22 = b * w * y1(b * w);
     const double det = a11 * a22 - a12 * a21;
     const double c1 = -a12 / det, c2 = a11 / det;
-    return c1 * j0(0.5 * w) + c2 * y0(0.5 * w);
+    return c1 * j0(b * w) + c2 * y0(b * w);
   }
 
   inline double uniform_receptance(double w)
