@@ -1,5 +1,7 @@
 #include <nsm/adaptive_refinement.h>
 #include <nsm/bar_model.h>
+#include <nsm/continuation.h>
+#include <nsm/harmonic_balance.h>
 #include <nsm/discretisation.h>
 #include <nsm/pipeline.h>
 #include <nsm/receptance.h>
@@ -80,6 +82,27 @@ namespace nsm
         }
       return table;
     }
+    CsvTable backbone_table(const Backbone &backbone)
+    {
+      CsvTable table{"backbone.csv",
+                     {"segment", "Omega", "energy", "energy_spread", "max_contact_force",
+                      "contact_fraction", "newton_iterations", "residual"},
+                     {}};
+      for (const BackbonePoint &p : backbone.points)
+        table.rows.push_back({double(p.segment), p.omega, p.measures.energy,
+                              p.measures.energy_spread, p.measures.max_contact_force,
+                              p.measures.contact_fraction, double(p.newton_iterations),
+                              p.residual});
+      return table;
+    }
+
+    CsvTable resonance_table(const std::vector<InternalResonance> &resonances)
+    {
+      CsvTable table{"resonances.csv", {"omega", "mode", "harmonic"}, {}};
+      for (const InternalResonance &r : resonances)
+        table.rows.push_back({r.omega, double(r.mode), double(r.harmonic)});
+      return table;
+    }
   } // namespace
 
   RunReport run_scene(const Scene &scene)
@@ -89,7 +112,8 @@ namespace nsm
 
     const bool needs_spectrum   = scene.output.spectrum_modes > 0;
     const bool needs_receptance = !scene.output.receptance_frequencies.empty();
-    const bool needs_mesh       = needs_spectrum || needs_receptance;
+    const bool needs_backbone   = scene.output.backbone;
+    const bool needs_mesh       = needs_spectrum || needs_receptance || needs_backbone;
     if (!needs_mesh)
       {
         report.notes.push_back("the scene requests no output: nothing to do");
@@ -113,10 +137,26 @@ namespace nsm
       timed(report, "spectrum", [&] {
         tables.push_back(spectrum_table(*discretisation, scene.output.spectrum_modes));
       });
+    std::unique_ptr<Receptance> receptance;
+    if (needs_receptance || needs_backbone)
+      timed(report, "receptance set-up", [&] {
+        receptance = std::make_unique<Receptance>(*discretisation, scene.receptance, band_max(scene));
+      });
     if (needs_receptance)
-      timed(report, "receptance", [&] {
-        const Receptance receptance(*discretisation, scene.receptance, band_max(scene));
-        tables.push_back(receptance_table(receptance, scene));
+      timed(report, "receptance", [&] { tables.push_back(receptance_table(*receptance, scene)); });
+    if (needs_backbone)
+      timed(report, "harmonic balance", [&] {
+        HarmonicBalance hb(scene, *receptance);
+        const auto      resonances = internal_resonances(*receptance, scene);
+        const Backbone  backbone   = compute_backbone(hb, scene, resonances);
+        tables.push_back(backbone_table(backbone));
+        tables.push_back(resonance_table(resonances));
+        std::ostringstream s;
+        s << "backbone: " << backbone.points.size() << " converged points, "
+          << backbone.folds.size() << " folds, " << hb.n_unknowns() << " unknowns";
+        report.notes.push_back(s.str());
+        for (const std::string &event : backbone.events)
+          report.notes.push_back("  " + event);
       });
 
     timed(report, "output", [&] {

@@ -1,0 +1,89 @@
+// Families of periodic solutions from grazing: sequential continuation in
+// Omega (the paper's) and pseudo-arclength (LOCA), with the internal
+// resonances W = w_j / k that fold the branch.
+#pragma once
+
+#include <nsm/harmonic_balance.h>
+#include <nsm/scene.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace nsm
+{
+  struct BackbonePoint
+  {
+    unsigned int             segment;
+    double                   omega;
+    PeriodicSolutionMeasures measures;
+    unsigned int             newton_iterations;
+    double                   residual;
+    std::vector<double>      x; ///< scaled unknowns
+  };
+
+  struct InternalResonance
+  {
+    double       omega; ///< w_j / k
+    unsigned int mode;  ///< j
+    unsigned int harmonic; ///< k
+  };
+
+  struct Backbone
+  {
+    std::vector<BackbonePoint> points;
+    std::vector<std::string>   events; ///< folds, leaps, stops: for the summary
+    std::vector<double>        folds;  ///< Omega of each fold turned or leapt
+  };
+
+  /// Every W = w_j / k in [Omega min, Omega max] with k <= M, w_j from the
+  /// FE clamped-free spectrum; sorted by W.
+  std::vector<InternalResonance> internal_resonances(const Receptance &receptance,
+                                                     const Scene      &scene);
+
+  const InternalResonance &nearest_resonance(const std::vector<InternalResonance> &resonances,
+                                             double                                omega);
+
+  /// Starts at grazing of Continuation/Mode and follows the branch with the
+  /// scene's method. Only converged, non-trivial points are kept.
+  Backbone compute_backbone(HarmonicBalance                      &hb,
+                            const Scene                          &scene,
+                            const std::vector<InternalResonance> &resonances);
+
+  /// The solution at exactly `omega` on the computed branch: Newton from the
+  /// interpolation of the two backbone points of one segment that bracket
+  /// it. Throws NumericalError if no segment brackets omega or Newton fails.
+  BackbonePoint solve_on_branch(HarmonicBalance &hb,
+                                const Scene     &scene,
+                                const Backbone  &backbone,
+                                double           omega);
+
+  /// Outcome of one Newton solve at fixed Omega (NOX).
+  struct NewtonResult
+  {
+    bool                converged;
+    unsigned int        iterations;
+    double              residual;
+    std::vector<double> x;
+  };
+
+  /// Newton on the HB system at fixed Omega, on NOX's LAPACK group.
+  class NewtonSolver
+  {
+  public:
+    NewtonSolver(HarmonicBalance &hb, const Scene::HarmonicBalance &params);
+    ~NewtonSolver();
+    NewtonResult solve(double omega, const std::vector<double> &guess);
+
+  private:
+    struct Impl;
+    Impl *impl_;
+  };
+
+  /// Pseudo-arclength from a converged start point with LOCA::Stepper.
+  /// `accept` is called for every converged step and returns false to stop.
+  void run_arclength(HarmonicBalance                                &hb,
+                     const Scene                                    &scene,
+                     const BackbonePoint                            &start,
+                     const std::function<bool(const BackbonePoint &)> &accept);
+} // namespace nsm

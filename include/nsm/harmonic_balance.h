@@ -1,0 +1,117 @@
+// Harmonic balance of the contact law at the contact DoF (the paper's eqs.
+// (7)-(10)), in a form that stays bounded through the poles and zeros of the
+// receptance.
+//
+// Per harmonic k (frequency k W) the receptance is written gamma = tan(theta),
+// theta continuous in W (each pole passed adds pi). One unknown c per basis
+// function carries both coefficients of eq. (8):
+//     a = c cos(theta)  (contact force),   b = -s c sin(theta)  (displacement),
+// s = +1 with the physical force sign, -1 with the paper's eq. (5). Unknowns
+// are scaled, x = c / F with F = g0 / gamma(0), so the scaled system does not
+// depend on g0 at all. With tau = W t the residual of eqs. (9)-(10) reads
+//     R_i = x_i cos(theta_i) - P_i[max(q, 0)],
+//     q(tau) = sum_j x_j D_j phi_j(tau) - alpha gamma(0),
+//     D_j = cos(theta_j) - s alpha sin(theta_j),
+// with P_i the Fourier projection on phi_i. Both integration rules reduce to
+// the active Gram matrix G_ij = P_i[phi_j on {q > 0}]: R = diag(cos) x - G v
+// with v = D x - alpha gamma(0) e_0, and J = diag(cos) - G diag(D).
+#pragma once
+
+#include <nsm/receptance.h>
+#include <nsm/scene.h>
+
+#include <vector>
+
+namespace nsm
+{
+  /// Quantities of one converged (or candidate) periodic solution.
+  struct PeriodicSolutionMeasures
+  {
+    double energy;            ///< period mean of kinetic + strain energy
+    double energy_spread;     ///< (max - min) / mean over the period
+    double max_contact_force; ///< max over the period of lambda(t)
+    double contact_fraction;  ///< share of the period with lambda - alpha g > 0
+    double min_force;         ///< min lambda / max lambda (Signorini: >= 0)
+    double min_gap;           ///< min g / g0 (Signorini: >= 0)
+    double max_complementarity; ///< max |lambda g| / (max lambda g0)
+  };
+
+  class HarmonicBalance
+  {
+  public:
+    HarmonicBalance(const Scene &scene, const Receptance &receptance);
+
+    /// Unknowns: x_0 (mean), then per harmonic k cos (cosine basis) or sin
+    /// and cos (full basis). In the full basis slot 1 (sin W t) holds the
+    /// unfolding parameter mu of the phase condition instead: the sine part
+    /// of the first harmonic is fixed to 0 and mu must vanish at a solution.
+    unsigned int n_unknowns() const { return kinds_.size(); }
+    unsigned int harmonics() const { return harmonics_; }
+    bool         has_unfolding() const { return basis_ == HarmonicBasis::full; }
+
+    /// Evaluates the receptance at k W, k = 0..M, once per distinct W.
+    void   set_omega(double omega);
+    double omega() const { return omega_; }
+
+    /// Residual, and (if asked) the Jacobian (column-major n x n) and dR/dW,
+    /// at the current W.
+    void evaluate(const std::vector<double> &x,
+                  std::vector<double>       *residual,
+                  std::vector<double>       *jacobian,
+                  std::vector<double>       *domega) const;
+
+    /// Guess near grazing of clamped-free mode `pole` (0-based index of the
+    /// nearest pole): an impulsive contact force at t = 0 whose displacement
+    /// reaches the gap. Empty if no positive impulse can do it at this W.
+    std::vector<double> grazing_guess() const;
+
+    PeriodicSolutionMeasures measure(const std::vector<double> &x) const;
+
+    const Receptance &receptance() const { return receptance_; }
+
+    /// Contact force F that scales the unknowns (c = F x).
+    double force_scale() const { return force_scale_; }
+
+  private:
+    enum Kind
+    {
+      cosine,
+      sine
+    };
+
+    struct Phase
+    {
+      double cos, sin, dtheta_domega; ///< of theta at frequency k W
+      double omega2;                  ///< (k W)^2
+      double dtheta_domega2;          ///< d theta / d(w^2) = gamma' cos^2
+    };
+
+    /// q's coefficients v = D x - alpha gamma(0) e_0 (slot 1 of the full basis
+    /// carries mu, not a coefficient).
+    std::vector<double> contact_coefficients(const std::vector<double> &x) const;
+    /// Active Gram matrix of q (row-major n x n), and the contact fraction.
+    double active_gram(const std::vector<double> &v, std::vector<double> &gram) const;
+    double active_gram_exact(const std::vector<double> &v, std::vector<double> &gram) const;
+    double active_gram_sampled(const std::vector<double> &v, std::vector<double> &gram) const;
+    /// Roots of q in [0, 2 pi), sorted; also tells whether q > 0 at 0.
+    std::vector<double> roots(const std::vector<double> &v) const;
+    double              value(const std::vector<double> &v, double tau, double *slope) const;
+
+    const Receptance   &receptance_;
+    unsigned int        harmonics_;
+    HarmonicBasis       basis_;
+    Integration         integration_;
+    double              alpha_gamma0_; ///< alpha gamma(0): q's constant term
+    double              sign_;         ///< s
+    double              alpha_;
+    double              gap_;
+    double              gamma0_;
+    double              force_scale_;
+    std::vector<Kind>   kinds_;
+    std::vector<unsigned int> orders_; ///< k of each basis function
+    unsigned int        samples_;      ///< sampled rule: Nt; exact: bracketing grid
+    std::vector<double> table_;        ///< phi_i(tau_s), row-major n x samples
+    double              omega_ = -1;
+    std::vector<Phase>  phases_;       ///< per harmonic k = 0..M
+  };
+} // namespace nsm

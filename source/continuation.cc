@@ -1,0 +1,334 @@
+#include <nsm/continuation.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace nsm
+{
+  std::vector<InternalResonance> internal_resonances(const Receptance &receptance,
+                                                     const Scene      &scene)
+  {
+    const auto                    &c = scene.continuation;
+    std::vector<InternalResonance> found;
+    for (unsigned int j = 0; j < receptance.poles().size(); ++j)
+      for (unsigned int k = 1; k <= scene.harmonic_balance.harmonics; ++k)
+        {
+          const double omega = std::sqrt(receptance.poles()[j]) / k;
+          if (omega >= c.omega_min && omega <= c.omega_max)
+            found.push_back({omega, j + 1, k});
+        }
+    std::sort(found.begin(), found.end(),
+              [](const auto &a, const auto &b) { return a.omega < b.omega; });
+    return found;
+  }
+
+  const InternalResonance &nearest_resonance(const std::vector<InternalResonance> &resonances,
+                                             const double                          omega)
+  {
+    return *std::min_element(resonances.begin(), resonances.end(), [&](const auto &a, const auto &b) {
+      return std::abs(a.omega - omega) < std::abs(b.omega - omega);
+    });
+  }
+
+  namespace
+  {
+    std::string fold_message(const std::string                    &what,
+                             const double                          omega,
+                             const std::vector<InternalResonance> &resonances)
+    {
+      std::ostringstream s;
+      s.precision(8);
+      s << what << " at Omega = " << omega;
+      if (!resonances.empty())
+        {
+          const auto &r = nearest_resonance(resonances, omega);
+          s << "; nearest internal resonance w_" << r.mode << " / " << r.harmonic
+            << " = " << r.omega;
+        }
+      return s.str();
+    }
+
+    /// Start, acceptance and both continuation methods for one branch.
+    class BranchTracer
+    {
+    public:
+      BranchTracer(HarmonicBalance                      &hb,
+                   const Scene                          &scene,
+                   const std::vector<InternalResonance> &resonances)
+        : hb_(hb)
+        , scene_(scene)
+        , resonances_(resonances)
+        , newton_(hb, scene.harmonic_balance)
+        , direction_(scene.contact.sign == ForceSign::physical ? 1.0 : -1.0)
+      {}
+
+      /// A converged solve becomes a point only if it is a genuine contact
+      /// motion: the trivial solution (no contact) and, in the full basis, a
+      /// solution whose unfolding parameter does not vanish are refused.
+      bool make_point(const std::vector<double> &x, double omega, double residual,
+                      unsigned int iterations, unsigned int segment, BackbonePoint &point)
+      {
+        if (!(residual <= scene_.harmonic_balance.tolerance))
+          return false;
+        hb_.set_omega(omega);
+        const PeriodicSolutionMeasures m = hb_.measure(x);
+        if (!(m.contact_fraction > 0 && m.max_contact_force > 0 && m.energy > 0 &&
+              std::isfinite(m.energy_spread)))
+          return false;
+        if (hb_.has_unfolding() && std::abs(x[1]) > 1e-6)
+          return false;
+        point = {segment, omega, m, iterations, residual, x};
+        return true;
+      }
+
+    public:
+      bool solve(double omega, const std::vector<double> &guess, unsigned int segment,
+                 BackbonePoint &point)
+      {
+        const NewtonResult r = newton_.solve(omega, guess);
+        return r.converged && make_point(r.x, omega, r.residual, r.iterations, segment, point);
+      }
+
+      /// The first point: just beyond w_j (above it with the physical sign),
+      /// from an impulsive-contact guess, moving away until Newton converges.
+      BackbonePoint start(Backbone &backbone)
+      {
+        const unsigned int         mode  = scene_.continuation.mode;
+        const std::vector<double> &poles = hb_.receptance().poles();
+        if (mode > poles.size())
+          throw InputError("parameter 'Continuation/Mode' = " + std::to_string(mode) +
+                           " is out of range: allowed 1 to " + std::to_string(poles.size()) +
+                           " (clamped-free modes below Harmonics x Omega max)");
+        const double w = std::sqrt(poles[mode - 1]);
+        for (double offset = scene_.continuation.initial_step; offset < 0.05 * w; offset *= 2)
+          {
+            const double omega = w + direction_ * offset;
+            if (omega < scene_.continuation.omega_min || omega > scene_.continuation.omega_max)
+              break;
+            hb_.set_omega(omega);
+            const std::vector<double> guess = hb_.grazing_guess();
+            BackbonePoint             point;
+            if (!guess.empty() && solve(omega, guess, 0, point))
+              {
+                std::ostringstream s;
+                s.precision(10);
+                s << "start at grazing of clamped-free mode " << mode << " (w = " << w
+                  << ") at Omega = " << omega;
+                backbone.events.push_back(s.str());
+                return point;
+              }
+          }
+        std::ostringstream s;
+        s << "no converged non-trivial solution near grazing of clamped-free mode " << mode
+          << " (w = " << w << ") within Continuation/Omega min..max";
+        throw NumericalError(s.str());
+      }
+
+      enum class SegmentEnd
+      {
+        range,     ///< Omega min or max reached
+        fold,      ///< no convergence below Min step, or LOCA gave up
+        tongue,    ///< energy above Energy max (climbing a resonance tongue)
+        max_steps, ///< Max steps points in all
+        refused    ///< arclength reached a point that is not a contact motion
+      };
+
+      /// Segments joined by leaps over folds and tongues, until the range,
+      /// Max steps, or a leap that finds no branch.
+      void trace(Backbone &backbone)
+      {
+        for (unsigned int segment = 0;; ++segment)
+          {
+            const SegmentEnd end = scene_.continuation.method == ContinuationMethod::sequential ?
+                                     sequential(backbone, segment) :
+                                     arclength(backbone, segment);
+            const double omega = backbone.points.back().omega;
+            if (end == SegmentEnd::range)
+              return backbone.events.push_back(fold_message("end of the Omega range", omega, {}));
+            if (end == SegmentEnd::max_steps)
+              return backbone.events.push_back(fold_message("Max steps reached", omega, {}));
+            if (end == SegmentEnd::refused)
+              return;
+            backbone.folds.push_back(omega);
+            backbone.events.push_back(fold_message(end == SegmentEnd::fold ?
+                                                     "branch folds (continuation stalls)" :
+                                                     "resonance tongue above Energy max",
+                                                   omega, resonances_));
+            if (!leap(backbone, segment + 1))
+              return;
+          }
+      }
+
+    private:
+      bool full(const Backbone &backbone) const
+      {
+        return backbone.points.size() >= scene_.continuation.max_steps;
+      }
+
+      bool in_range(double omega) const
+      {
+        return omega <= scene_.continuation.omega_max && omega >= scene_.continuation.omega_min;
+      }
+
+      /// Steps in Omega with a secant predictor; halves the step on failure.
+      SegmentEnd sequential(Backbone &backbone, unsigned int segment)
+      {
+        const auto       &c     = scene_.continuation;
+        double            step  = c.initial_step;
+        const std::size_t first = backbone.points.size() - 1;
+        while (!full(backbone))
+          {
+            const BackbonePoint current = backbone.points.back();
+            const double        omega   = current.omega + direction_ * step;
+            if (!in_range(omega))
+              return SegmentEnd::range;
+            std::vector<double> guess = current.x;
+            if (backbone.points.size() - 1 > first)
+              {
+                const BackbonePoint &previous = backbone.points[backbone.points.size() - 2];
+                const double ratio = (omega - current.omega) / (current.omega - previous.omega);
+                for (unsigned int i = 0; i < guess.size(); ++i)
+                  guess[i] += ratio * (current.x[i] - previous.x[i]);
+              }
+            BackbonePoint point;
+            if (solve(omega, guess, segment, point))
+              {
+                if (point.measures.energy > c.energy_max)
+                  return SegmentEnd::tongue;
+                if (point.newton_iterations <= 4)
+                  step = std::min(1.5 * step, c.max_step);
+                backbone.points.push_back(std::move(point));
+                continue;
+              }
+            step /= 2;
+            if (step < c.min_step)
+              return SegmentEnd::fold;
+          }
+        return SegmentEnd::max_steps;
+      }
+
+      /// LOCA pseudo-arclength from the segment's first point; a fold is
+      /// where Omega turns back.
+      SegmentEnd arclength(Backbone &backbone, unsigned int segment)
+      {
+        const auto &c   = scene_.continuation;
+        SegmentEnd  end = SegmentEnd::fold;
+        run_arclength(hb_, scene_, backbone.points.back(), [&](const BackbonePoint &candidate) {
+          BackbonePoint point;
+          if (!make_point(candidate.x, candidate.omega, candidate.residual, 0, segment, point))
+            {
+              backbone.events.push_back(fold_message(
+                "arclength step refused (not a converged contact motion)", candidate.omega, {}));
+              end = SegmentEnd::refused;
+              return false;
+            }
+          if (point.measures.energy > c.energy_max)
+            {
+              end = SegmentEnd::tongue;
+              return false;
+            }
+          const auto &points = backbone.points;
+          if (points.size() >= 2 && points[points.size() - 2].segment == segment)
+            {
+              const double before = points.back().omega - points[points.size() - 2].omega;
+              const double after  = point.omega - points.back().omega;
+              if (before * after < 0)
+                {
+                  backbone.folds.push_back(points.back().omega);
+                  backbone.events.push_back(
+                    fold_message("arclength turns a fold", points.back().omega, resonances_));
+                }
+            }
+          backbone.points.push_back(point);
+          if (full(backbone))
+            {
+              end = SegmentEnd::max_steps;
+              return false;
+            }
+          if (!in_range(point.omega + direction_ * c.min_step) &&
+              (point.omega >= c.omega_max || point.omega <= c.omega_min))
+            {
+              end = SegmentEnd::range;
+              return false;
+            }
+          return true;
+        });
+        const double last = backbone.points.back().omega;
+        if (end == SegmentEnd::fold &&
+            (last + c.max_step > c.omega_max || last - c.max_step < c.omega_min))
+          return SegmentEnd::range; // LOCA stopped at its Min / Max Value
+        return end;
+      }
+
+      /// Tries W beyond the fold with the last solution as guess, at growing
+      /// distances; a success opens a new segment.
+      bool leap(Backbone &backbone, unsigned int segment)
+      {
+        const auto          &c    = scene_.continuation;
+        const BackbonePoint  last = backbone.points.back();
+        for (double distance = c.max_step; distance <= 8 * c.max_step; distance += c.max_step)
+          {
+            const double omega = last.omega + direction_ * distance;
+            if (omega > c.omega_max || omega < c.omega_min)
+              break;
+            BackbonePoint point;
+            if (solve(omega, last.x, segment, point) && point.measures.energy <= c.energy_max)
+              {
+                backbone.events.push_back(fold_message("leapt to a new segment", omega, {}));
+                backbone.points.push_back(std::move(point));
+                return true;
+              }
+          }
+        backbone.events.push_back(fold_message("branch lost after the fold", last.omega, {}));
+        return false;
+      }
+
+      HarmonicBalance                      &hb_;
+      const Scene                          &scene_;
+      const std::vector<InternalResonance> &resonances_;
+      NewtonSolver                          newton_;
+      double                                direction_;
+    };
+  } // namespace
+
+  Backbone compute_backbone(HarmonicBalance                      &hb,
+                            const Scene                          &scene,
+                            const std::vector<InternalResonance> &resonances)
+  {
+    Backbone     backbone;
+    BranchTracer tracer(hb, scene, resonances);
+    backbone.points.push_back(tracer.start(backbone));
+    tracer.trace(backbone);
+    return backbone;
+  }
+} // namespace nsm
+
+namespace nsm
+{
+  BackbonePoint solve_on_branch(HarmonicBalance &hb,
+                                const Scene     &scene,
+                                const Backbone  &backbone,
+                                const double     omega)
+  {
+    const auto &p = backbone.points;
+    for (std::size_t i = 0; i + 1 < p.size(); ++i)
+      if (p[i].segment == p[i + 1].segment &&
+          (p[i].omega - omega) * (p[i + 1].omega - omega) <= 0)
+        {
+          const double        t = (omega - p[i].omega) / (p[i + 1].omega - p[i].omega);
+          std::vector<double> guess(p[i].x.size());
+          for (std::size_t j = 0; j < guess.size(); ++j)
+            guess[j] = (1 - t) * p[i].x[j] + t * p[i + 1].x[j];
+          BranchTracer  tracer(hb, scene, {});
+          BackbonePoint point;
+          if (tracer.solve(omega, guess, p[i].segment, point))
+            return point;
+          break;
+        }
+    std::ostringstream s;
+    s.precision(10);
+    s << "no converged solution on the computed branch at Omega = " << omega;
+    throw NumericalError(s.str());
+  }
+} // namespace nsm

@@ -1,0 +1,459 @@
+#include <nsm/harmonic_balance.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace nsm
+{
+  namespace
+  {
+    constexpr double two_pi = 2 * M_PI;
+
+    /// cos(m t) and sin(m t) for m = 0..count-1 by the angle-sum recurrence.
+    void trig_table(const double t, const unsigned int count,
+                    std::vector<double> &c, std::vector<double> &s)
+    {
+      c.resize(count);
+      s.resize(count);
+      const double c1 = std::cos(t), s1 = std::sin(t);
+      c[0] = 1, s[0] = 0;
+      for (unsigned int m = 1; m < count; ++m)
+        {
+          c[m] = c[m - 1] * c1 - s[m - 1] * s1;
+          s[m] = s[m - 1] * c1 + c[m - 1] * s1;
+        }
+    }
+
+    /// Calls add(is_sine, m, coefficient) for the expansion of the product
+    /// of two basis functions (cos or sin of k tau and l tau) in cos / sin m tau.
+    template <typename Add>
+    void product_terms(const bool sine_k, const int k, const bool sine_l, const int l, Add &&add)
+    {
+      const int    d = std::abs(k - l), sgn = k >= l ? 1 : -1;
+      if (!sine_k && !sine_l)
+        add(false, d, 0.5), add(false, k + l, 0.5);
+      else if (sine_k && sine_l)
+        add(false, d, 0.5), add(false, k + l, -0.5);
+      else if (sine_k) // sin k cos l = (sin(k + l) + sin(k - l)) / 2
+        add(true, k + l, 0.5), add(true, d, 0.5 * sgn);
+      else // cos k sin l = (sin(k + l) - sin(k - l)) / 2
+        add(true, k + l, 0.5), add(true, d, -0.5 * sgn);
+    }
+  } // namespace
+
+  HarmonicBalance::HarmonicBalance(const Scene &scene, const Receptance &receptance)
+    : receptance_(receptance)
+    , harmonics_(scene.harmonic_balance.harmonics)
+    , basis_(scene.harmonic_balance.basis)
+    , integration_(scene.harmonic_balance.integration)
+    , sign_(scene.contact.sign == ForceSign::physical ? 1.0 : -1.0)
+    , alpha_(scene.contact.alpha)
+    , gap_(scene.contact.gap)
+  {
+    gamma0_       = receptance(0.0).gamma;
+    force_scale_  = gap_ / gamma0_;
+    alpha_gamma0_ = alpha_ * gamma0_;
+
+    kinds_.push_back(cosine);
+    orders_.push_back(0);
+    for (unsigned int k = 1; k <= harmonics_; ++k)
+      {
+        if (basis_ == HarmonicBasis::full)
+          {
+            kinds_.push_back(sine);
+            orders_.push_back(k);
+          }
+        kinds_.push_back(cosine);
+        orders_.push_back(k);
+      }
+
+    // The exact rule samples q only to bracket its roots: 8 points per
+    // period of the highest harmonic, plus the extremum checks in roots().
+    samples_ = integration_ == Integration::sampled ? scene.time_samples() :
+                                                      8 * harmonics_ + 8;
+    table_.resize(n_unknowns() * samples_);
+    std::vector<double> c, s;
+    for (unsigned int t = 0; t < samples_; ++t)
+      {
+        trig_table(two_pi * t / samples_, harmonics_ + 1, c, s);
+        for (unsigned int i = 0; i < n_unknowns(); ++i)
+          table_[i * samples_ + t] = kinds_[i] == sine ? s[orders_[i]] : c[orders_[i]];
+      }
+  }
+
+  void HarmonicBalance::set_omega(const double omega)
+  {
+    if (omega == omega_)
+      return;
+    omega_ = omega;
+    phases_.resize(harmonics_ + 1);
+    for (unsigned int k = 0; k <= harmonics_; ++k)
+      {
+        double w = k * omega;
+        ReceptanceValue value;
+        try
+          {
+            value = receptance_(w);
+          }
+        catch (const NumericalError &)
+          {
+            // Exactly on a pole: theta is continuous there, so a frequency
+            // 1e-13 off it gives theta to that accuracy.
+            w *= 1 + 1e-13;
+            value = receptance_(w);
+          }
+        const double g     = value.gamma;
+        const double norm  = std::sqrt(1 + g * g);
+        const double flip  = receptance_.poles_below(w) % 2 ? -1.0 : 1.0;
+        Phase       &phase = phases_[k];
+        phase.cos            = flip / norm;
+        phase.sin            = flip * g / norm;
+        phase.omega2         = w * w;
+        phase.dtheta_domega2 = value.dgamma_domega2 / (norm * norm);
+        phase.dtheta_domega  = phase.dtheta_domega2 * 2 * k * k * omega;
+      }
+  }
+
+  std::vector<double> HarmonicBalance::contact_coefficients(const std::vector<double> &x) const
+  {
+    std::vector<double> v(n_unknowns());
+    for (unsigned int i = 0; i < n_unknowns(); ++i)
+      {
+        const Phase &p = phases_[orders_[i]];
+        v[i] = x[i] * (p.cos - sign_ * alpha_ * p.sin);
+      }
+    if (has_unfolding())
+      v[1] = 0;
+    v[0] -= alpha_gamma0_;
+    return v;
+  }
+
+  double HarmonicBalance::value(const std::vector<double> &v, const double tau, double *slope) const
+  {
+    std::vector<double> c, s;
+    trig_table(tau, harmonics_ + 1, c, s);
+    double q = 0, dq = 0;
+    for (unsigned int i = 0; i < n_unknowns(); ++i)
+      {
+        const unsigned int k = orders_[i];
+        if (kinds_[i] == sine)
+          q += v[i] * s[k], dq += v[i] * k * c[k];
+        else
+          q += v[i] * c[k], dq -= v[i] * k * s[k];
+      }
+    if (slope)
+      *slope = dq;
+    return q;
+  }
+
+  std::vector<double> HarmonicBalance::roots(const std::vector<double> &v) const
+  {
+    std::vector<double> q(samples_, 0.0);
+    for (unsigned int i = 0; i < n_unknowns(); ++i)
+      for (unsigned int t = 0; t < samples_; ++t)
+        q[t] += v[i] * table_[i * samples_ + t];
+
+    const double h = two_pi / samples_;
+    // Safeguarded Newton on a bracket [a, b] where f changes sign.
+    const auto refine = [&](double a, double b, const auto &f) {
+      double fa = f(a, nullptr);
+      double x  = 0.5 * (a + b);
+      for (int it = 0; it < 100 && b - a > 1e-15 * two_pi; ++it)
+        {
+          double       slope;
+          const double fx = f(x, &slope);
+          if (fx == 0)
+            return x;
+          if ((fx < 0) == (fa < 0))
+            a = x, fa = fx;
+          else
+            b = x;
+          const double newton = x - fx / slope;
+          x = (newton > a && newton < b && slope != 0) ? newton : 0.5 * (a + b);
+        }
+      return x;
+    };
+    const auto q_of = [&](double tau, double *slope) { return value(v, tau, slope); };
+    // q' with its own slope q'', for the extremum between samples.
+    const auto dq_of = [&](double tau, double *slope) {
+      const double e = 1e-6;
+      double       d0, dp, dm;
+      value(v, tau, &d0);
+      if (slope)
+        {
+          value(v, tau + e, &dp);
+          value(v, tau - e, &dm);
+          *slope = (dp - dm) / (2 * e);
+        }
+      return d0;
+    };
+
+    std::vector<double> found;
+    for (unsigned int t = 0; t < samples_; ++t)
+      {
+        const unsigned int next = (t + 1) % samples_, prev = (t + samples_ - 1) % samples_;
+        const double       a = t * h, b = a + h;
+        if ((q[t] > 0) != (q[next] > 0))
+          found.push_back(refine(a, b, q_of));
+        // An extremum towards zero between sign-consistent samples may still
+        // cross zero (a contact shorter than a sample spacing).
+        const bool peak   = q[t] <= 0 && q[prev] <= 0 && q[next] <= 0 && q[t] >= q[prev] && q[t] >= q[next];
+        const bool trough = q[t] > 0 && q[prev] > 0 && q[next] > 0 && q[t] <= q[prev] && q[t] <= q[next];
+        if (peak || trough)
+          {
+            double lo = a - h, hi = b, s_lo, s_hi;
+            value(v, lo, &s_lo);
+            value(v, hi, &s_hi);
+            if ((s_lo > 0) == (s_hi > 0))
+              continue;
+            const double extremum = refine(lo, hi, dq_of);
+            if ((value(v, extremum, nullptr) > 0) != (q[t] > 0))
+              {
+                found.push_back(refine(lo, extremum, q_of));
+                found.push_back(refine(extremum, hi, q_of));
+              }
+          }
+      }
+    for (double &r : found)
+      r = std::fmod(r + two_pi, two_pi);
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end(),
+                            [](double x, double y) { return std::abs(x - y) < 1e-13; }),
+                found.end());
+    return found;
+  }
+
+  double HarmonicBalance::active_gram_exact(const std::vector<double> &v, std::vector<double> &gram) const
+  {
+    const unsigned int n = n_unknowns(), top = 2 * harmonics_ + 1;
+    const std::vector<double> r = roots(v);
+    std::vector<std::pair<double, double>> intervals;
+    if (r.empty())
+      {
+        if (value(v, 0.0, nullptr) > 0)
+          intervals.emplace_back(0.0, two_pi);
+      }
+    else
+      for (std::size_t i = 0; i < r.size(); ++i)
+        {
+          const double a = r[i], b = i + 1 < r.size() ? r[i + 1] : r[0] + two_pi;
+          if (value(v, 0.5 * (a + b), nullptr) > 0)
+            intervals.emplace_back(a, b);
+        }
+
+    // Integrals of cos m tau and sin m tau over the active set.
+    std::vector<double> ic(top, 0.0), is(top, 0.0), ca, sa, cb, sb;
+    double              measure = 0;
+    for (const auto &[a, b] : intervals)
+      {
+        measure += b - a;
+        trig_table(a, top, ca, sa);
+        trig_table(b, top, cb, sb);
+        ic[0] += b - a;
+        for (unsigned int m = 1; m < top; ++m)
+          {
+            ic[m] += (sb[m] - sa[m]) / m;
+            is[m] += (ca[m] - cb[m]) / m;
+          }
+      }
+    gram.assign(n * n, 0.0);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const double norm = (orders_[i] == 0 ? 1.0 : 2.0) / two_pi;
+        for (unsigned int j = 0; j < n; ++j)
+          product_terms(kinds_[i] == sine, orders_[i], kinds_[j] == sine, orders_[j],
+                        [&](bool sine_term, int m, double coefficient) {
+                          gram[i * n + j] += norm * coefficient * (sine_term ? is[m] : ic[m]);
+                        });
+      }
+    return measure / two_pi;
+  }
+
+  double HarmonicBalance::active_gram_sampled(const std::vector<double> &v, std::vector<double> &gram) const
+  {
+    const unsigned int        n = n_unknowns();
+    std::vector<unsigned int> active;
+    for (unsigned int t = 0; t < samples_; ++t)
+      {
+        double q = 0;
+        for (unsigned int i = 0; i < n; ++i)
+          q += v[i] * table_[i * samples_ + t];
+        if (q > 0)
+          active.push_back(t);
+      }
+    gram.assign(n * n, 0.0);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const double norm = (orders_[i] == 0 ? 1.0 : 2.0) / samples_;
+        for (unsigned int j = i; j < n; ++j)
+          {
+            double sum = 0;
+            for (const unsigned int t : active)
+              sum += table_[i * samples_ + t] * table_[j * samples_ + t];
+            gram[i * n + j] = norm * sum;
+            gram[j * n + i] = (orders_[j] == 0 ? 1.0 : 2.0) / samples_ * sum;
+          }
+      }
+    return double(active.size()) / samples_;
+  }
+
+  double HarmonicBalance::active_gram(const std::vector<double> &v, std::vector<double> &gram) const
+  {
+    return integration_ == Integration::exact ? active_gram_exact(v, gram) :
+                                                active_gram_sampled(v, gram);
+  }
+
+  void HarmonicBalance::evaluate(const std::vector<double> &x,
+                                 std::vector<double>       *residual,
+                                 std::vector<double>       *jacobian,
+                                 std::vector<double>       *domega) const
+  {
+    const unsigned int        n = n_unknowns();
+    const std::vector<double> v = contact_coefficients(x);
+    std::vector<double>       gram;
+    active_gram(v, gram);
+    const auto is_unfolding = [&](unsigned int i) { return has_unfolding() && i == 1; };
+
+    if (residual)
+      {
+        residual->assign(n, 0.0);
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            double projection = 0;
+            for (unsigned int j = 0; j < n; ++j)
+              projection += gram[i * n + j] * v[j];
+            (*residual)[i] = (is_unfolding(i) ? x[i] : x[i] * phases_[orders_[i]].cos) - projection;
+          }
+      }
+    if (jacobian)
+      {
+        jacobian->assign(n * n, 0.0);
+        for (unsigned int j = 0; j < n; ++j)
+          {
+            const Phase &p = phases_[orders_[j]];
+            const double d = is_unfolding(j) ? 0.0 : p.cos - sign_ * alpha_ * p.sin;
+            for (unsigned int i = 0; i < n; ++i)
+              (*jacobian)[i + j * n] = -gram[i * n + j] * d;
+            (*jacobian)[j + j * n] += is_unfolding(j) ? 1.0 : p.cos;
+          }
+      }
+    if (domega)
+      {
+        domega->assign(n, 0.0);
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            if (is_unfolding(i))
+              continue;
+            const Phase &p = phases_[orders_[i]];
+            (*domega)[i] -= x[i] * p.sin * p.dtheta_domega;
+            const double dd = (-p.sin - sign_ * alpha_ * p.cos) * p.dtheta_domega;
+            for (unsigned int r = 0; r < n; ++r)
+              (*domega)[r] -= gram[r * n + i] * dd * x[i];
+          }
+      }
+  }
+
+  std::vector<double> HarmonicBalance::grazing_guess() const
+  {
+    // lambda = I delta(tau): a_0 = I / (2 pi), a_k = I / pi (cosines); the
+    // displacement at tau = 0, -s sum gamma_k a_k, must equal the gap.
+    double sum = 0;
+    for (unsigned int k = 0; k <= harmonics_; ++k)
+      sum += phases_[k].sin / phases_[k].cos / (k == 0 ? two_pi : M_PI);
+    const double impulse = -gap_ / (sign_ * sum);
+    if (!(impulse > 0) || !std::isfinite(impulse))
+      return {};
+    std::vector<double> x(n_unknowns(), 0.0);
+    for (unsigned int i = 0; i < n_unknowns(); ++i)
+      if (kinds_[i] == cosine)
+        {
+          const double a = impulse / (orders_[i] == 0 ? two_pi : M_PI);
+          x[i] = a / phases_[orders_[i]].cos / force_scale_; // c = a / cos(theta)
+        }
+    return x;
+  }
+
+  PeriodicSolutionMeasures HarmonicBalance::measure(const std::vector<double> &x) const
+  {
+    const unsigned int  n = n_unknowns(), top = 2 * harmonics_ + 1;
+    const double        f2 = force_scale_ * force_scale_, w2 = omega_ * omega_;
+    std::vector<double> coefficient(n);
+    for (unsigned int i = 0; i < n; ++i)
+      coefficient[i] = has_unfolding() && i == 1 ? 0.0 : x[i];
+
+    // Energy over the period as a trigonometric polynomial: with h_k the
+    // receptance field, h_k^T M h_l = (gamma_k - gamma_l) / (w_k^2 - w_l^2),
+    // which in the angle variables reads sin(theta_k - theta_l) / (...).
+    std::vector<double> ec(top, 0.0), es(top, 0.0);
+    const auto add = [&](double weight) {
+      return [&, weight](bool sine, int m, double c) { (sine ? es : ec)[m] += weight * c; };
+    };
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        {
+          const Phase &p = phases_[orders_[i]], &q = phases_[orders_[j]];
+          const double cc = coefficient[i] * coefficient[j] * f2;
+          double       mass, stiffness;
+          if (orders_[i] == orders_[j])
+            {
+              mass      = p.dtheta_domega2;
+              stiffness = p.sin * p.cos + p.omega2 * p.dtheta_domega2;
+            }
+          else
+            {
+              const double d = p.omega2 - q.omega2;
+              mass      = (p.sin * q.cos - p.cos * q.sin) / d;
+              stiffness = (p.omega2 * p.sin * q.cos - q.omega2 * p.cos * q.sin) / d;
+            }
+          // strain: phi_i phi_j; kinetic: W^2 phi_i' phi_j' (derivatives in tau).
+          product_terms(kinds_[i] == sine, orders_[i], kinds_[j] == sine, orders_[j],
+                        add(0.5 * cc * stiffness));
+          const double ki = orders_[i], kj = orders_[j];
+          const double sign_i = kinds_[i] == sine ? 1.0 : -1.0, sign_j = kinds_[j] == sine ? 1.0 : -1.0;
+          product_terms(kinds_[i] != sine, orders_[i], kinds_[j] != sine, orders_[j],
+                        add(0.5 * cc * w2 * mass * ki * kj * sign_i * sign_j));
+        }
+
+    PeriodicSolutionMeasures result{};
+    result.energy = ec[0];
+    const unsigned int  points = 4 * top;
+    std::vector<double> c, s;
+    double              e_min = std::numeric_limits<double>::max(), e_max = -e_min;
+    for (unsigned int t = 0; t < points; ++t)
+      {
+        trig_table(two_pi * t / points, top, c, s);
+        double e = 0;
+        for (unsigned int m = 0; m < top; ++m)
+          e += ec[m] * c[m] + es[m] * s[m];
+        e_min = std::min(e_min, e), e_max = std::max(e_max, e);
+      }
+    result.energy_spread = (e_max - e_min) / result.energy;
+
+    // Contact force and gap at the samples.
+    double lambda_max = -std::numeric_limits<double>::max(), lambda_min = -lambda_max;
+    double gap_min = lambda_min, complementarity = 0;
+    for (unsigned int t = 0; t < samples_; ++t)
+      {
+        double lambda = 0, u = 0;
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            const Phase &p = phases_[orders_[i]];
+            lambda += coefficient[i] * p.cos * table_[i * samples_ + t];
+            u -= sign_ * coefficient[i] * p.sin * table_[i * samples_ + t];
+          }
+        lambda *= force_scale_, u *= force_scale_;
+        const double g = gap_ - u;
+        lambda_max = std::max(lambda_max, lambda), lambda_min = std::min(lambda_min, lambda);
+        gap_min = std::min(gap_min, g);
+        complementarity = std::max(complementarity, std::abs(lambda * g));
+      }
+    std::vector<double> gram;
+    result.contact_fraction    = active_gram(contact_coefficients(x), gram);
+    result.max_contact_force   = lambda_max;
+    result.min_force           = lambda_min / lambda_max;
+    result.min_gap             = gap_min / gap_;
+    result.max_complementarity = complementarity / (lambda_max * gap_);
+    return result;
+  }
+} // namespace nsm

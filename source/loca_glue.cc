@@ -1,0 +1,260 @@
+// NOX and LOCA glue: the HB system as a LOCA::LAPACK interface, Newton at
+// fixed Omega, and LOCA's pseudo-arclength stepper with the analytic dR/dW.
+#include <nsm/continuation.h>
+
+#include <LOCA.H>
+#include <LOCA_LAPACK.H>
+#include <NOX.H>
+#include <NOX_LAPACK_Group.H>
+
+#include <cmath>
+
+namespace nsm
+{
+  namespace
+  {
+    /// The HB system at the Omega LOCA or the Newton driver sets.
+    class HbInterface : public LOCA::LAPACK::Interface
+    {
+    public:
+      HbInterface(HarmonicBalance &hb, std::vector<double> guess)
+        : hb_(hb)
+        , guess_(guess.size())
+      {
+        set_guess(guess);
+      }
+
+      void set_guess(const std::vector<double> &guess)
+      {
+        for (unsigned int i = 0; i < guess.size(); ++i)
+          guess_(i) = guess[i];
+      }
+
+      const NOX::LAPACK::Vector &getInitialGuess() override { return guess_; }
+
+      bool computeF(NOX::LAPACK::Vector &f, const NOX::LAPACK::Vector &x) override
+      {
+        hb_.set_omega(omega_);
+        hb_.evaluate(to_std(x), &scratch_, nullptr, nullptr);
+        for (unsigned int i = 0; i < scratch_.size(); ++i)
+          f(i) = scratch_[i];
+        return all_finite(scratch_);
+      }
+
+      bool computeJacobian(NOX::LAPACK::Matrix<double> &jacobian,
+                           const NOX::LAPACK::Vector   &x) override
+      {
+        hb_.set_omega(omega_);
+        hb_.evaluate(to_std(x), nullptr, &scratch_, nullptr);
+        const unsigned int n = x.length();
+        for (unsigned int j = 0; j < n; ++j)
+          for (unsigned int i = 0; i < n; ++i)
+            jacobian(i, j) = scratch_[i + j * n];
+        return all_finite(scratch_);
+      }
+
+      bool compute_domega(NOX::LAPACK::Vector &result, const NOX::LAPACK::Vector &x)
+      {
+        hb_.set_omega(omega_);
+        hb_.evaluate(to_std(x), nullptr, nullptr, &scratch_);
+        for (unsigned int i = 0; i < scratch_.size(); ++i)
+          result(i) = scratch_[i];
+        return all_finite(scratch_);
+      }
+
+      void setParams(const LOCA::ParameterVector &p) override { omega_ = p.getValue("Omega"); }
+
+      void printSolution(const NOX::LAPACK::Vector &x, const double omega) override
+      {
+        if (on_step)
+          on_step(to_std(x), omega);
+      }
+
+      void set_omega(double omega) { omega_ = omega; }
+
+      std::function<void(const std::vector<double> &, double)> on_step;
+
+      static std::vector<double> to_std(const NOX::LAPACK::Vector &x)
+      {
+        std::vector<double> v(x.length());
+        for (unsigned int i = 0; i < v.size(); ++i)
+          v[i] = x(i);
+        return v;
+      }
+
+    private:
+      static bool all_finite(const std::vector<double> &v)
+      {
+        for (const double d : v)
+          if (!std::isfinite(d))
+            return false;
+        return true;
+      }
+
+      HarmonicBalance    &hb_;
+      NOX::LAPACK::Vector guess_;
+      double              omega_ = 0;
+      std::vector<double> scratch_;
+    };
+
+    /// LOCA's LAPACK group with dR/dW from the HB module instead of finite
+    /// differences.
+    class HbGroup : public LOCA::LAPACK::Group
+    {
+    public:
+      HbGroup(const Teuchos::RCP<LOCA::GlobalData> &data, HbInterface &interface)
+        : LOCA::LAPACK::Group(data, interface)
+        , interface_(interface)
+      {}
+      HbGroup(const HbGroup &source, NOX::CopyType type)
+        : LOCA::LAPACK::Group(source, type)
+        , interface_(source.interface_)
+      {}
+
+      Teuchos::RCP<NOX::Abstract::Group> clone(NOX::CopyType type) const override
+      {
+        return Teuchos::rcp(new HbGroup(*this, type));
+      }
+
+      NOX::Abstract::Group::ReturnType
+      computeDfDpMulti(const std::vector<int> &parameters,
+                       NOX::Abstract::MultiVector &dfdp,
+                       bool is_valid_f) override
+      {
+        if (!is_valid_f)
+          {
+            if (computeF() != NOX::Abstract::Group::Ok)
+              return NOX::Abstract::Group::Failed;
+            dfdp[0] = getF();
+          }
+        interface_.setParams(getParams());
+        const auto &x = dynamic_cast<const NOX::LAPACK::Vector &>(getX());
+        for (unsigned int i = 0; i < parameters.size(); ++i)
+          if (!interface_.compute_domega(dynamic_cast<NOX::LAPACK::Vector &>(dfdp[i + 1]), x))
+            return NOX::Abstract::Group::Failed;
+        return NOX::Abstract::Group::Ok;
+      }
+
+    private:
+      HbInterface &interface_;
+    };
+
+    Teuchos::RCP<NOX::StatusTest::Generic>
+    newton_status(const Scene::HarmonicBalance &params)
+    {
+      auto combo = Teuchos::rcp(new NOX::StatusTest::Combo(NOX::StatusTest::Combo::OR));
+      combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::NormF(params.tolerance)));
+      combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::MaxIters(params.max_iterations)));
+      combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::FiniteValue));
+      return combo;
+    }
+
+    void set_newton_parameters(Teuchos::ParameterList &nox, const Scene::HarmonicBalance &params)
+    {
+      nox.set("Nonlinear Solver", "Line Search Based");
+      nox.sublist("Direction").set("Method", "Newton");
+      nox.sublist("Line Search").set("Method", params.line_search);
+      nox.sublist("Printing").set("Output Information", NOX::Utils::Error);
+    }
+  } // namespace
+
+  struct NewtonSolver::Impl
+  {
+    Impl(HarmonicBalance &hb, const Scene::HarmonicBalance &params)
+      : interface(hb, std::vector<double>(hb.n_unknowns(), 0.0))
+      , group(Teuchos::rcp(new NOX::LAPACK::Group(interface)))
+      , status(newton_status(params))
+      , list(Teuchos::rcp(new Teuchos::ParameterList))
+    {
+      set_newton_parameters(*list, params);
+      solver = NOX::Solver::buildSolver(group, status, list);
+    }
+    HbInterface                            interface;
+    Teuchos::RCP<NOX::LAPACK::Group>       group;
+    Teuchos::RCP<NOX::StatusTest::Generic> status;
+    Teuchos::RCP<Teuchos::ParameterList>   list;
+    Teuchos::RCP<NOX::Solver::Generic>     solver;
+  };
+
+  NewtonSolver::NewtonSolver(HarmonicBalance &hb, const Scene::HarmonicBalance &params)
+    : impl_(new Impl(hb, params))
+  {}
+
+  NewtonSolver::~NewtonSolver() { delete impl_; }
+
+  NewtonResult NewtonSolver::solve(const double omega, const std::vector<double> &guess)
+  {
+    impl_->interface.set_omega(omega);
+    impl_->interface.set_guess(guess);
+    impl_->solver->reset(impl_->interface.getInitialGuess());
+    const NOX::StatusTest::StatusType status = impl_->solver->solve();
+    const auto &group = impl_->solver->getSolutionGroup();
+    const auto &x = dynamic_cast<const NOX::LAPACK::Vector &>(group.getX());
+    return {status == NOX::StatusTest::Converged,
+            static_cast<unsigned int>(impl_->solver->getNumIterations()),
+            group.getNormF(),
+            HbInterface::to_std(x)};
+  }
+
+  void run_arclength(HarmonicBalance                                  &hb,
+                     const Scene                                      &scene,
+                     const BackbonePoint                              &start,
+                     const std::function<bool(const BackbonePoint &)> &accept)
+  {
+    const auto &c         = scene.continuation;
+    const double direction = scene.contact.sign == ForceSign::physical ? 1.0 : -1.0;
+    auto        params    = Teuchos::rcp(new Teuchos::ParameterList);
+    auto       &stepper   = params->sublist("LOCA").sublist("Stepper");
+    stepper.set("Continuation Method", "Arc Length");
+    stepper.set("Continuation Parameter", "Omega");
+    stepper.set("Initial Value", start.omega);
+    stepper.set("Max Value", c.omega_max);
+    stepper.set("Min Value", c.omega_min);
+    stepper.set("Max Steps", static_cast<int>(c.max_steps));
+    stepper.set("Max Nonlinear Iterations", static_cast<int>(scene.harmonic_balance.max_iterations));
+    stepper.set("Compute Eigenvalues", false);
+    params->sublist("LOCA").sublist("Predictor").set("Method", "Tangent");
+    auto &step = params->sublist("LOCA").sublist("Step Size");
+    step.set("Method", "Adaptive");
+    step.set("Initial Step Size", direction * c.initial_step);
+    step.set("Min Step Size", c.min_step);
+    step.set("Max Step Size", c.max_step);
+    set_newton_parameters(params->sublist("NOX"), scene.harmonic_balance);
+    params->sublist("NOX").sublist("Printing").set("Output Information", NOX::Utils::Error);
+
+    auto data = LOCA::createGlobalData(params);
+    {
+      HbInterface interface(hb, start.x);
+      interface.set_omega(start.omega);
+      auto group = Teuchos::rcp(new HbGroup(data, interface));
+      LOCA::ParameterVector parameters;
+      parameters.addParameter("Omega", start.omega);
+      group->setParams(parameters);
+
+      struct Stop
+      {};
+      unsigned int step_count = 0;
+      interface.on_step = [&](const std::vector<double> &x, double omega) {
+        if (step_count++ == 0)
+          return; // LOCA reports its start point first: already accepted
+        hb.set_omega(omega);
+        std::vector<double> residual;
+        hb.evaluate(x, &residual, nullptr, nullptr);
+        double norm = 0;
+        for (const double r : residual)
+          norm += r * r;
+        BackbonePoint point{start.segment, omega, hb.measure(x), 0, std::sqrt(norm), x};
+        if (!accept(point))
+          throw Stop();
+      };
+      LOCA::Stepper locaStepper(data, group, newton_status(scene.harmonic_balance), params);
+      try
+        {
+          locaStepper.run();
+        }
+      catch (const Stop &)
+        {}
+    }
+    LOCA::destroyGlobalData(data);
+  }
+} // namespace nsm
