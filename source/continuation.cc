@@ -171,7 +171,21 @@ namespace nsm
         return omega <= scene_.continuation.omega_max && omega >= scene_.continuation.omega_min;
       }
 
-      /// Steps in Omega with a secant predictor; halves the step on failure.
+      /// A step whose solution moved by more than a fifth of the solution
+      /// itself has jumped to another branch (over a fold), not followed it.
+      static bool stays_on_branch(const BackbonePoint &from, const BackbonePoint &to)
+      {
+        double change = 0, size = 0;
+        for (std::size_t i = 0; i < from.x.size(); ++i)
+          {
+            change += (to.x[i] - from.x[i]) * (to.x[i] - from.x[i]);
+            size += from.x[i] * from.x[i];
+          }
+        return change <= 0.04 * size;
+      }
+
+      /// Steps in Omega with a secant predictor; halves the step on failure
+      /// or on a jump to another branch.
       SegmentEnd sequential(Backbone &backbone, unsigned int segment)
       {
         const auto       &c     = scene_.continuation;
@@ -192,7 +206,7 @@ namespace nsm
                   guess[i] += ratio * (current.x[i] - previous.x[i]);
               }
             BackbonePoint point;
-            if (solve(omega, guess, segment, point))
+            if (solve(omega, guess, segment, point) && stays_on_branch(current, point))
               {
                 if (point.measures.energy > c.energy_max)
                   return SegmentEnd::tongue;
@@ -261,19 +275,24 @@ namespace nsm
         return end;
       }
 
-      /// Tries W beyond the fold with the last solution as guess, at growing
-      /// distances; a success opens a new segment.
+      /// Tries W beyond the fold with the last solution as guess, at
+      /// distances growing from Initial step to 5 % of Omega; a success opens a
+      /// new segment.
       bool leap(Backbone &backbone, unsigned int segment)
       {
         const auto          &c    = scene_.continuation;
         const BackbonePoint  last = backbone.points.back();
-        for (double distance = c.max_step; distance <= 8 * c.max_step; distance += c.max_step)
+        for (double distance = c.initial_step; distance <= 0.05 * last.omega; distance *= 1.5)
           {
             const double omega = last.omega + direction_ * distance;
             if (omega > c.omega_max || omega < c.omega_min)
               break;
+            // The backbone continues beyond the tongue at about the energy it
+            // had before it; a landing far from that is on the tongue's flank.
             BackbonePoint point;
-            if (solve(omega, last.x, segment, point) && point.measures.energy <= c.energy_max)
+            if (solve(omega, last.x, segment, point) && point.measures.energy <= c.energy_max &&
+                point.measures.energy < 4 * last.measures.energy &&
+                point.measures.energy > last.measures.energy / 4)
               {
                 backbone.events.push_back(fold_message("leapt to a new segment", omega, {}));
                 backbone.points.push_back(std::move(point));

@@ -131,16 +131,23 @@ namespace nsm
 
   double HarmonicBalance::value(const std::vector<double> &v, const double tau, double *slope) const
   {
-    std::vector<double> c, s;
-    trig_table(tau, harmonics_ + 1, c, s);
-    double q = 0, dq = 0;
+    // cos k tau and sin k tau by the angle-sum recurrence, basis functions
+    // being ordered by k.
+    const double c1 = std::cos(tau), s1 = std::sin(tau);
+    double       c = 1, s = 0, q = 0, dq = 0;
+    unsigned int k = 0;
     for (unsigned int i = 0; i < n_unknowns(); ++i)
       {
-        const unsigned int k = orders_[i];
+        for (; k < orders_[i]; ++k)
+          {
+            const double next = c * c1 - s * s1;
+            s = s * c1 + c * s1;
+            c = next;
+          }
         if (kinds_[i] == sine)
-          q += v[i] * s[k], dq += v[i] * k * c[k];
+          q += v[i] * s, dq += v[i] * k * c;
         else
-          q += v[i] * c[k], dq -= v[i] * k * s[k];
+          q += v[i] * c, dq -= v[i] * k * s;
       }
     if (slope)
       *slope = dq;
@@ -170,7 +177,16 @@ namespace nsm
           else
             b = x;
           const double newton = x - fx / slope;
-          x = (newton > a && newton < b && slope != 0) ? newton : 0.5 * (a + b);
+          if (newton > a && newton < b && slope != 0)
+            {
+              // Newton moves one end of the bracket only: stop on its step.
+              const bool converged = std::abs(newton - x) <= 1e-15 * two_pi;
+              x = newton;
+              if (converged)
+                break;
+            }
+          else
+            x = 0.5 * (a + b);
         }
       return x;
     };
@@ -189,6 +205,14 @@ namespace nsm
       return d0;
     };
 
+    // Between samples q departs from a sampled extremum by at most
+    // |q''|max h^2 / 2 <= h^2 / 2 sum |v_i| k_i^2: only extrema closer to zero
+    // than that can hide a crossing.
+    double curvature = 0;
+    for (unsigned int i = 0; i < n_unknowns(); ++i)
+      curvature += std::abs(v[i]) * orders_[i] * orders_[i];
+    const double reach = 0.5 * h * h * curvature;
+
     std::vector<double> found;
     for (unsigned int t = 0; t < samples_; ++t)
       {
@@ -200,7 +224,7 @@ namespace nsm
         // cross zero (a contact shorter than a sample spacing).
         const bool peak   = q[t] <= 0 && q[prev] <= 0 && q[next] <= 0 && q[t] >= q[prev] && q[t] >= q[next];
         const bool trough = q[t] > 0 && q[prev] > 0 && q[next] > 0 && q[t] <= q[prev] && q[t] <= q[next];
-        if (peak || trough)
+        if ((peak || trough) && std::abs(q[t]) <= reach)
           {
             double lo = a - h, hi = b, s_lo, s_hi;
             value(v, lo, &s_lo);
@@ -300,8 +324,15 @@ namespace nsm
 
   double HarmonicBalance::active_gram(const std::vector<double> &v, std::vector<double> &gram) const
   {
-    return integration_ == Integration::exact ? active_gram_exact(v, gram) :
-                                                active_gram_sampled(v, gram);
+    if (v != cached_coefficients_)
+      {
+        cached_fraction_ = integration_ == Integration::exact ?
+                             active_gram_exact(v, cached_gram_) :
+                             active_gram_sampled(v, cached_gram_);
+        cached_coefficients_ = v;
+      }
+    gram = cached_gram_;
+    return cached_fraction_;
   }
 
   void HarmonicBalance::evaluate(const std::vector<double> &x,

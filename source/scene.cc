@@ -216,7 +216,7 @@ namespace nsm
                       "1e-10",
                       Double(),
                       "Newton tolerance on the scaled residual norm, > 0.");
-    prm.declare_entry("Max iterations", "30", Integer(), "1 to 1000.");
+    prm.declare_entry("Max iterations", "15", Integer(), "Newton iterations per solve, 1 to 1000.");
     prm.declare_entry("Line search",
                       "Full Step",
                       Selection("Full Step|Backtrack|Polynomial"),
@@ -238,7 +238,7 @@ namespace nsm
     prm.declare_entry("Omega max", "2.2", Double(), "Upper bound, > Omega min.");
     prm.declare_entry("Energy max", "1", Double(), "Stop above, > 0.");
     prm.declare_entry("Initial step", "1e-3", Double(), "First step, > 0.");
-    prm.declare_entry("Min step", "1e-7", Double(), "> 0, <= Initial step.");
+    prm.declare_entry("Min step", "1e-6", Double(), "Smallest step before a fold is declared, > 0, <= Initial step.");
     prm.declare_entry("Max step", "1e-2", Double(), ">= Initial step.");
     prm.declare_entry("Max steps", "2000", Integer(), "1 to 1e6.");
     prm.leave_subsection();

@@ -113,5 +113,9 @@ namespace nsm
     std::vector<double> table_;        ///< phi_i(tau_s), row-major n x samples
     double              omega_ = -1;
     std::vector<Phase>  phases_;       ///< per harmonic k = 0..M
+    // NOX asks for F and J at the same point separately: the Gram matrix of
+    // the last q is kept.
+    mutable std::vector<double> cached_coefficients_, cached_gram_;
+    mutable double              cached_fraction_ = 0;
   };
 } // namespace nsm

@@ -109,7 +109,7 @@ namespace nsm
       HarmonicBasis basis        = HarmonicBasis::cosine;
       Integration   integration  = Integration::exact;
       double        tolerance    = 1e-10;
-      unsigned int  max_iterations = 30;
+      unsigned int  max_iterations = 15;
       std::string   line_search  = "Full Step";
     } harmonic_balance;
 
@@ -121,7 +121,7 @@ namespace nsm
       double             omega_max    = 2.2;
       double             energy_max   = 1.0;
       double             initial_step = 1e-3;
-      double             min_step     = 1e-7;
+      double             min_step     = 1e-6;
       double             max_step     = 1e-2;
       unsigned int       max_steps    = 2000;
     } continuation;
