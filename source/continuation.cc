@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 namespace nsm
@@ -157,6 +158,7 @@ namespace nsm
                                                    omega, resonances_));
             if (!leap(backbone, segment + 1))
               return;
+            first_fold_.reset();
           }
       }
 
@@ -232,8 +234,11 @@ namespace nsm
           BackbonePoint point;
           if (!make_point(candidate.x, candidate.omega, candidate.residual, 0, segment, point))
             {
-              backbone.events.push_back(fold_message(
-                "arclength step refused (not a converged contact motion)", candidate.omega, {}));
+              std::ostringstream why;
+              why << "arclength step refused (residual " << candidate.residual
+                  << ", contact fraction " << candidate.measures.contact_fraction
+                  << "): not a converged contact motion";
+              backbone.events.push_back(fold_message(why.str(), candidate.omega, {}));
               end = SegmentEnd::refused;
               return false;
             }
@@ -249,6 +254,8 @@ namespace nsm
               const double after  = point.omega - points.back().omega;
               if (before * after < 0)
                 {
+                  if (!first_fold_)
+                    first_fold_ = points.size() - 1;
                   backbone.folds.push_back(points.back().omega);
                   backbone.events.push_back(
                     fold_message("arclength turns a fold", points.back().omega, resonances_));
@@ -275,13 +282,14 @@ namespace nsm
         return end;
       }
 
-      /// Tries W beyond the fold with the last solution as guess, at
-      /// distances growing from Initial step to 5 % of Omega; a success opens a
-      /// new segment.
+      /// Tries W beyond the fold with the solution at the front of the
+      /// segment as guess (its last point, or where arclength first turned
+      /// back before climbing a tongue), at distances growing from Initial
+      /// step to 5 % of Omega; a success opens a new segment.
       bool leap(Backbone &backbone, unsigned int segment)
       {
         const auto          &c    = scene_.continuation;
-        const BackbonePoint  last = backbone.points.back();
+        const BackbonePoint  last = backbone.points[first_fold_.value_or(backbone.points.size() - 1)];
         for (double distance = c.initial_step; distance <= 0.05 * last.omega; distance *= 1.5)
           {
             const double omega = last.omega + direction_ * distance;
@@ -308,6 +316,7 @@ namespace nsm
       const std::vector<InternalResonance> &resonances_;
       NewtonSolver                          newton_;
       double                                direction_;
+      std::optional<std::size_t>            first_fold_; ///< in the current segment
     };
   } // namespace
 

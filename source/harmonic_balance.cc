@@ -405,6 +405,12 @@ namespace nsm
     return x;
   }
 
+  double HarmonicBalance::contact_fraction(const std::vector<double> &x) const
+  {
+    std::vector<double> gram;
+    return active_gram(contact_coefficients(x), gram);
+  }
+
   PeriodicSolutionMeasures HarmonicBalance::measure(const std::vector<double> &x) const
   {
     const unsigned int  n = n_unknowns(), top = 2 * harmonics_ + 1;

@@ -5,6 +5,7 @@
 #include <LOCA.H>
 #include <LOCA_LAPACK.H>
 #include <NOX.H>
+#include <LOCA_MultiContinuation_ExtendedVector.H>
 #include <NOX_LAPACK_Group.H>
 
 #include <cmath>
@@ -139,11 +140,48 @@ namespace nsm
       HbInterface &interface_;
     };
 
+    /// Fails a LOCA step whose iterate has left contact: the trivial motion
+    /// solves the HB equations at every Omega, and a step onto it must be
+    /// retried shorter rather than accepted.
+    class StaysInContact : public NOX::StatusTest::Generic
+    {
+    public:
+      explicit StaysInContact(HarmonicBalance &hb)
+        : hb_(hb)
+      {}
+
+      NOX::StatusTest::StatusType checkStatus(const NOX::Solver::Generic &problem,
+                                              NOX::StatusTest::CheckType) override
+      {
+        const auto &extended =
+          dynamic_cast<const LOCA::MultiContinuation::ExtendedVector &>(
+            problem.getSolutionGroup().getX());
+        const auto &x = dynamic_cast<const NOX::LAPACK::Vector &>(*extended.getXVec());
+        hb_.set_omega(extended.getScalar(0));
+        status_ = hb_.contact_fraction(HbInterface::to_std(x)) > 0 ? NOX::StatusTest::Unconverged :
+                                                                     NOX::StatusTest::Failed;
+        return status_;
+      }
+
+      NOX::StatusTest::StatusType getStatus() const override { return status_; }
+
+      std::ostream &print(std::ostream &stream, int indent) const override
+      {
+        return stream << std::string(indent, ' ') << status_ << " iterate in contact\n";
+      }
+
+    private:
+      HarmonicBalance            &hb_;
+      NOX::StatusTest::StatusType status_ = NOX::StatusTest::Unevaluated;
+    };
+
+    /// `tightening`: LOCA tests the norm of its extended (arclength) system,
+    /// so it gets a tighter tolerance for the HB residual to meet the scene's.
     Teuchos::RCP<NOX::StatusTest::Generic>
-    newton_status(const Scene::HarmonicBalance &params)
+    newton_status(const Scene::HarmonicBalance &params, double tightening = 1.0)
     {
       auto combo = Teuchos::rcp(new NOX::StatusTest::Combo(NOX::StatusTest::Combo::OR));
-      combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::NormF(params.tolerance)));
+      combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::NormF(params.tolerance * tightening)));
       combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::MaxIters(params.max_iterations)));
       combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::FiniteValue));
       return combo;
@@ -247,7 +285,10 @@ namespace nsm
         if (!accept(point))
           throw Stop();
       };
-      LOCA::Stepper locaStepper(data, group, newton_status(scene.harmonic_balance), params);
+      auto status = Teuchos::rcp(new NOX::StatusTest::Combo(NOX::StatusTest::Combo::OR));
+      status->addStatusTest(newton_status(scene.harmonic_balance, 0.1));
+      status->addStatusTest(Teuchos::rcp(new StaysInContact(hb)));
+      LOCA::Stepper locaStepper(data, group, status, params);
       try
         {
           locaStepper.run();

@@ -67,6 +67,9 @@ namespace nsm
 
     PeriodicSolutionMeasures measure(const std::vector<double> &x) const;
 
+    /// Share of the period with lambda - alpha g > 0 (0: the trivial motion).
+    double contact_fraction(const std::vector<double> &x) const;
+
     const Receptance &receptance() const { return receptance_; }
 
     /// Contact force F that scales the unknowns (c = F x).
