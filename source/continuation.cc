@@ -50,6 +50,15 @@ namespace nsm
       return s.str();
     }
 
+    /// A leap starts far from the solution: Newton with a line search and
+    /// twice the iterations.
+    Scene::HarmonicBalance leap_parameters(Scene::HarmonicBalance params)
+    {
+      params.line_search    = "Polynomial";
+      params.max_iterations *= 2;
+      return params;
+    }
+
     /// Start, acceptance and both continuation methods for one branch.
     class BranchTracer
     {
@@ -61,6 +70,7 @@ namespace nsm
         , scene_(scene)
         , resonances_(resonances)
         , newton_(hb, scene.harmonic_balance)
+        , leap_newton_(hb, leap_parameters(scene.harmonic_balance))
         , direction_(scene.contact.sign == ForceSign::physical ? 1.0 : -1.0)
       {}
 
@@ -84,11 +94,20 @@ namespace nsm
       }
 
     public:
+      /// Newton from the guess; a leap that fails with full steps tries
+      /// again with a line search and more iterations.
       bool solve(double omega, const std::vector<double> &guess, unsigned int segment,
-                 BackbonePoint &point)
+                 BackbonePoint &point, bool leaping = false)
       {
-        const NewtonResult r = newton_.solve(omega, guess);
-        return r.converged && make_point(r.x, omega, r.residual, r.iterations, segment, point);
+        for (NewtonSolver *solver : {&newton_, &leap_newton_})
+          {
+            const NewtonResult r = solver->solve(omega, guess);
+            if (r.converged && make_point(r.x, omega, r.residual, r.iterations, segment, point))
+              return true;
+            if (!leaping)
+              return false;
+          }
+        return false;
       }
 
       /// The first point: just beyond w_j (above it with the physical sign),
@@ -298,7 +317,7 @@ namespace nsm
             // The backbone continues beyond the tongue at about the energy it
             // had before it; a landing far from that is on the tongue's flank.
             BackbonePoint point;
-            if (solve(omega, last.x, segment, point) && point.measures.energy <= c.energy_max &&
+            if (solve(omega, last.x, segment, point, true) && point.measures.energy <= c.energy_max &&
                 point.measures.energy < 4 * last.measures.energy &&
                 point.measures.energy > last.measures.energy / 4)
               {
@@ -315,6 +334,7 @@ namespace nsm
       const Scene                          &scene_;
       const std::vector<InternalResonance> &resonances_;
       NewtonSolver                          newton_;
+      NewtonSolver                          leap_newton_;
       double                                direction_;
       std::optional<std::size_t>            first_fold_; ///< in the current segment
     };

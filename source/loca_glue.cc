@@ -181,7 +181,9 @@ namespace nsm
     newton_status(const Scene::HarmonicBalance &params, double tightening = 1.0)
     {
       auto combo = Teuchos::rcp(new NOX::StatusTest::Combo(NOX::StatusTest::Combo::OR));
-      combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::NormF(params.tolerance * tightening)));
+      // Unscaled 2-norm: the same norm the points are accepted and written with.
+      combo->addStatusTest(Teuchos::rcp(
+        new NOX::StatusTest::NormF(params.tolerance * tightening, NOX::StatusTest::NormF::Unscaled)));
       combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::MaxIters(params.max_iterations)));
       combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::FiniteValue));
       return combo;

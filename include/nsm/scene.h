@@ -109,7 +109,7 @@ namespace nsm
       HarmonicBasis basis        = HarmonicBasis::cosine;
       Integration   integration  = Integration::exact;
       double        tolerance    = 1e-10;
-      unsigned int  max_iterations = 15;
+      unsigned int  max_iterations = 25;
       std::string   line_search  = "Full Step";
     } harmonic_balance;
 

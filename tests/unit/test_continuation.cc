@@ -1,0 +1,203 @@
+// Backbones against exact and independent references (method.md section 4):
+// the uniform bar's exact energy, the seed bar's grazing and sign, scale
+// invariance, Signorini conditions, and the continuation methods.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "hb_model.h"
+
+namespace
+{
+  using testing_helpers::HbModel;
+
+  constexpr double w1_seed = 1.919137; // method.md, to 6 digits
+
+  nsm::Scene uniform_scene(unsigned int harmonics)
+  {
+    auto scene = testing_helpers::hb_scene("1", harmonics);
+    scene.continuation.omega_max  = 1.85;
+    scene.continuation.max_step   = 0.005;
+    scene.continuation.energy_max = 1e-5; // 10 g0^2: the tongues rise above it
+    return scene;
+  }
+
+  /// Uniform bar, L = c = EA = 1: E = g0^2 / (2 (T - 3)^2), T = 2 pi / W.
+  double exact_uniform_energy(double omega, double gap)
+  {
+    const double period = 2 * M_PI / omega;
+    return gap * gap / (2 * (period - 3) * (period - 3));
+  }
+
+  double relative_energy_error(unsigned int harmonics, double omega)
+  {
+    HbModel    model(uniform_scene(harmonics));
+    const auto backbone = model.backbone();
+    const auto point    = nsm::solve_on_branch(model.hb, model.scene, backbone, omega);
+    return point.measures.energy / exact_uniform_energy(omega, model.scene.contact.gap) - 1;
+  }
+
+  nsm::Scene seed_scene(nsm::ForceSign sign, double omega_min, double omega_max)
+  {
+    auto scene = testing_helpers::hb_scene("1.5 - x", 40);
+    scene.contact.sign              = sign;
+    scene.continuation.omega_min    = omega_min;
+    scene.continuation.omega_max    = omega_max;
+    scene.continuation.energy_max   = 1e-3;
+    return scene;
+  }
+} // namespace
+
+TEST(Backbone, UniformBarApproachesTheExactEnergy)
+{
+  // Measured truncation errors (exact integration): W = 1.6: 6.0 % (M = 10),
+  // 1.0 % (M = 20); W = 1.8: 12.9 %, 2.7 %. Tolerances: 1.5 x these.
+  const double e10_low = relative_energy_error(10, 1.6), e20_low = relative_energy_error(20, 1.6);
+  const double e10_high = relative_energy_error(10, 1.8), e20_high = relative_energy_error(20, 1.8);
+  EXPECT_LT(std::abs(e10_low), 0.09);
+  EXPECT_LT(std::abs(e20_low), 0.015);
+  EXPECT_LT(std::abs(e10_high), 0.20);
+  EXPECT_LT(std::abs(e20_high), 0.04);
+  EXPECT_LT(std::abs(e20_low), std::abs(e10_low));
+  EXPECT_LT(std::abs(e20_high), std::abs(e10_high));
+}
+
+TEST(Backbone, SignoriniViolationShrinksWithHarmonics)
+{
+  // Sampled lambda >= 0, g >= 0, lambda g = 0 hold up to the truncation's
+  // Gibbs oscillations, which shrink with M. Measured at W = 1.6 on the
+  // uniform bar (M = 10, 20, 40): min g / g0 = -0.038, -0.020, -0.008;
+  // min lambda / max lambda = -0.11, -0.068, -0.034; max |lambda g| / (max
+  // lambda g0) = 0.052, 0.020, 0.0078.
+  // Tolerances: 1.5 x the measured values.
+  struct Bound
+  {
+    unsigned int m;
+    double       gap, force, complementarity;
+  };
+  double previous_gap = 1, previous_complementarity = 1;
+  for (const Bound &b : {Bound{10, 0.057, 0.17, 0.078}, Bound{20, 0.030, 0.10, 0.030},
+                         Bound{40, 0.012, 0.051, 0.012}})
+    {
+      HbModel    model(uniform_scene(b.m));
+      const auto backbone = model.backbone();
+      const auto p = nsm::solve_on_branch(model.hb, model.scene, backbone, 1.6).measures;
+      EXPECT_GT(p.min_gap, -b.gap) << "M = " << b.m;
+      EXPECT_GT(p.min_force, -b.force) << "M = " << b.m;
+      EXPECT_LT(p.max_complementarity, b.complementarity) << "M = " << b.m;
+      EXPECT_LT(-p.min_gap, previous_gap);
+      EXPECT_LT(p.max_complementarity, previous_complementarity);
+      previous_gap = -p.min_gap, previous_complementarity = p.max_complementarity;
+    }
+}
+
+TEST(Backbone, PhysicalSeedBranchLeavesGrazingUpwards)
+{
+  HbModel    model(seed_scene(nsm::ForceSign::physical, 1.5, 2.2));
+  const auto backbone = model.backbone();
+  ASSERT_GT(backbone.points.size(), 50u);
+  const double linear = backbone.points.front().measures.energy;
+  for (const auto &p : backbone.points)
+    {
+      EXPECT_GT(p.omega, w1_seed) << "energy " << p.measures.energy;
+      EXPECT_GT(p.measures.energy, 0.98 * linear) << "W = " << p.omega;
+      EXPECT_LE(p.residual, model.scene.harmonic_balance.tolerance);
+      EXPECT_GT(p.measures.contact_fraction, 0);
+    }
+  // Hardening: at the end of the range the energy is several times the
+  // grazing value (measured: 6.8e-7 at grazing, ~1e-5 at W = 2.2).
+  EXPECT_GT(backbone.points.back().measures.energy, 5 * linear);
+  EXPECT_GT(backbone.points.back().omega, 2.15);
+}
+
+TEST(Backbone, SeedEq5BranchPassesThePapersFrequencyBelowW1)
+{
+  HbModel    model(seed_scene(nsm::ForceSign::seed_eq5, 1.85, 1.95));
+  const auto backbone = model.backbone();
+  for (const auto &p : backbone.points)
+    EXPECT_LT(p.omega, w1_seed);
+  const auto   at_figure = nsm::solve_on_branch(model.hb, model.scene, backbone, 1.907);
+  const double g0 = model.scene.contact.gap;
+  // method.md: energies of order g0^2 there (measured 0.69 g0^2).
+  EXPECT_GT(at_figure.measures.energy, 0.1 * g0 * g0);
+  EXPECT_LT(at_figure.measures.energy, 10 * g0 * g0);
+}
+
+TEST(Backbone, DoublingTheGapMultipliesEnergiesByFour)
+{
+  auto scene = seed_scene(nsm::ForceSign::physical, 1.5, 2.0);
+  HbModel    small(scene);
+  scene.contact.gap *= 2;
+  HbModel    large(scene);
+  const auto a = small.backbone(), b = large.backbone();
+  ASSERT_EQ(a.points.size(), b.points.size());
+  for (std::size_t i = 0; i < a.points.size(); ++i)
+    {
+      ASSERT_EQ(a.points[i].omega, b.points[i].omega);
+      EXPECT_NEAR(b.points[i].measures.energy / a.points[i].measures.energy, 4.0, 4e-8);
+    }
+}
+
+TEST(Backbone, SequentialAndArclengthAgree)
+{
+  // Where both converge they are on the same branch: the solution at a W
+  // reached by both is the same to the Newton tolerance.
+  auto scene = uniform_scene(10);
+  scene.continuation.omega_max = 1.7;
+  HbModel sequential(scene);
+  scene.continuation.method = nsm::ContinuationMethod::arclength;
+  HbModel    arclength(scene);
+  const auto bs = sequential.backbone(), ba = arclength.backbone();
+  ASSERT_GT(ba.points.size(), 10u);
+  for (const double omega : {1.6, 1.65})
+    {
+      const auto ps = nsm::solve_on_branch(sequential.hb, scene, bs, omega);
+      const auto pa = nsm::solve_on_branch(arclength.hb, scene, ba, omega);
+      EXPECT_NEAR(pa.measures.energy / ps.measures.energy, 1.0, 1e-9) << "W = " << omega;
+    }
+}
+
+TEST(Backbone, ArclengthGoesRoundAFoldAtAnInternalResonance)
+{
+  auto scene = seed_scene(nsm::ForceSign::physical, 1.5, 1.93);
+  scene.continuation.method = nsm::ContinuationMethod::arclength;
+  HbModel    model(scene);
+  const auto backbone = model.backbone();
+  ASSERT_FALSE(backbone.folds.empty());
+  // W turns back within a segment, next to a listed resonance w_j / k.
+  bool turned = false;
+  for (std::size_t i = 1; i + 1 < backbone.points.size(); ++i)
+    {
+      const auto &a = backbone.points[i - 1], &b = backbone.points[i], &c = backbone.points[i + 1];
+      if (a.segment == c.segment && (b.omega - a.omega) * (c.omega - b.omega) < 0)
+        {
+          const auto &r = nsm::nearest_resonance(model.resonances, b.omega);
+          turned = turned || std::abs(r.omega - b.omega) < 2e-3;
+        }
+    }
+  EXPECT_TRUE(turned);
+}
+
+TEST(Backbone, SampledApproachesExactIntegrationAsSamplesGrow)
+{
+  auto scene = uniform_scene(10);
+  HbModel    exact(scene);
+  const auto reference =
+    nsm::solve_on_branch(exact.hb, scene, exact.backbone(), 1.6).measures.energy;
+  // The sampled rule's error falls like Nt^-2 in envelope (measured: 4.8e-3,
+  // 4.2e-4, 8.6e-6, 5.0e-8 for Nt = 32, 128, 1024, 8192); some Nt in between
+  // land closer by symmetry of the samples with the contact interval.
+  double previous = 1;
+  for (const unsigned int samples : {32u, 128u, 1024u, 8192u})
+    {
+      scene.harmonic_balance.integration  = nsm::Integration::sampled;
+      scene.harmonic_balance.time_samples = samples;
+      HbModel    model(scene);
+      const auto energy =
+        nsm::solve_on_branch(model.hb, scene, model.backbone(), 1.6).measures.energy;
+      const double difference = std::abs(energy / reference - 1);
+      EXPECT_LT(difference, previous / 8) << samples << " samples";
+      previous = difference;
+    }
+  EXPECT_LT(previous, 1e-6);
+}
