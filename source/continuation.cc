@@ -301,32 +301,44 @@ namespace nsm
         return end;
       }
 
-      /// Tries W beyond the fold with the solution at the front of the
-      /// segment as guess (its last point, or where arclength first turned
-      /// back before climbing a tongue), at distances growing from Initial
-      /// step to 5 % of Omega; a success opens a new segment.
+      /// Tries W beyond the fold at distances growing from Initial step to
+      /// 5 % of Omega, from three guesses: the front of the segment (its last
+      /// point, or where arclength first turned back before climbing a
+      /// tongue), the segment's first point, which the resonance has not
+      /// distorted yet, and an impulsive contact reaching the gap at that W. A landing must be at about the energy the branch had
+      /// (a landing far from it is on a tongue's flank). A success opens a
+      /// new segment.
       bool leap(Backbone &backbone, unsigned int segment)
       {
-        const auto          &c    = scene_.continuation;
-        const BackbonePoint  last = backbone.points[first_fold_.value_or(backbone.points.size() - 1)];
-        for (double distance = c.initial_step; distance <= 0.05 * last.omega; distance *= 1.5)
+        const auto         &c     = scene_.continuation;
+        const BackbonePoint front = backbone.points[first_fold_.value_or(backbone.points.size() - 1)];
+        std::size_t         first = backbone.points.size() - 1;
+        while (first > 0 && backbone.points[first - 1].segment == front.segment)
+          --first;
+        const std::vector<double> guesses[] = {front.x, backbone.points[first].x};
+        const double              energy    = front.measures.energy;
+        for (double distance = c.initial_step; distance <= 0.05 * front.omega; distance *= 1.5)
           {
-            const double omega = last.omega + direction_ * distance;
-            if (omega > c.omega_max || omega < c.omega_min)
+            const double omega = front.omega + direction_ * distance;
+            if (!in_range(omega))
               break;
-            // The backbone continues beyond the tongue at about the energy it
-            // had before it; a landing far from that is on the tongue's flank.
-            BackbonePoint point;
-            if (solve(omega, last.x, segment, point, true) && point.measures.energy <= c.energy_max &&
-                point.measures.energy < 4 * last.measures.energy &&
-                point.measures.energy > last.measures.energy / 4)
+            hb_.set_omega(omega);
+            for (const std::vector<double> &guess : {guesses[0], guesses[1], hb_.grazing_guess()})
               {
-                backbone.events.push_back(fold_message("leapt to a new segment", omega, {}));
-                backbone.points.push_back(std::move(point));
-                return true;
+                if (guess.empty())
+                  continue;
+                BackbonePoint point;
+                if (solve(omega, guess, segment, point, true) &&
+                    point.measures.energy <= c.energy_max && point.measures.energy < 4 * energy &&
+                    point.measures.energy > energy / 4)
+                  {
+                    backbone.events.push_back(fold_message("leapt to a new segment", omega, {}));
+                    backbone.points.push_back(std::move(point));
+                    return true;
+                  }
               }
           }
-        backbone.events.push_back(fold_message("branch lost after the fold", last.omega, {}));
+        backbone.events.push_back(fold_message("branch lost after the fold", front.omega, {}));
         return false;
       }
 

@@ -162,11 +162,16 @@ namespace nsm
         q[t] += v[i] * table_[i * samples_ + t];
 
     const double h = two_pi / samples_;
-    // Safeguarded Newton on a bracket [a, b] where f changes sign.
+    // Safeguarded Newton on a bracket [a, b] where f changes sign, from the
+    // regula falsi point; 1e-13 in tau leaves the Gram integrals exact to
+    // far below any Newton tolerance.
     const auto refine = [&](double a, double b, const auto &f) {
       double fa = f(a, nullptr);
-      double x  = 0.5 * (a + b);
-      for (int it = 0; it < 100 && b - a > 1e-15 * two_pi; ++it)
+      const double fb = f(b, nullptr);
+      double x = fb != fa ? a - fa * (b - a) / (fb - fa) : 0.5 * (a + b);
+      if (!(x > a && x < b))
+        x = 0.5 * (a + b);
+      for (int it = 0; it < 60; ++it)
         {
           double       slope;
           const double fx = f(x, &slope);
@@ -177,16 +182,12 @@ namespace nsm
           else
             b = x;
           const double newton = x - fx / slope;
-          if (newton > a && newton < b && slope != 0)
-            {
-              // Newton moves one end of the bracket only: stop on its step.
-              const bool converged = std::abs(newton - x) <= 1e-15 * two_pi;
-              x = newton;
-              if (converged)
-                break;
-            }
-          else
-            x = 0.5 * (a + b);
+          const bool   inside = slope != 0 && newton > a && newton < b;
+          if (inside && std::abs(newton - x) <= 1e-13)
+            return newton;
+          x = inside ? newton : 0.5 * (a + b);
+          if (b - a <= 1e-13)
+            return x;
         }
       return x;
     };
