@@ -181,6 +181,19 @@ namespace nsm
           }
       }
 
+      NewtonCost newton_cost() const
+      {
+        NewtonCost total = newton_.cost();
+        const NewtonCost &leaps = leap_newton_.cost();
+        total.converged_seconds += leaps.converged_seconds;
+        total.failed_seconds += leaps.failed_seconds;
+        total.converged_solves += leaps.converged_solves;
+        total.failed_solves += leaps.failed_solves;
+        total.converged_iterations += leaps.converged_iterations;
+        total.failed_iterations += leaps.failed_iterations;
+        return total;
+      }
+
     private:
       bool full(const Backbone &backbone) const
       {
@@ -205,7 +218,7 @@ namespace nsm
         return change <= 0.04 * size;
       }
 
-      /// Steps in Omega with a secant predictor; halves the step on failure
+      /// Steps in Omega with a secant predictor; quarters the step on failure
       /// or on a jump to another branch.
       SegmentEnd sequential(Backbone &backbone, unsigned int segment)
       {
@@ -236,7 +249,8 @@ namespace nsm
                 backbone.points.push_back(std::move(point));
                 continue;
               }
-            step /= 2;
+            // Shrink fast: at a fold every smaller step fails too.
+            step /= 4;
             if (step < c.min_step)
               return SegmentEnd::fold;
           }
@@ -317,7 +331,7 @@ namespace nsm
           --first;
         const std::vector<double> guesses[] = {front.x, backbone.points[first].x};
         const double              energy    = front.measures.energy;
-        for (double distance = c.initial_step; distance <= 0.05 * front.omega; distance *= 1.5)
+        for (double distance = c.initial_step; distance <= 0.05 * front.omega; distance *= 2)
           {
             const double omega = front.omega + direction_ * distance;
             if (!in_range(omega))
@@ -360,6 +374,7 @@ namespace nsm
     BranchTracer tracer(hb, scene, resonances);
     backbone.points.push_back(tracer.start(backbone));
     tracer.trace(backbone);
+    backbone.newton_cost = tracer.newton_cost();
     return backbone;
   }
 } // namespace nsm

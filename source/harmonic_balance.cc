@@ -1,6 +1,7 @@
 #include <nsm/harmonic_balance.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -9,6 +10,24 @@ namespace nsm
   namespace
   {
     constexpr double two_pi = 2 * M_PI;
+
+    /// Adds the wall time of its scope to a counter.
+    class ScopedTimer
+    {
+    public:
+      explicit ScopedTimer(double &seconds)
+        : seconds_(seconds)
+        , start_(std::chrono::steady_clock::now())
+      {}
+      ~ScopedTimer()
+      {
+        seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+      }
+
+    private:
+      double                               &seconds_;
+      std::chrono::steady_clock::time_point start_;
+    };
 
     /// cos(m t) and sin(m t) for m = 0..count-1 by the angle-sum recurrence.
     void trig_table(const double t, const unsigned int count,
@@ -86,6 +105,8 @@ namespace nsm
   {
     if (omega == omega_)
       return;
+    const ScopedTimer timer(cost_.receptance_seconds);
+    cost_.frequencies += harmonics_ + 1;
     omega_ = omega;
     phases_.resize(harmonics_ + 1);
     for (unsigned int k = 0; k <= harmonics_; ++k)
@@ -225,19 +246,24 @@ namespace nsm
         // cross zero (a contact shorter than a sample spacing).
         const bool peak   = q[t] <= 0 && q[prev] <= 0 && q[next] <= 0 && q[t] >= q[prev] && q[t] >= q[next];
         const bool trough = q[t] > 0 && q[prev] > 0 && q[next] > 0 && q[t] <= q[prev] && q[t] <= q[next];
-        if ((peak || trough) && std::abs(q[t]) <= reach)
+        if (!(peak || trough) || std::abs(q[t]) > reach)
+          continue;
+        // The parabola through the three samples estimates the extremum; only
+        // one that comes within half of |q_t| of zero is searched exactly.
+        const double curve = q[prev] - 2 * q[t] + q[next];
+        const double apex  = curve != 0 ? q[t] - (q[next] - q[prev]) * (q[next] - q[prev]) / (8 * curve) : q[t];
+        if (std::abs(apex) > 0.5 * std::abs(q[t]) && (apex > 0) == (q[t] > 0))
+          continue;
+        double lo = a - h, hi = b, s_lo, s_hi;
+        value(v, lo, &s_lo);
+        value(v, hi, &s_hi);
+        if ((s_lo > 0) == (s_hi > 0))
+          continue;
+        const double extremum = refine(lo, hi, dq_of);
+        if ((value(v, extremum, nullptr) > 0) != (q[t] > 0))
           {
-            double lo = a - h, hi = b, s_lo, s_hi;
-            value(v, lo, &s_lo);
-            value(v, hi, &s_hi);
-            if ((s_lo > 0) == (s_hi > 0))
-              continue;
-            const double extremum = refine(lo, hi, dq_of);
-            if ((value(v, extremum, nullptr) > 0) != (q[t] > 0))
-              {
-                found.push_back(refine(lo, extremum, q_of));
-                found.push_back(refine(extremum, hi, q_of));
-              }
+            found.push_back(refine(lo, extremum, q_of));
+            found.push_back(refine(extremum, hi, q_of));
           }
       }
     for (double &r : found)
@@ -341,7 +367,9 @@ namespace nsm
                                  std::vector<double>       *jacobian,
                                  std::vector<double>       *domega) const
   {
-    const unsigned int        n = n_unknowns();
+    const unsigned int n = n_unknowns();
+    const ScopedTimer  timer(jacobian || domega ? cost_.jacobian_seconds : cost_.residual_seconds);
+    ++(jacobian || domega ? cost_.jacobians : cost_.residuals);
     const std::vector<double> v = contact_coefficients(x);
     std::vector<double>       gram;
     active_gram(v, gram);

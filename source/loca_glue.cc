@@ -8,6 +8,7 @@
 #include <LOCA_MultiContinuation_ExtendedVector.H>
 #include <NOX_LAPACK_Group.H>
 
+#include <chrono>
 #include <cmath>
 
 namespace nsm
@@ -231,14 +232,21 @@ namespace nsm
   {
     impl_->interface.set_omega(omega);
     impl_->interface.set_guess(guess);
+    const auto start = std::chrono::steady_clock::now();
     impl_->solver->reset(impl_->interface.getInitialGuess());
     const NOX::StatusTest::StatusType status = impl_->solver->solve();
     const auto &group = impl_->solver->getSolutionGroup();
     const auto &x = dynamic_cast<const NOX::LAPACK::Vector &>(group.getX());
-    return {status == NOX::StatusTest::Converged,
-            static_cast<unsigned int>(impl_->solver->getNumIterations()),
-            group.getNormF(),
-            HbInterface::to_std(x)};
+    NewtonResult result{status == NOX::StatusTest::Converged,
+                        static_cast<unsigned int>(impl_->solver->getNumIterations()),
+                        group.getNormF(),
+                        HbInterface::to_std(x)};
+    const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    (result.converged ? cost_.converged_seconds : cost_.failed_seconds) += seconds;
+    ++(result.converged ? cost_.converged_solves : cost_.failed_solves);
+    (result.converged ? cost_.converged_iterations : cost_.failed_iterations) += result.iterations;
+    return result;
   }
 
   void run_arclength(HarmonicBalance                                  &hb,

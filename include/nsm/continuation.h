@@ -29,9 +29,19 @@ namespace nsm
     unsigned int harmonic; ///< k
   };
 
+  /// Wall time and Newton iterations of the solves that converged and of
+  /// those that did not (folds and leap attempts), for benchmarks.
+  struct NewtonCost
+  {
+    double        converged_seconds = 0, failed_seconds = 0;
+    unsigned long converged_solves = 0, failed_solves = 0;
+    unsigned long converged_iterations = 0, failed_iterations = 0;
+  };
+
   struct Backbone
   {
     std::vector<BackbonePoint> points;
+    NewtonCost                 newton_cost; ///< sequential method and leaps
     std::vector<std::string>   events; ///< folds, leaps, stops: for the summary
     std::vector<double>        folds;  ///< Omega of each fold turned or leapt
   };
@@ -75,7 +85,10 @@ namespace nsm
     ~NewtonSolver();
     NewtonResult solve(double omega, const std::vector<double> &guess);
 
+    const NewtonCost &cost() const { return cost_; }
+
   private:
+    NewtonCost cost_;
     struct Impl;
     Impl *impl_;
   };

@@ -36,6 +36,13 @@ namespace nsm
     double max_complementarity; ///< max |lambda g| / (max lambda g0)
   };
 
+  /// Where the HB time goes (wall seconds and counts), for benchmarks.
+  struct HarmonicBalanceCost
+  {
+    double        receptance_seconds = 0, residual_seconds = 0, jacobian_seconds = 0;
+    unsigned long frequencies = 0, residuals = 0, jacobians = 0;
+  };
+
   class HarmonicBalance
   {
   public:
@@ -71,6 +78,8 @@ namespace nsm
     double contact_fraction(const std::vector<double> &x) const;
 
     const Receptance &receptance() const { return receptance_; }
+
+    const HarmonicBalanceCost &cost() const { return cost_; }
 
     /// Contact force F that scales the unknowns (c = F x).
     double force_scale() const { return force_scale_; }
@@ -120,5 +129,6 @@ namespace nsm
     // the last q is kept.
     mutable std::vector<double> cached_coefficients_, cached_gram_;
     mutable double              cached_fraction_ = 0;
+    mutable HarmonicBalanceCost cost_;
   };
 } // namespace nsm

@@ -1,0 +1,64 @@
+// Benchmark (not a test): the seed scene's backbone from grazing to
+// W = 2.2 with sequential and arclength continuation, on the paper's mesh
+// (FE_Q(1), 4000 cells) and on the FE_Q(10), 7-cell mesh of the same
+// receptance accuracy (benchmark_receptance). Ratios are from this one run.
+#include <nsm/bar_model.h>
+#include <nsm/continuation.h>
+#include <nsm/discretisation.h>
+#include <nsm/harmonic_balance.h>
+#include <nsm/receptance.h>
+
+#include <chrono>
+#include <cstdio>
+
+#include "scene_helpers.h"
+
+namespace
+{
+  double since(std::chrono::steady_clock::time_point start)
+  {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
+  void run(const char *name, unsigned int degree, unsigned int cells, nsm::ContinuationMethod method)
+  {
+    nsm::Scene scene = testing_helpers::bar_scene("1.5 - x", degree, cells);
+    scene.receptance.method        = nsm::ReceptanceMethod::modal;
+    scene.continuation.method      = method;
+    scene.continuation.omega_min   = 1.5;
+    scene.continuation.energy_max  = 1e-3;
+    const auto start = std::chrono::steady_clock::now();
+    const nsm::BarModel       bar(scene.bar);
+    const nsm::Discretisation d(bar, scene.discretisation);
+    const nsm::Receptance     r(d, scene.receptance, 40 * scene.continuation.omega_max);
+    const double              setup = since(start);
+    nsm::HarmonicBalance      hb(scene, r);
+    const auto                resonances = nsm::internal_resonances(r, scene);
+    const auto                traced = std::chrono::steady_clock::now();
+    const nsm::Backbone       backbone = nsm::compute_backbone(hb, scene, resonances);
+    const double              tracing = since(traced), total = since(start);
+    const auto               &cost = hb.cost();
+    const double other = tracing - cost.receptance_seconds - cost.residual_seconds - cost.jacobian_seconds;
+    const auto &newton = backbone.newton_cost;
+    std::printf("| %s | %s | %zu | %zu | %.3f | %.3f | %.3f | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.2f | %.3f (%.1f it) | %lu solves, %.2f s |\n",
+                name, method == nsm::ContinuationMethod::sequential ? "sequential" : "arclength",
+                backbone.points.size(), backbone.folds.size(), setup, tracing, total,
+                100 * cost.receptance_seconds / tracing, 100 * cost.residual_seconds / tracing,
+                100 * cost.jacobian_seconds / tracing, 100 * other / tracing,
+                1e3 * tracing / backbone.points.size(),
+                newton.converged_solves ? 1e3 * newton.converged_seconds / newton.converged_solves : 0.0,
+                newton.converged_solves ? double(newton.converged_iterations) / newton.converged_solves : 0.0,
+                newton.failed_solves, newton.failed_seconds);
+  }
+} // namespace
+
+int main()
+{
+  std::printf("| mesh | method | points | folds | set-up [s] | backbone [s] | total [s] | receptance | residual | Jacobian (+dR/dW) | linear solves + NOX/LOCA | ms per point (all) | ms per converged Newton solve | failed solves (folds, leaps) |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const auto method : {nsm::ContinuationMethod::sequential, nsm::ContinuationMethod::arclength})
+    {
+      run("FE_Q(1), 4000 cells", 1, 4000, method);
+      run("FE_Q(10), 7 cells", 10, 7, method);
+    }
+}
