@@ -124,7 +124,7 @@ namespace nsm
     prm.leave_subsection();
 
     prm.enter_subsection("Contact");
-    prm.declare_entry("Enabled", "true", Bool(), "Rigid wall at x = L + gap.");
+    prm.declare_entry("Enabled", "true", Bool(), "Rigid wall at x = L + gap; a backbone needs it.");
     prm.declare_entry("Gap", "1e-3", Double(), "Initial gap g0 > 0.");
     prm.declare_entry("Alpha",
                       "1",
@@ -234,13 +234,13 @@ namespace nsm
                       Integer(),
                       "Clamped-free mode j whose grazing starts the branch, "
                       ">= 1.");
-    prm.declare_entry("Omega min", "0", Double(), "Lower bound of Omega, >= 0.");
-    prm.declare_entry("Omega max", "2.2", Double(), "Upper bound, > Omega min.");
-    prm.declare_entry("Energy max", "1", Double(), "Stop above, > 0.");
-    prm.declare_entry("Initial step", "1e-3", Double(), "First step, > 0.");
+    prm.declare_entry("Omega min", "0", Double(), "Lower end of the Omega range, >= 0.");
+    prm.declare_entry("Omega max", "2.2", Double(), "Upper end of the Omega range, > Omega min; harmonics up to Harmonics x Omega max are resolved.");
+    prm.declare_entry("Energy max", "1", Double(), "Points above it are not kept: the branch is climbing a resonance tongue, and the run leaps past it to a new segment; > 0.");
+    prm.declare_entry("Initial step", "1e-3", Double(), "First step in Omega (arclength: in arclength), offset of the start from grazing, and first leap distance; > 0.");
     prm.declare_entry("Min step", "1e-6", Double(), "Smallest step before a fold is declared, > 0, <= Initial step.");
-    prm.declare_entry("Max step", "1e-2", Double(), ">= Initial step.");
-    prm.declare_entry("Max steps", "2000", Integer(), "1 to 1e6.");
+    prm.declare_entry("Max step", "1e-2", Double(), "Largest step, >= Initial step.");
+    prm.declare_entry("Max steps", "2000", Integer(), "Most backbone points, 1 to 1e6.");
     prm.leave_subsection();
 
     prm.enter_subsection("Output");
