@@ -434,6 +434,21 @@ namespace nsm
     return x;
   }
 
+  FourierCoefficients HarmonicBalance::coefficients(const std::vector<double> &x) const
+  {
+    FourierCoefficients result;
+    for (unsigned int i = 0; i < n_unknowns(); ++i)
+      {
+        const Phase &p = phases_[orders_[i]];
+        const double c = has_unfolding() && i == 1 ? 0.0 : force_scale_ * x[i];
+        result.order.push_back(orders_[i]);
+        result.is_sine.push_back(kinds_[i] == sine);
+        result.force.push_back(c * p.cos);
+        result.displacement.push_back(-sign_ * c * p.sin);
+      }
+    return result;
+  }
+
   double HarmonicBalance::contact_fraction(const std::vector<double> &x) const
   {
     std::vector<double> gram;

@@ -1,6 +1,8 @@
 #include <nsm/adaptive_refinement.h>
 #include <nsm/bar_model.h>
 #include <nsm/continuation.h>
+#include <nsm/field_output.h>
+#include <nsm/fields.h>
 #include <nsm/harmonic_balance.h>
 #include <nsm/discretisation.h>
 #include <nsm/pipeline.h>
@@ -10,7 +12,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <ctime>
+#include <fstream>
 #include <iomanip>
 #include <memory>
 #include <ostream>
@@ -103,6 +107,22 @@ namespace nsm
         table.rows.push_back({r.omega, double(r.mode), double(r.harmonic)});
       return table;
     }
+    /// Runs the shipped plotting script on the files just written.
+    std::vector<std::string> make_plots(const Scene &scene)
+    {
+      std::ostringstream command;
+      command << NSM_PYTHON << " " << NSM_PLOT_SCRIPT << " '" << scene.output.directory
+              << "' --gap " << scene.contact.gap << " > '" << scene.output.directory
+              << "/plots.log' 2>&1";
+      if (std::system(command.str().c_str()) != 0)
+        throw NumericalError("the plotting script failed; see " + scene.output.directory + "/plots.log");
+      std::vector<std::string> files;
+      std::ifstream            log(scene.output.directory + "/plots.log");
+      for (std::string line; std::getline(log, line);)
+        if (line.rfind("wrote ", 0) == 0)
+          files.push_back(line.substr(6));
+      return files;
+    }
   } // namespace
 
   RunReport run_scene(const Scene &scene)
@@ -112,7 +132,8 @@ namespace nsm
 
     const bool needs_spectrum   = scene.output.spectrum_modes > 0;
     const bool needs_receptance = !scene.output.receptance_frequencies.empty();
-    const bool needs_backbone   = scene.output.backbone;
+    const bool needs_fields     = scene.output.fields();
+    const bool needs_backbone   = scene.output.backbone || needs_fields;
     const bool needs_mesh       = needs_spectrum || needs_receptance || needs_backbone;
     if (!needs_mesh)
       {
@@ -144,26 +165,56 @@ namespace nsm
       });
     if (needs_receptance)
       timed(report, "receptance", [&] { tables.push_back(receptance_table(*receptance, scene)); });
+    std::unique_ptr<HarmonicBalance> hb;
+    Backbone                         backbone;
+    std::vector<InternalResonance>   resonances;
     if (needs_backbone)
       timed(report, "harmonic balance", [&] {
-        HarmonicBalance hb(scene, *receptance);
-        const auto      resonances = internal_resonances(*receptance, scene);
-        const Backbone  backbone   = compute_backbone(hb, scene, resonances);
-        tables.push_back(backbone_table(backbone));
-        tables.push_back(resonance_table(resonances));
+        hb         = std::make_unique<HarmonicBalance>(scene, *receptance);
+        resonances = internal_resonances(*receptance, scene);
+        backbone   = compute_backbone(*hb, scene, resonances);
+        if (scene.output.backbone)
+          {
+            tables.push_back(backbone_table(backbone));
+            tables.push_back(resonance_table(resonances));
+          }
         std::ostringstream s;
         s << "backbone: " << backbone.points.size() << " converged points, "
-          << backbone.folds.size() << " folds, " << hb.n_unknowns() << " unknowns";
+          << backbone.folds.size() << " folds, " << hb->n_unknowns() << " unknowns";
         report.notes.push_back(s.str());
         for (const std::string &event : backbone.events)
           report.notes.push_back("  " + event);
       });
 
+    std::vector<PeriodicField> fields;
+    if (needs_fields)
+      timed(report, "fields", [&] {
+        const auto &o = scene.output;
+        for (const double omega : o.fields_at)
+          fields.emplace_back(*hb, *discretisation, solve_on_branch(*hb, scene, backbone, omega),
+                              scene.contact.sign);
+        for (std::size_t i = 0; o.fields_every > 0 && i < backbone.points.size(); i += o.fields_every)
+          fields.emplace_back(*hb, *discretisation, backbone.points[i], scene.contact.sign);
+      });
+
     timed(report, "output", [&] {
-      make_directory(scene.output.directory);
+      const std::string &directory = scene.output.directory;
+      make_directory(directory);
       for (const CsvTable &table : tables)
-        report.files.push_back(write_csv(scene.output.directory, table));
+        report.files.push_back(write_csv(directory, table));
+      const FieldOutputOptions options{scene.field_time_samples(), scene.output.vtk, scene.output.plots};
+      for (std::size_t i = 0; i < fields.size(); ++i)
+        for (std::string &f : write_field(directory, i, fields[i], *discretisation, options))
+          report.files.push_back(std::move(f));
+      if (!fields.empty())
+        for (std::string &f : write_field_collection(directory, fields, scene.output.vtk))
+          report.files.push_back(std::move(f));
     });
+    if (scene.output.plots)
+      timed(report, "plots", [&] {
+        for (std::string &f : make_plots(scene))
+          report.files.push_back(std::move(f));
+      });
     return report;
   }
 

@@ -258,6 +258,31 @@ namespace nsm
                       "false",
                       Bool(),
                       "Write backbone.csv and resonances.csv.");
+    prm.declare_entry("Fields at",
+                      "",
+                      Anything(),
+                      "Omega of the mode fields, solved exactly there on the "
+                      "branch: numbers and ranges a:b:n; empty = none.");
+    prm.declare_entry("Fields every",
+                      "0",
+                      Integer(),
+                      "Also a field at every n-th backbone point; 0 = none.");
+    prm.declare_entry("Field time samples",
+                      "0",
+                      Integer(),
+                      "Samples per period of the fields (CSV rows, snapshots, "
+                      "plots, and the space-time mesh); 0 = 2 (2 M + 1); else "
+                      "4 to 100000.");
+    prm.declare_entry("VTK",
+                      "false",
+                      Bool(),
+                      "ParaView files of the fields: space-time .vtu, .pvd of "
+                      "1D snapshots, fields.pvd.");
+    prm.declare_entry("Plots",
+                      "false",
+                      Bool(),
+                      "PNG plots: backbone.png, and per field a space-time "
+                      "colour map and the contact end over one period.");
     prm.leave_subsection();
   }
 
@@ -422,8 +447,35 @@ namespace nsm
       s.output.receptance_frequencies = parse_frequency_list(
         prm.get("Receptance frequencies"), "Output/Receptance frequencies");
       s.output.backbone = prm.get_bool("Backbone");
+      s.output.fields_at =
+        parse_frequency_list(prm.get("Fields at"), "Output/Fields at");
+      s.output.fields_every =
+        get_integer(prm, "Output", "Fields every", 0, 1000000);
+      s.output.field_time_samples = prm.get_integer("Field time samples");
+      require(s.output.field_time_samples == 0 ||
+                (s.output.field_time_samples >= 4 &&
+                 s.output.field_time_samples <= 100000),
+              "Output/Field time samples",
+              "0 or an integer in [4, 100000]",
+              std::to_string(prm.get_integer("Field time samples")));
+      s.output.vtk   = prm.get_bool("VTK");
+      s.output.plots = prm.get_bool("Plots");
       prm.leave_subsection();
 
+      require(!s.output.vtk || s.output.fields(),
+              "Output/VTK",
+              "false unless fields are requested (Output/Fields at or "
+              "Output/Fields every)",
+              "true");
+      require(!s.output.plots || s.output.fields() || s.output.backbone,
+              "Output/Plots",
+              "false unless Output/Backbone = true or fields are requested",
+              "true");
+
+      require(!s.output.fields() || s.contact.enabled,
+              "Output/Fields at",
+              "empty (and Fields every = 0) when Contact/Enabled = false",
+              "a list");
       require(!s.output.backbone || s.contact.enabled,
               "Output/Backbone",
               "false when Contact/Enabled = false (no contact, no "
@@ -456,6 +508,12 @@ namespace nsm
         throw InputError("scene '" + path + "': " + e.what());
       }
     return scene;
+  }
+
+  unsigned int Scene::field_time_samples() const
+  {
+    return output.field_time_samples != 0 ? output.field_time_samples :
+                                            2 * (2 * harmonic_balance.harmonics + 1);
   }
 
   unsigned int Scene::time_samples() const

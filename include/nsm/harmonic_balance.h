@@ -43,6 +43,17 @@ namespace nsm
     unsigned long frequencies = 0, residuals = 0, jacobians = 0;
   };
 
+  /// Fourier coefficients of a solution in physical units, per basis
+  /// function (1, then cos / sin of k W t): lambda = sum force_i phi_i and
+  /// u_N = sum displacement_i phi_i.
+  struct FourierCoefficients
+  {
+    std::vector<unsigned int> order;   ///< k
+    std::vector<bool>         is_sine;
+    std::vector<double>       force;
+    std::vector<double>       displacement;
+  };
+
   class HarmonicBalance
   {
   public:
@@ -73,6 +84,9 @@ namespace nsm
     std::vector<double> grazing_guess() const;
 
     PeriodicSolutionMeasures measure(const std::vector<double> &x) const;
+
+    /// a and b of the solution x at the current W.
+    FourierCoefficients coefficients(const std::vector<double> &x) const;
 
     /// Share of the period with lambda - alpha g > 0 (0: the trivial motion).
     double contact_fraction(const std::vector<double> &x) const;

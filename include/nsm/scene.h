@@ -132,6 +132,13 @@ namespace nsm
       unsigned int        spectrum_modes  = 0;
       std::vector<double> receptance_frequencies;
       bool                backbone        = false;
+      std::vector<double> fields_at;          ///< Omega of each field
+      unsigned int        fields_every    = 0; ///< every n-th backbone point; 0 = none
+      unsigned int        field_time_samples = 0; ///< 0: 2 (2 M + 1)
+      bool                vtk             = false;
+      bool                plots           = false;
+
+      bool fields() const { return !fields_at.empty() || fields_every > 0; }
     } output;
 
     /// Reads and validates a scene file; throws InputError.
@@ -142,6 +149,9 @@ namespace nsm
 
     /// Time samples actually used by the harmonic balance.
     unsigned int time_samples() const;
+
+    /// Time samples per period of the fields (CSV, snapshots, plots).
+    unsigned int field_time_samples() const;
   };
 
   /// Parses "0, 0.5, 2:3:11" (a:b:n = n values from a to b) into a list.

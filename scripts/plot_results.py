@@ -1,0 +1,123 @@
+#!/usr/bin/python3
+"""Plots of an nsm-bar output directory (run by nsm-bar when Output/Plots = true).
+
+usage: plot_results.py DIRECTORY --gap G0
+Writes backbone.png (from backbone.csv, resonances.csv, fields.csv) and, per
+field k, field_k_spacetime.png and field_k_tip.png; prints "wrote PATH" per file.
+"""
+import argparse
+import csv
+import glob
+import os
+import re
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def read(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    return {key: [float(r[key]) for r in rows] for key in rows[0]} if rows else {}
+
+
+def save(figure, path):
+    figure.savefig(path, dpi=130, bbox_inches="tight")
+    plt.close(figure)
+    print("wrote " + path)
+
+
+def backbone_plot(directory):
+    points = read(os.path.join(directory, "backbone.csv"))
+    figure, axes = plt.subplots(figsize=(8, 5))
+    segments = sorted(set(points["segment"]))
+    for n, s in enumerate(segments):
+        omega = [w for w, g in zip(points["Omega"], points["segment"]) if g == s]
+        energy = [e for e, g in zip(points["energy"], points["segment"]) if g == s]
+        axes.semilogy(omega, energy, "-", marker=".", markersize=3, linewidth=1,
+                      color=plt.cm.tab10(n % 10), label="backbone segments" if n == 0 else None)
+    low, high = min(points["Omega"]), max(points["Omega"])
+    margin = 0.02 * (high - low or 1)
+    axes.set_xlim(low - margin, high + margin)
+    resonances = os.path.join(directory, "resonances.csv")
+    if os.path.exists(resonances):
+        r = read(resonances)
+        first_linear = first_internal = True
+        for omega, mode, harmonic in zip(r.get("omega", []), r.get("mode", []), r.get("harmonic", [])):
+            if harmonic == 1:
+                axes.axvline(omega, color="black", linewidth=1.2,
+                             label="linear frequency $\\omega_j$" if first_linear else None)
+                axes.annotate(f"$\\omega_{{{int(mode)}}}$", (omega, 1.0), xycoords=("data", "axes fraction"),
+                              ha="center", va="bottom")
+                first_linear = False
+            else:
+                axes.axvline(omega, color="grey", linewidth=0.5, linestyle=":",
+                             label="internal resonance $\\omega_j / k$" if first_internal else None)
+                first_internal = False
+    fields = os.path.join(directory, "fields.csv")
+    if os.path.exists(fields):
+        f = read(fields)
+        axes.plot(f["Omega"], f["energy"], "r*", markersize=12, label="fields")
+    axes.set_xlabel("$\\Omega$ [rad/s]")
+    axes.set_ylabel("energy (period mean)")
+    axes.set_title(f"Backbone: {len(points['Omega'])} points, {len(segments)} segments")
+    axes.legend(loc="upper left", fontsize=8)
+    save(figure, os.path.join(directory, "backbone.png"))
+
+
+def field_plots(directory, gap):
+    omegas = {}
+    if os.path.exists(os.path.join(directory, "fields.csv")):
+        f = read(os.path.join(directory, "fields.csv"))
+        omegas = {int(i): w for i, w in zip(f["index"], f["Omega"])}
+    for path in sorted(glob.glob(os.path.join(directory, "field_*_tip.csv"))):
+        index = int(re.search(r"field_(\d+)_tip.csv", path).group(1))
+        title = f"$\\Omega$ = {omegas[index]:.6g}" if index in omegas else f"field {index}"
+        tip = read(path)
+        period = tip["t"][-1] * len(tip["t"]) / (len(tip["t"]) - 1)
+        phase = [t / period for t in tip["t"]]
+        figure, (top, bottom) = plt.subplots(2, 1, figsize=(7, 5.5), sharex=True)
+        top.plot(phase, [u / gap for u in tip["contact_displacement"]], "b-")
+        top.axhline(1.0, color="black", linestyle="--", linewidth=1, label="wall ($u = g_0$)")
+        top.set_ylabel("$u(L, t) / g_0$")
+        top.legend(loc="lower right", fontsize=8)
+        top.set_title("Contact end over one period, " + title)
+        bottom.plot(phase, tip["contact_force"], "r-")
+        bottom.axhline(0.0, color="black", linewidth=0.5)
+        bottom.set_ylabel("contact force $\\lambda(t)$")
+        bottom.set_xlabel("$t / T$")
+        save(figure, path.replace("_tip.csv", "_tip.png"))
+
+        grid_path = path.replace("_tip.csv", "_spacetime.csv")
+        if os.path.exists(grid_path):
+            grid = read(grid_path)
+            xs = sorted(set(grid["x"]))
+            ts = sorted(set(grid["t"]))
+            column = {x: i for i, x in enumerate(xs)}
+            row = {t: i for i, t in enumerate(ts)}
+            values = [[0.0] * len(xs) for _ in ts]
+            for t, x, u in zip(grid["t"], grid["x"], grid["displacement"]):
+                values[row[t]][column[x]] = u / gap
+            figure, axes = plt.subplots(figsize=(7, 5))
+            mesh = axes.pcolormesh(xs, [t / ts[-1] for t in ts], values, shading="auto", cmap="RdBu_r")
+            figure.colorbar(mesh, ax=axes, label="$u(x, t) / g_0$")
+            axes.set_xlabel("$x$")
+            axes.set_ylabel("$t / T$")
+            axes.set_title("Displacement field over one period, " + title)
+            save(figure, grid_path.replace(".csv", ".png"))
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("directory")
+    parser.add_argument("--gap", type=float, required=True)
+    arguments = parser.parse_args()
+    if os.path.exists(os.path.join(arguments.directory, "backbone.csv")):
+        backbone_plot(arguments.directory)
+    field_plots(arguments.directory, arguments.gap)
+
+
+if __name__ == "__main__":
+    main()
