@@ -55,6 +55,11 @@ namespace
       {"tolerance_zero", "subsection Harmonic balance\n set Tolerance = 0\nend\n", "Harmonic balance/Tolerance", "> 0"},
       {"omega_order", "subsection Continuation\n set Omega min = 3\n set Omega max = 2\nend\n", "Continuation/Omega max", "> Omega min"},
       {"min_step_large", "subsection Continuation\n set Min step = 1\nend\n", "Continuation/Min step", "<= Initial step"},
+      {"vtk_without_fields", "subsection Output\n set Backbone = true\n set VTK = true\nend\n", "Output/VTK", "fields are requested"},
+      {"plots_without_data", "subsection Output\n set Plots = true\nend\n", "Output/Plots", "Output/Backbone = true"},
+      {"field_samples_few", "subsection Output\n set Fields at = 2\n set Field time samples = 3\nend\n", "Output/Field time samples", "[4, 100000]"},
+      {"fields_negative", "subsection Output\n set Fields at = -1\nend\n", "Output/Fields at", ">= 0"},
+      {"fields_without_contact", "subsection Contact\n set Enabled = false\nend\nsubsection Output\n set Fields at = 2\nend\n", "Output/Fields at", "Contact/Enabled = false"},
       {"mode_zero", "subsection Continuation\n set Mode = 0\nend\n", "Continuation/Mode", "[1, 100000]"},
     };
   }
