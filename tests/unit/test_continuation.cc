@@ -201,3 +201,28 @@ TEST(Backbone, SampledApproachesExactIntegrationAsSamplesGrow)
     }
   EXPECT_LT(previous, 1e-6);
 }
+
+TEST(Backbone, HigherModesStartAtTheirOwnGrazing)
+{
+  // Continuation/Mode = 2: the branch starts just above w2 with the energy of
+  // the second linear mode at u(L) = g0, w2^2 g0^2 / (2 phi_2(L)^2) (to 2 %,
+  // as for mode 1), and hardens.
+  auto scene = testing_helpers::hb_scene("1.5 - x", 20);
+  scene.continuation.mode       = 2;
+  scene.continuation.omega_min  = 4.5;
+  scene.continuation.omega_max  = 5.0;
+  scene.continuation.energy_max = 1e-3;
+  HbModel    model(scene);
+  const auto backbone = model.backbone();
+  const auto modes =
+    nsm::compute_spectrum(model.discretisation, nsm::EndCondition::clamped_free, 2, true);
+  const double w2 = std::sqrt(modes.eigenvalues[1]), g0 = scene.contact.gap;
+  const double linear = modes.eigenvalues[1] * g0 * g0 / (2 * modes.contact_residues[1]);
+  ASSERT_GT(backbone.points.size(), 20u);
+  EXPECT_GT(backbone.points.front().omega, w2);
+  EXPECT_LT(backbone.points.front().omega, w2 + 0.01);
+  EXPECT_NEAR(backbone.points.front().measures.energy / linear, 1.0, 0.02);
+  for (const auto &p : backbone.points)
+    EXPECT_GT(p.omega, w2);
+  EXPECT_GT(backbone.points.back().measures.energy, 1.5 * linear);
+}
