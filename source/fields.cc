@@ -49,57 +49,61 @@ namespace nsm
     return phi;
   }
 
+  dealii::Vector<double> PeriodicField::nodal(const double t, const bool derivative) const
+  {
+    const std::vector<double> phi = basis(t, derivative);
+    dealii::Vector<double>    sum(harmonic_fields_[0].size());
+    for (std::size_t i = 0; i < phi.size(); ++i)
+      sum.add(phi[i], harmonic_fields_[i]);
+    return sum;
+  }
+
+  double PeriodicField::series(const std::vector<double> &coefficients,
+                               const double               t,
+                               const bool                 derivative) const
+  {
+    const std::vector<double> phi = basis(t, derivative);
+    double                    sum = 0;
+    for (std::size_t i = 0; i < phi.size(); ++i)
+      sum += phi[i] * coefficients[i];
+    return sum;
+  }
+
   dealii::Vector<double> PeriodicField::displacement(const double t) const
   {
-    const std::vector<double> phi = basis(t, false);
-    dealii::Vector<double>    u(harmonic_fields_[0].size());
-    for (std::size_t i = 0; i < phi.size(); ++i)
-      u.add(phi[i], harmonic_fields_[i]);
-    return u;
+    return nodal(t, false);
   }
 
   dealii::Vector<double> PeriodicField::velocity(const double t) const
   {
-    const std::vector<double> phi = basis(t, true);
-    dealii::Vector<double>    v(harmonic_fields_[0].size());
-    for (std::size_t i = 0; i < phi.size(); ++i)
-      v.add(phi[i], harmonic_fields_[i]);
-    return v;
+    return nodal(t, true);
   }
 
   double PeriodicField::displacement(const unsigned int dof, const double t) const
   {
-    const std::vector<double> phi = basis(t, false);
-    double                    u   = 0;
-    for (std::size_t i = 0; i < phi.size(); ++i)
-      u += phi[i] * harmonic_fields_[i][dof];
-    return u;
+    return series(dof_values(dof), t, false);
   }
 
   double PeriodicField::velocity(const unsigned int dof, const double t) const
   {
-    const std::vector<double> phi = basis(t, true);
-    double                    v   = 0;
-    for (std::size_t i = 0; i < phi.size(); ++i)
-      v += phi[i] * harmonic_fields_[i][dof];
-    return v;
+    return series(dof_values(dof), t, true);
+  }
+
+  std::vector<double> PeriodicField::dof_values(const unsigned int dof) const
+  {
+    std::vector<double> values;
+    for (const dealii::Vector<double> &u : harmonic_fields_)
+      values.push_back(u[dof]);
+    return values;
   }
 
   double PeriodicField::contact_force(const double t) const
   {
-    const std::vector<double> phi = basis(t, false);
-    double                    f   = 0;
-    for (std::size_t i = 0; i < phi.size(); ++i)
-      f += phi[i] * coefficients_.force[i];
-    return f;
+    return series(coefficients_.force, t, false);
   }
 
   double PeriodicField::contact_displacement(const double t) const
   {
-    const std::vector<double> phi = basis(t, false);
-    double                    u   = 0;
-    for (std::size_t i = 0; i < phi.size(); ++i)
-      u += phi[i] * coefficients_.displacement[i];
-    return u;
+    return series(coefficients_.displacement, t, false);
   }
 } // namespace nsm

@@ -44,6 +44,12 @@ namespace nsm
   private:
     /// phi_i(W t), or with derivative = true d phi_i / dt.
     std::vector<double> basis(double t, bool derivative) const;
+    /// sum_i u_i phi_i (or phi_i') at t, as nodal values.
+    dealii::Vector<double> nodal(double t, bool derivative) const;
+    /// sum_i c_i phi_i (or phi_i') at t.
+    double series(const std::vector<double> &coefficients, double t, bool derivative) const;
+    /// u_i at one DoF, for every harmonic i.
+    std::vector<double> dof_values(unsigned int dof) const;
 
     BackbonePoint                       point_;
     FourierCoefficients                 coefficients_;
