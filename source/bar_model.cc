@@ -4,6 +4,7 @@
 #include <deal.II/base/point.h>
 
 #include <cmath>
+#include <iostream>
 #include <map>
 #include <sstream>
 
@@ -18,18 +19,22 @@ namespace nsm
   {
     const std::map<std::string, double> constants = {{"pi", M_PI},
                                                      {"L", length_}};
+    // deal.II prints muparser's diagnostic to std::cerr before throwing; the
+    // message below says the same once.
+    std::ostringstream silenced;
+    std::streambuf    *cerr = std::cerr.rdbuf(silenced.rdbuf());
     try
       {
         section_->initialize("x", expression_, constants);
         // muparser reports some errors only on the first evaluation.
         section_->value(dealii::Point<1>(0.0));
+        std::cerr.rdbuf(cerr);
       }
     catch (const dealii::ExceptionBase &e)
       {
-        std::ostringstream info;
-        e.print_info(info);
+        std::cerr.rdbuf(cerr);
         throw InputError("parameter 'Bar/Cross section' = '" + expression_ +
-                         "' is not a valid expression in x: " + info.str());
+                         "' is not a valid expression in x: " + one_line_message(e));
       }
     constexpr unsigned int samples = 1000;
     for (unsigned int i = 0; i <= samples; ++i)

@@ -135,13 +135,14 @@ namespace nsm
     const bool needs_fields     = scene.output.fields();
     const bool needs_backbone   = scene.output.backbone || needs_fields;
     const bool needs_mesh       = needs_spectrum || needs_receptance || needs_backbone;
+    // The cross-section is checked even when nothing else is to be done.
+    const BarModel bar(scene.bar);
     if (!needs_mesh)
       {
         report.notes.push_back("the scene requests no output: nothing to do");
         return report;
       }
 
-    const BarModel                  bar(scene.bar);
     std::unique_ptr<Discretisation> discretisation;
     timed(report, "mesh and assembly", [&] {
       discretisation = std::make_unique<Discretisation>(bar, scene.discretisation);

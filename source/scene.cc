@@ -64,6 +64,17 @@ namespace nsm
     }
   } // namespace
 
+  std::string one_line_message(const dealii::ExceptionBase &e)
+  {
+    std::ostringstream info;
+    e.print_info(info);
+    std::istringstream words(info.str());
+    std::string        message, word;
+    while (words >> word)
+      message += (message.empty() ? "" : " ") + word;
+    return message;
+  }
+
   std::vector<double> parse_frequency_list(const std::string &text,
                                            const std::string &parameter)
   {
@@ -494,9 +505,7 @@ namespace nsm
       }
     catch (const dealii::ExceptionBase &e)
       {
-        std::ostringstream info;
-        e.print_info(info);
-        throw InputError("scene '" + path + "': " + info.str());
+        throw InputError("scene '" + path + "': " + one_line_message(e));
       }
     Scene scene;
     try

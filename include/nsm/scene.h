@@ -8,8 +8,9 @@
 
 namespace dealii
 {
+  class ExceptionBase;
   class ParameterHandler;
-}
+} // namespace dealii
 
 namespace nsm
 {
@@ -153,6 +154,9 @@ namespace nsm
     /// Time samples per period of the fields (CSV, snapshots, plots).
     unsigned int field_time_samples() const;
   };
+
+  /// A deal.II exception's own message (without its banner) on one line.
+  std::string one_line_message(const dealii::ExceptionBase &e);
 
   /// Parses "0, 0.5, 2:3:11" (a:b:n = n values from a to b) into a list.
   std::vector<double> parse_frequency_list(const std::string &text,

@@ -134,6 +134,15 @@ TEST(Scene, ExecutableRejectsBadInputWithoutWritingOutput)
     }
 }
 
+TEST(Scene, BadSectionIsRejectedEvenWithNothingRequested)
+{
+  const std::string path = testing_helpers::write_scene(
+    "bad_section_no_output", "subsection Bar\n set Cross section = 0.5 - x\nend\n");
+  const int status =
+    std::system((std::string(NSM_BAR_EXECUTABLE) + " " + path + " > bad_section_no_output.log 2>&1").c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+}
+
 TEST(Scene, ExecutableRejectsMissingFile)
 {
   const int status =
