@@ -34,9 +34,11 @@ namespace nsm
 
   namespace
   {
-    std::string fold_message(const std::string                    &what,
-                             const double                          omega,
-                             const std::vector<InternalResonance> &resonances)
+    /// "what at Omega = ..." for the run summary, with the nearest internal
+    /// resonance when given the list.
+    std::string event_message(const std::string                    &what,
+                              const double                          omega,
+                              const std::vector<InternalResonance> &resonances = {})
     {
       std::ostringstream s;
       s.precision(8);
@@ -93,7 +95,6 @@ namespace nsm
         return true;
       }
 
-    public:
       /// Newton from the guess; a leap that fails with full steps tries
       /// again with a line search and more iterations.
       bool solve(double omega, const std::vector<double> &guess, unsigned int segment,
@@ -165,13 +166,13 @@ namespace nsm
                                      arclength(backbone, segment);
             const double omega = backbone.points.back().omega;
             if (end == SegmentEnd::range)
-              return backbone.events.push_back(fold_message("end of the Omega range", omega, {}));
+              return backbone.events.push_back(event_message("end of the Omega range", omega));
             if (end == SegmentEnd::max_steps)
-              return backbone.events.push_back(fold_message("Max steps reached", omega, {}));
+              return backbone.events.push_back(event_message("Max steps reached", omega));
             if (end == SegmentEnd::refused)
               return;
             backbone.folds.push_back(omega);
-            backbone.events.push_back(fold_message(end == SegmentEnd::fold ?
+            backbone.events.push_back(event_message(end == SegmentEnd::fold ?
                                                      "branch folds (continuation stalls)" :
                                                      "resonance tongue above Energy max",
                                                    omega, resonances_));
@@ -184,13 +185,7 @@ namespace nsm
       NewtonCost newton_cost() const
       {
         NewtonCost total = newton_.cost();
-        const NewtonCost &leaps = leap_newton_.cost();
-        total.converged_seconds += leaps.converged_seconds;
-        total.failed_seconds += leaps.failed_seconds;
-        total.converged_solves += leaps.converged_solves;
-        total.failed_solves += leaps.failed_solves;
-        total.converged_iterations += leaps.converged_iterations;
-        total.failed_iterations += leaps.failed_iterations;
+        total += leap_newton_.cost();
         return total;
       }
 
@@ -271,7 +266,7 @@ namespace nsm
               why << "arclength step refused (residual " << candidate.residual
                   << ", contact fraction " << candidate.measures.contact_fraction
                   << "): not a converged contact motion";
-              backbone.events.push_back(fold_message(why.str(), candidate.omega, {}));
+              backbone.events.push_back(event_message(why.str(), candidate.omega));
               end = SegmentEnd::refused;
               return false;
             }
@@ -291,7 +286,7 @@ namespace nsm
                     first_fold_ = points.size() - 1;
                   backbone.folds.push_back(points.back().omega);
                   backbone.events.push_back(
-                    fold_message("arclength turns a fold", points.back().omega, resonances_));
+                    event_message("arclength turns a fold", points.back().omega, resonances_));
                 }
             }
           backbone.points.push_back(point);
@@ -346,13 +341,13 @@ namespace nsm
                     point.measures.energy <= c.energy_max && point.measures.energy < 4 * energy &&
                     point.measures.energy > energy / 4)
                   {
-                    backbone.events.push_back(fold_message("leapt to a new segment", omega, {}));
+                    backbone.events.push_back(event_message("leapt to a new segment", omega));
                     backbone.points.push_back(std::move(point));
                     return true;
                   }
               }
           }
-        backbone.events.push_back(fold_message("branch lost after the fold", front.omega, {}));
+        backbone.events.push_back(event_message("branch lost after the fold", front.omega));
         return false;
       }
 

@@ -36,6 +36,17 @@ namespace nsm
     double        converged_seconds = 0, failed_seconds = 0;
     unsigned long converged_solves = 0, failed_solves = 0;
     unsigned long converged_iterations = 0, failed_iterations = 0;
+
+    NewtonCost &operator+=(const NewtonCost &other)
+    {
+      converged_seconds += other.converged_seconds;
+      failed_seconds += other.failed_seconds;
+      converged_solves += other.converged_solves;
+      failed_solves += other.failed_solves;
+      converged_iterations += other.converged_iterations;
+      failed_iterations += other.failed_iterations;
+      return *this;
+    }
   };
 
   struct Backbone
