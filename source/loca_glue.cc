@@ -99,19 +99,69 @@ namespace nsm
       std::vector<double> scratch_;
     };
 
+    double seconds_since(std::chrono::steady_clock::time_point start)
+    {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+
+    /// NOX's LAPACK group, with its Newton step (LU of J and solve) timed.
+    class TimedNewtonGroup : public NOX::LAPACK::Group
+    {
+    public:
+      TimedNewtonGroup(HbInterface &interface, const HarmonicBalance &hb)
+        : NOX::LAPACK::Group(interface)
+        , hb_(hb)
+      {}
+      TimedNewtonGroup(const TimedNewtonGroup &source, NOX::CopyType type)
+        : NOX::LAPACK::Group(source, type)
+        , hb_(source.hb_)
+      {}
+
+      Teuchos::RCP<NOX::Abstract::Group> clone(NOX::CopyType type) const override
+      {
+        return Teuchos::rcp(new TimedNewtonGroup(*this, type));
+      }
+
+      NOX::Abstract::Group::ReturnType computeNewton(Teuchos::ParameterList &params) override
+      {
+        const auto start  = std::chrono::steady_clock::now();
+        const auto status = NOX::LAPACK::Group::computeNewton(params);
+        hb_.record_linear_solve(seconds_since(start));
+        return status;
+      }
+
+    private:
+      const HarmonicBalance &hb_;
+    };
+
     /// LOCA's LAPACK group with dR/dW from the HB module instead of finite
-    /// differences.
+    /// differences, and its linear solves timed.
     class HbGroup : public LOCA::LAPACK::Group
     {
     public:
-      HbGroup(const Teuchos::RCP<LOCA::GlobalData> &data, HbInterface &interface)
+      HbGroup(const Teuchos::RCP<LOCA::GlobalData> &data, HbInterface &interface,
+              const HarmonicBalance &hb)
         : LOCA::LAPACK::Group(data, interface)
         , interface_(interface)
+        , hb_(hb)
       {}
       HbGroup(const HbGroup &source, NOX::CopyType type)
         : LOCA::LAPACK::Group(source, type)
         , interface_(source.interface_)
+        , hb_(source.hb_)
       {}
+
+      NOX::Abstract::Group::ReturnType
+      applyJacobianInverseMultiVector(Teuchos::ParameterList           &params,
+                                      const NOX::Abstract::MultiVector &input,
+                                      NOX::Abstract::MultiVector       &result) const override
+      {
+        const auto start = std::chrono::steady_clock::now();
+        const auto status =
+          LOCA::LAPACK::Group::applyJacobianInverseMultiVector(params, input, result);
+        hb_.record_linear_solve(seconds_since(start));
+        return status;
+      }
 
       Teuchos::RCP<NOX::Abstract::Group> clone(NOX::CopyType type) const override
       {
@@ -138,7 +188,8 @@ namespace nsm
       }
 
     private:
-      HbInterface &interface_;
+      HbInterface           &interface_;
+      const HarmonicBalance &hb_;
     };
 
     /// Fails a LOCA step whose iterate has left contact: the trivial motion
@@ -208,7 +259,7 @@ namespace nsm
   {
     Impl(HarmonicBalance &hb, const Scene::HarmonicBalance &params)
       : interface(hb, std::vector<double>(hb.n_unknowns(), 0.0))
-      , group(Teuchos::rcp(new NOX::LAPACK::Group(interface)))
+      , group(Teuchos::rcp(new TimedNewtonGroup(interface, hb)))
       , status(newton_status(params))
       , list(Teuchos::rcp(new Teuchos::ParameterList))
     {
@@ -216,7 +267,7 @@ namespace nsm
       solver = NOX::Solver::buildSolver(group, status, list);
     }
     HbInterface                            interface;
-    Teuchos::RCP<NOX::LAPACK::Group>       group;
+    Teuchos::RCP<TimedNewtonGroup>         group;
     Teuchos::RCP<NOX::StatusTest::Generic> status;
     Teuchos::RCP<Teuchos::ParameterList>   list;
     Teuchos::RCP<NOX::Solver::Generic>     solver;
@@ -241,8 +292,7 @@ namespace nsm
                         static_cast<unsigned int>(impl_->solver->getNumIterations()),
                         group.getNormF(),
                         HbInterface::to_std(x)};
-    const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = seconds_since(start);
     (result.converged ? cost_.converged_seconds : cost_.failed_seconds) += seconds;
     ++(result.converged ? cost_.converged_solves : cost_.failed_solves);
     (result.converged ? cost_.converged_iterations : cost_.failed_iterations) += result.iterations;
@@ -279,7 +329,7 @@ namespace nsm
     {
       HbInterface interface(hb, start.x);
       interface.set_omega(start.omega);
-      auto group = Teuchos::rcp(new HbGroup(data, interface));
+      auto group = Teuchos::rcp(new HbGroup(data, interface, hb));
       LOCA::ParameterVector parameters;
       parameters.addParameter("Omega", start.omega);
       group->setParams(parameters);

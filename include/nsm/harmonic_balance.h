@@ -36,11 +36,13 @@ namespace nsm
     double max_complementarity; ///< max |lambda g| / (max lambda g0)
   };
 
-  /// Where the HB time goes (wall seconds and counts), for benchmarks.
+  /// Where the HB time goes (wall seconds and counts), for benchmarks. The
+  /// linear solves are timed by the NOX/LOCA glue and recorded here too.
   struct HarmonicBalanceCost
   {
     double        receptance_seconds = 0, residual_seconds = 0, jacobian_seconds = 0;
-    unsigned long frequencies = 0, residuals = 0, jacobians = 0;
+    double        linear_solve_seconds = 0;
+    unsigned long frequencies = 0, residuals = 0, jacobians = 0, linear_solves = 0;
   };
 
   /// Fourier coefficients of a solution in physical units, per basis
@@ -94,6 +96,12 @@ namespace nsm
     const Receptance &receptance() const { return receptance_; }
 
     const HarmonicBalanceCost &cost() const { return cost_; }
+
+    void record_linear_solve(double seconds) const
+    {
+      cost_.linear_solve_seconds += seconds;
+      ++cost_.linear_solves;
+    }
 
     /// Contact force F that scales the unknowns (c = F x).
     double force_scale() const { return force_scale_; }

@@ -38,13 +38,15 @@ namespace
     const nsm::Backbone       backbone = nsm::compute_backbone(hb, scene, resonances);
     const double              tracing = since(traced), total = since(start);
     const auto               &cost = hb.cost();
-    const double other = tracing - cost.receptance_seconds - cost.residual_seconds - cost.jacobian_seconds;
+    const double other = tracing - cost.receptance_seconds - cost.residual_seconds -
+                         cost.jacobian_seconds - cost.linear_solve_seconds;
     const auto &newton = backbone.newton_cost;
-    std::printf("| %s | %s | %zu | %zu | %.3f | %.3f | %.3f | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.2f | %.3f (%.1f it) | %lu solves, %.2f s |\n",
+    std::printf("| %s | %s | %zu | %zu | %.3f | %.3f | %.3f | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.2f | %.3f (%.1f it) | %lu solves, %.2f s |\n",
                 name, method == nsm::ContinuationMethod::sequential ? "sequential" : "arclength",
                 backbone.points.size(), backbone.folds.size(), setup, tracing, total,
                 100 * cost.receptance_seconds / tracing, 100 * cost.residual_seconds / tracing,
-                100 * cost.jacobian_seconds / tracing, 100 * other / tracing,
+                100 * cost.jacobian_seconds / tracing, 100 * cost.linear_solve_seconds / tracing,
+                100 * other / tracing,
                 1e3 * tracing / backbone.points.size(),
                 newton.converged_solves ? 1e3 * newton.converged_seconds / newton.converged_solves : 0.0,
                 newton.converged_solves ? double(newton.converged_iterations) / newton.converged_solves : 0.0,
@@ -54,8 +56,8 @@ namespace
 
 int main()
 {
-  std::printf("| mesh | method | points | folds | set-up [s] | backbone [s] | total [s] | receptance | residual | Jacobian (+dR/dW) | linear solves + NOX/LOCA | ms per point (all) | ms per converged Newton solve | failed solves (folds, leaps) |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| mesh | method | points | folds | set-up [s] | backbone [s] | total [s] | receptance | residual | Jacobian (+dR/dW) | linear solves | NOX/LOCA, predictors, measures | ms per point (all) | ms per converged Newton solve | failed solves (folds, leaps) |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const auto method : {nsm::ContinuationMethod::sequential, nsm::ContinuationMethod::arclength})
     {
       run("FE_Q(1), 4000 cells", 1, 4000, method);
