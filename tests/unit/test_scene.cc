@@ -84,6 +84,62 @@ TEST(Scene, DefaultsParse)
   EXPECT_EQ(scene.time_samples(), 1024u); // smallest power of 2 >= 16 * 40
 }
 
+TEST(Scene, DeclaredDefaultsAreTheStructDefaults)
+{
+  // Defaults live in the Scene struct and in the declarations: they must agree.
+  const nsm::Scene parsed = nsm::Scene::from_file(testing_helpers::write_scene("defaults", ""));
+  const nsm::Scene d;
+  EXPECT_EQ(parsed.bar.length, d.bar.length);
+  EXPECT_EQ(parsed.bar.young_modulus, d.bar.young_modulus);
+  EXPECT_EQ(parsed.bar.density, d.bar.density);
+  EXPECT_EQ(parsed.bar.cross_section, d.bar.cross_section);
+  EXPECT_EQ(parsed.contact.enabled, d.contact.enabled);
+  EXPECT_EQ(parsed.contact.gap, d.contact.gap);
+  EXPECT_EQ(parsed.contact.alpha, d.contact.alpha);
+  EXPECT_EQ(parsed.contact.sign, d.contact.sign);
+  const auto &pd = parsed.discretisation, &dd = d.discretisation;
+  EXPECT_EQ(pd.degree, dd.degree);
+  EXPECT_EQ(pd.cells, dd.cells);
+  EXPECT_EQ(pd.quadrature_points, dd.quadrature_points);
+  EXPECT_EQ(pd.refinement, dd.refinement);
+  EXPECT_EQ(pd.graded_ratio, dd.graded_ratio);
+  EXPECT_EQ(pd.graded_layers, dd.graded_layers);
+  EXPECT_EQ(pd.adaptive_steps, dd.adaptive_steps);
+  EXPECT_EQ(pd.adaptive_tolerance, dd.adaptive_tolerance);
+  EXPECT_EQ(pd.adaptive_fraction, dd.adaptive_fraction);
+  EXPECT_EQ(pd.adaptive_band_max, dd.adaptive_band_max);
+  EXPECT_EQ(parsed.receptance.method, d.receptance.method);
+  EXPECT_EQ(parsed.receptance.modes, d.receptance.modes);
+  const auto &ph = parsed.harmonic_balance, &dh = d.harmonic_balance;
+  EXPECT_EQ(ph.harmonics, dh.harmonics);
+  EXPECT_EQ(ph.time_samples, dh.time_samples);
+  EXPECT_EQ(ph.basis, dh.basis);
+  EXPECT_EQ(ph.integration, dh.integration);
+  EXPECT_EQ(ph.tolerance, dh.tolerance);
+  EXPECT_EQ(ph.max_iterations, dh.max_iterations);
+  EXPECT_EQ(ph.line_search, dh.line_search);
+  const auto &pc = parsed.continuation, &dc = d.continuation;
+  EXPECT_EQ(pc.method, dc.method);
+  EXPECT_EQ(pc.mode, dc.mode);
+  EXPECT_EQ(pc.omega_min, dc.omega_min);
+  EXPECT_EQ(pc.omega_max, dc.omega_max);
+  EXPECT_EQ(pc.energy_max, dc.energy_max);
+  EXPECT_EQ(pc.initial_step, dc.initial_step);
+  EXPECT_EQ(pc.min_step, dc.min_step);
+  EXPECT_EQ(pc.max_step, dc.max_step);
+  EXPECT_EQ(pc.max_steps, dc.max_steps);
+  const auto &po = parsed.output, &dout = d.output;
+  EXPECT_EQ(po.directory, dout.directory);
+  EXPECT_EQ(po.spectrum_modes, dout.spectrum_modes);
+  EXPECT_EQ(po.receptance_frequencies, dout.receptance_frequencies);
+  EXPECT_EQ(po.backbone, dout.backbone);
+  EXPECT_EQ(po.fields_at, dout.fields_at);
+  EXPECT_EQ(po.fields_every, dout.fields_every);
+  EXPECT_EQ(po.field_time_samples, dout.field_time_samples);
+  EXPECT_EQ(po.vtk, dout.vtk);
+  EXPECT_EQ(po.plots, dout.plots);
+}
+
 TEST(Scene, FrequencyListsAndRanges)
 {
   const auto w = nsm::parse_frequency_list("0, 0.5, 1:2:3", "p");
