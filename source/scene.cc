@@ -227,7 +227,7 @@ namespace nsm
                       "1e-10",
                       Double(),
                       "Newton tolerance on the scaled residual norm, > 0.");
-    prm.declare_entry("Max iterations", "25", Integer(), "Newton iterations per solve, 1 to 1000.");
+    prm.declare_entry("Max iterations", "12", Integer(), "Newton iterations per solve, 1 to 1000.");
     prm.declare_entry("Line search",
                       "Full Step",
                       Selection("Full Step|Backtrack|Polynomial"),

@@ -110,7 +110,7 @@ namespace nsm
       HarmonicBasis basis        = HarmonicBasis::cosine;
       Integration   integration  = Integration::exact;
       double        tolerance    = 1e-10;
-      unsigned int  max_iterations = 25;
+      unsigned int  max_iterations = 12;
       std::string   line_search  = "Full Step";
     } harmonic_balance;
 
