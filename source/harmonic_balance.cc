@@ -186,9 +186,7 @@ namespace nsm
     // Safeguarded Newton on a bracket [a, b] where f changes sign, from the
     // regula falsi point; 1e-13 in tau leaves the Gram integrals exact to
     // far below any Newton tolerance.
-    const auto refine = [&](double a, double b, const auto &f) {
-      double fa = f(a, nullptr);
-      const double fb = f(b, nullptr);
+    const auto refine = [&](double a, double b, double fa, const double fb, const auto &f) {
       double x = fb != fa ? a - fa * (b - a) / (fb - fa) : 0.5 * (a + b);
       if (!(x > a && x < b))
         x = 0.5 * (a + b);
@@ -241,7 +239,7 @@ namespace nsm
         const unsigned int next = (t + 1) % samples_, prev = (t + samples_ - 1) % samples_;
         const double       a = t * h, b = a + h;
         if ((q[t] > 0) != (q[next] > 0))
-          found.push_back(refine(a, b, q_of));
+          found.push_back(refine(a, b, q[t], q[next], q_of));
         // An extremum towards zero between sign-consistent samples may still
         // cross zero (a contact shorter than a sample spacing).
         const bool peak   = q[t] <= 0 && q[prev] <= 0 && q[next] <= 0 && q[t] >= q[prev] && q[t] >= q[next];
@@ -259,11 +257,12 @@ namespace nsm
         value(v, hi, &s_hi);
         if ((s_lo > 0) == (s_hi > 0))
           continue;
-        const double extremum = refine(lo, hi, dq_of);
-        if ((value(v, extremum, nullptr) > 0) != (q[t] > 0))
+        const double extremum = refine(lo, hi, s_lo, s_hi, dq_of);
+        const double q_extremum = value(v, extremum, nullptr);
+        if ((q_extremum > 0) != (q[t] > 0))
           {
-            found.push_back(refine(lo, extremum, q_of));
-            found.push_back(refine(extremum, hi, q_of));
+            found.push_back(refine(lo, extremum, q[prev], q_extremum, q_of));
+            found.push_back(refine(extremum, hi, q_extremum, q[next], q_of));
           }
       }
     for (double &r : found)
