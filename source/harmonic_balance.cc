@@ -93,6 +93,18 @@ namespace nsm
                                                       8 * harmonics_ + 8;
     table_.resize(n_unknowns() * samples_);
     std::vector<double> c, s;
+    const unsigned int  top = 2 * harmonics_ + 1, points = 4 * top;
+    energy_cos_.resize(top * points);
+    energy_sin_.resize(top * points);
+    for (unsigned int t = 0; t < points; ++t)
+      {
+        trig_table(two_pi * t / points, top, c, s);
+        for (unsigned int m = 0; m < top; ++m)
+          {
+            energy_cos_[m * points + t] = c[m];
+            energy_sin_[m * points + t] = s[m];
+          }
+      }
     for (unsigned int t = 0; t < samples_; ++t)
       {
         trig_table(two_pi * t / samples_, harmonics_ + 1, c, s);
@@ -498,16 +510,12 @@ namespace nsm
     PeriodicSolutionMeasures result{};
     result.energy = ec[0];
     const unsigned int  points = 4 * top;
-    std::vector<double> c, s;
-    double              e_min = std::numeric_limits<double>::max(), e_max = -e_min;
-    for (unsigned int t = 0; t < points; ++t)
-      {
-        trig_table(two_pi * t / points, top, c, s);
-        double e = 0;
-        for (unsigned int m = 0; m < top; ++m)
-          e += ec[m] * c[m] + es[m] * s[m];
-        e_min = std::min(e_min, e), e_max = std::max(e_max, e);
-      }
+    std::vector<double> e(points, 0.0);
+    for (unsigned int m = 0; m < top; ++m)
+      for (unsigned int t = 0; t < points; ++t)
+        e[t] += ec[m] * energy_cos_[m * points + t] + es[m] * energy_sin_[m * points + t];
+    const double e_min = *std::min_element(e.begin(), e.end());
+    const double e_max = *std::max_element(e.begin(), e.end());
     result.energy_spread = (e_max - e_min) / result.energy;
 
     // Contact force and gap at the samples.

@@ -145,6 +145,9 @@ namespace nsm
     std::vector<unsigned int> orders_; ///< k of each basis function
     unsigned int        samples_;      ///< sampled rule: Nt; exact: bracketing grid
     std::vector<double> table_;        ///< phi_i(tau_s), row-major n x samples
+    /// cos m tau and sin m tau, m = 0..2M, at the 4 (2M + 1) points where the
+    /// energy over the period is evaluated (row-major, m x points).
+    std::vector<double> energy_cos_, energy_sin_;
     double              omega_ = -1;
     std::vector<Phase>  phases_;       ///< per harmonic k = 0..M
     // NOX asks for F and J at the same point separately: the Gram matrix of
