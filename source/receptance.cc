@@ -52,18 +52,16 @@ namespace nsm
               }
           }
       }
-    const bool basis_has_all_poles =
-      method_ == ReceptanceMethod::modal &&
-      (modal_.eigenvalues.size() == discretisation.free_dofs(false).size() ||
-       modal_.eigenvalues.back() > omega_max * omega_max);
-    if (basis_has_all_poles)
-      for (const double l : modal_.eigenvalues)
-        if (l <= omega_max * omega_max)
-          poles_.push_back(l);
-    if (!basis_has_all_poles)
-      poles_ = eigenvalues_below(discretisation,
-                                 EndCondition::clamped_free,
-                                 omega_max);
+    // The poles counted for the phase angle are those of the gamma evaluated:
+    // a truncated modal basis has none beyond its last mode.
+    if (method_ == ReceptanceMethod::modal)
+      {
+        for (const double l : modal_.eigenvalues)
+          if (l <= omega_max * omega_max)
+            poles_.push_back(l);
+      }
+    else
+      poles_ = eigenvalues_below(discretisation, EndCondition::clamped_free, omega_max);
   }
 
   ReceptanceValue Receptance::operator()(const double omega) const

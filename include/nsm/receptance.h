@@ -31,7 +31,8 @@ namespace nsm
     /// h(w) = (K - w^2 M)^{-1} e_N on the whole mesh (UMFPACK).
     dealii::Vector<double> field(double omega) const;
 
-    /// Number of clamped-free eigenfrequencies strictly below omega.
+    /// Number of poles of this gamma strictly below omega (for the modal
+    /// method, those of its basis).
     unsigned int poles_below(double omega) const;
 
     /// Clamped-free eigenvalues w_j^2 up to omega_max.

@@ -134,3 +134,22 @@ TEST(Receptance, PolesCountedFromTheSpectrum)
   EXPECT_EQ(receptance.poles_below(w[0] * 1.01), 1u);
   EXPECT_EQ(receptance.poles_below(w[2] * 1.01), 3u);
 }
+
+TEST(Receptance, TruncatedModalGammaHasOnlyItsBasisPoles)
+{
+  // The phase angle theta = atan(gamma) + pi #poles is continuous only if the
+  // poles counted are those of the gamma evaluated.
+  const Model model("1.5 - x", 2, 100);
+  const auto  modal = model.receptance(nsm::ReceptanceMethod::modal, 5);
+  EXPECT_EQ(modal.poles().size(), 5u);
+  const double above = std::sqrt(modal.poles().back()) * 1.5;
+  EXPECT_EQ(modal.poles_below(above), 5u);
+  // gamma has no pole between: it stays finite and increasing in w^2.
+  double previous = modal(std::sqrt(modal.poles().back()) * 1.01).gamma;
+  for (double w = std::sqrt(modal.poles().back()) * 1.02; w < above; w *= 1.01)
+    {
+      const double g = modal(w).gamma;
+      EXPECT_GT(g, previous) << "w = " << w;
+      previous = g;
+    }
+}
