@@ -66,7 +66,6 @@ namespace nsm
     /// unfolding parameter mu of the phase condition instead: the sine part
     /// of the first harmonic is fixed to 0 and mu must vanish at a solution.
     unsigned int n_unknowns() const { return kinds_.size(); }
-    unsigned int harmonics() const { return harmonics_; }
     bool         has_unfolding() const { return basis_ == HarmonicBasis::full; }
 
     /// Evaluates the receptance at k W, k = 0..M, once per distinct W.

@@ -38,7 +38,6 @@ namespace nsm
     /// Clamped-free eigenvalues w_j^2 up to omega_max.
     const std::vector<double> &poles() const { return poles_; }
 
-    ReceptanceMethod method() const { return method_; }
 
   private:
     const Discretisation &discretisation_;
