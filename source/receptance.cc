@@ -36,12 +36,7 @@ namespace nsm
           {
             // Truncated basis: the modes left out respond quasi-statically;
             // their gamma(0) and gamma'(0) come from one direct solve at w = 0.
-            const ReceptanceValue exact = [&] {
-              const dealii::Vector<double> h = field(0.0);
-              dealii::Vector<double>       mh(h.size());
-              discretisation.mass().vmult(mh, h);
-              return ReceptanceValue{h[discretisation.contact_dof()], h * mh};
-            }();
+            const ReceptanceValue exact = direct_value(0.0);
             static_remainder_  = exact.gamma;
             dynamic_remainder_ = exact.dgamma_domega2;
             for (unsigned int j = 0; j < modal_.eigenvalues.size(); ++j)
@@ -82,6 +77,11 @@ namespace nsm
           }
         return value;
       }
+    return direct_value(omega);
+  }
+
+  ReceptanceValue Receptance::direct_value(const double omega) const
+  {
     const dealii::Vector<double> h = field(omega);
     dealii::Vector<double>       mh(h.size());
     discretisation_.mass().vmult(mh, h);

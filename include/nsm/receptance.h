@@ -40,6 +40,9 @@ namespace nsm
 
 
   private:
+    /// gamma = h_N and h^T M h from one sparse solve.
+    ReceptanceValue direct_value(double omega) const;
+
     const Discretisation &discretisation_;
     ReceptanceMethod      method_;
     std::vector<double>   poles_;
