@@ -13,7 +13,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <map>
 #include <sstream>
@@ -61,22 +60,6 @@ namespace nsm
     private:
       const BarModel &bar_;
     };
-
-    /// Writes through a temporary file, renamed when complete.
-    template <typename Write>
-    std::string write_file(const std::string &path, Write &&write)
-    {
-      const std::string temporary = path + ".partial";
-      {
-        std::ofstream out(temporary);
-        out.precision(17);
-        write(out);
-        if (!out)
-          throw InputError("parameter 'Output/Directory': cannot write " + path);
-      }
-      std::filesystem::rename(temporary, path);
-      return path;
-    }
 
     dealii::DataOutBase::VtkFlags vtk_flags(double time)
     {
@@ -153,7 +136,7 @@ namespace nsm
       out.add_data_vector(u, derived);
       out.build_patches(p);
       out.set_flags(vtk_flags(field.omega()));
-      return write_file(directory + "/" + name(index, ".vtu"),
+      return write_atomically(directory + "/" + name(index, ".vtu"),
                         [&](std::ostream &s) { out.write_vtu(s); });
     }
 
@@ -181,10 +164,10 @@ namespace nsm
           out.set_flags(vtk_flags(t));
           std::ostringstream file;
           file << folder << "/snapshot_" << std::setw(4) << std::setfill('0') << j << ".vtu";
-          write_file(directory + "/" + file.str(), [&](std::ostream &s) { out.write_vtu(s); });
+          write_atomically(directory + "/" + file.str(), [&](std::ostream &s) { out.write_vtu(s); });
           series.emplace_back(t, file.str());
         }
-      return {write_file(directory + "/" + name(index, "_snapshots.pvd"),
+      return {write_atomically(directory + "/" + name(index, "_snapshots.pvd"),
                          [&](std::ostream &s) { dealii::DataOutBase::write_pvd_record(s, series); }),
               directory + "/" + folder + "/ (" + std::to_string(samples) + " snapshots)"};
     }
@@ -268,7 +251,7 @@ namespace nsm
       }
     std::vector<std::string> files{write_csv(directory, table)};
     if (vtk)
-      files.push_back(write_file(directory + "/fields.pvd", [&](std::ostream &s) {
+      files.push_back(write_atomically(directory + "/fields.pvd", [&](std::ostream &s) {
         dealii::DataOutBase::write_pvd_record(s, records);
       }));
     return files;

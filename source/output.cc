@@ -26,10 +26,7 @@ namespace nsm
           throw NumericalError("a non-finite value was about to be written to " +
                                table.file_name + "; nothing was written");
 
-    const std::string path      = directory + "/" + table.file_name;
-    const std::string temporary = path + ".partial";
-    {
-      std::ofstream out(temporary);
+    return write_atomically(directory + "/" + table.file_name, [&](std::ostream &out) {
       out.precision(std::numeric_limits<double>::max_digits10);
       for (std::size_t c = 0; c < table.columns.size(); ++c)
         out << (c ? "," : "") << table.columns[c];
@@ -40,6 +37,17 @@ namespace nsm
             out << (c ? "," : "") << row[c];
           out << '\n';
         }
+    });
+  }
+
+  std::string write_atomically(const std::string                         &path,
+                               const std::function<void(std::ostream &)> &write)
+  {
+    const std::string temporary = path + ".partial";
+    {
+      std::ofstream out(temporary);
+      out.precision(17);
+      write(out);
       if (!out)
         throw InputError("parameter 'Output/Directory': cannot write " + path);
     }

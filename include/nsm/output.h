@@ -1,6 +1,8 @@
 // Files a run writes: CSV tables written whole or not at all.
 #pragma once
 
+#include <functional>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -19,6 +21,11 @@ namespace nsm
   /// remains. Throws NumericalError if any value is not finite (a NaN is
   /// never written). Returns the path written.
   std::string write_csv(const std::string &directory, const CsvTable &table);
+
+  /// Writes `path` through `write` into path.partial, renamed to path once
+  /// complete, so no half-written file remains. Returns the path.
+  std::string write_atomically(const std::string                         &path,
+                               const std::function<void(std::ostream &)> &write);
 
   /// Creates the directory (and parents) if missing; throws InputError.
   void make_directory(const std::string &directory);
