@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
-packages=(cmake g++ make libdeal.ii-dev libgtest-dev python3-matplotlib python3-vtk9 python3-numpy)
+packages=(cmake g++ make libdeal.ii-dev libgtest-dev python3-matplotlib python3-vtk9 python3-numpy valgrind)
 missing=()
 for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" \

@@ -10,18 +10,24 @@ namespace nsm
   std::vector<InternalResonance> internal_resonances(const Receptance &receptance,
                                                      const Scene      &scene)
   {
-    const auto                    &c = scene.continuation;
+    const auto                    &c   = scene.continuation;
+    const unsigned int             top = scene.harmonic_balance.harmonics;
     std::vector<InternalResonance> found;
     for (unsigned int j = 0; j < receptance.poles().size(); ++j)
-      for (unsigned int k = 1; k <= scene.harmonic_balance.harmonics; ++k)
+      for (unsigned int k = 1; k <= top; ++k)
         {
-          const double omega = std::sqrt(receptance.poles()[j]) / k;
-          if (omega >= c.omega_min && omega <= c.omega_max)
-            found.push_back({omega, j + 1, k});
+          const double w = std::sqrt(receptance.poles()[j]);
+          if (w <= top * c.omega_max && w / k >= c.omega_min && w / k <= c.omega_max)
+            found.push_back({w / k, j + 1, k});
         }
     std::sort(found.begin(), found.end(),
               [](const auto &a, const auto &b) { return a.omega < b.omega; });
     return found;
+  }
+
+  double branch_direction(const Scene &scene)
+  {
+    return scene.contact.sign == ForceSign::physical ? 1.0 : -1.0;
   }
 
   const InternalResonance &nearest_resonance(const std::vector<InternalResonance> &resonances,
@@ -73,7 +79,7 @@ namespace nsm
         , resonances_(resonances)
         , newton_(hb, scene.harmonic_balance)
         , leap_newton_(hb, leap_parameters(scene.harmonic_balance))
-        , direction_(scene.contact.sign == ForceSign::physical ? 1.0 : -1.0)
+        , direction_(branch_direction(scene))
       {}
 
       /// A converged solve becomes a point only if it is a genuine contact
@@ -258,7 +264,9 @@ namespace nsm
       {
         const auto &c   = scene_.continuation;
         SegmentEnd  end = SegmentEnd::fold;
-        run_arclength(hb_, scene_, backbone.points.back(), [&](const BackbonePoint &candidate) {
+        // A copy: accepting steps grows backbone.points and moves its elements.
+        const BackbonePoint start = backbone.points.back();
+        const bool finished = run_arclength(hb_, scene_, start, [&](const BackbonePoint &candidate) {
           BackbonePoint point;
           if (!make_point(candidate.x, candidate.omega, candidate.residual, 0, segment, point))
             {
@@ -303,10 +311,10 @@ namespace nsm
             }
           return true;
         });
-        const double last = backbone.points.back().omega;
-        if (end == SegmentEnd::fold &&
-            (last + c.max_step > c.omega_max || last - c.max_step < c.omega_min))
-          return SegmentEnd::range; // LOCA stopped at its Min / Max Value
+        // LOCA finished its run without a stop from accept(): it reached its
+        // Min or Max Value. Otherwise it failed to converge a step (a fold).
+        if (finished && end == SegmentEnd::fold)
+          return SegmentEnd::range;
         return end;
       }
 
@@ -390,7 +398,8 @@ namespace nsm
           std::vector<double> guess(p[i].x.size());
           for (std::size_t j = 0; j < guess.size(); ++j)
             guess[j] = (1 - t) * p[i].x[j] + t * p[i + 1].x[j];
-          BranchTracer  tracer(hb, scene, {});
+          const std::vector<InternalResonance> none;
+          BranchTracer                         tracer(hb, scene, none);
           BackbonePoint point;
           if (tracer.solve(omega, guess, p[i].segment, point))
             return point;

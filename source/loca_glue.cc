@@ -274,10 +274,10 @@ namespace nsm
   };
 
   NewtonSolver::NewtonSolver(HarmonicBalance &hb, const Scene::HarmonicBalance &params)
-    : impl_(new Impl(hb, params))
+    : impl_(std::make_unique<Impl>(hb, params))
   {}
 
-  NewtonSolver::~NewtonSolver() { delete impl_; }
+  NewtonSolver::~NewtonSolver() = default;
 
   NewtonResult NewtonSolver::solve(const double omega, const std::vector<double> &guess)
   {
@@ -299,13 +299,13 @@ namespace nsm
     return result;
   }
 
-  void run_arclength(HarmonicBalance                                  &hb,
+  bool run_arclength(HarmonicBalance                                  &hb,
                      const Scene                                      &scene,
                      const BackbonePoint                              &start,
                      const std::function<bool(const BackbonePoint &)> &accept)
   {
     const auto &c         = scene.continuation;
-    const double direction = scene.contact.sign == ForceSign::physical ? 1.0 : -1.0;
+    const double direction = branch_direction(scene);
     auto        params    = Teuchos::rcp(new Teuchos::ParameterList);
     auto       &stepper   = params->sublist("LOCA").sublist("Stepper");
     stepper.set("Continuation Method", "Arc Length");
@@ -324,8 +324,10 @@ namespace nsm
     step.set("Max Step Size", c.max_step);
     set_newton_parameters(params->sublist("NOX"), scene.harmonic_balance);
     params->sublist("NOX").sublist("Printing").set("Output Information", NOX::Utils::Error);
+    params->sublist("LOCA").sublist("Utilities").set("Output Information", NOX::Utils::Error);
 
-    auto data = LOCA::createGlobalData(params);
+    auto data     = LOCA::createGlobalData(params);
+    bool finished = true;
     {
       HbInterface interface(hb, start.x);
       interface.set_omega(start.omega);
@@ -356,11 +358,12 @@ namespace nsm
       LOCA::Stepper locaStepper(data, group, status, params);
       try
         {
-          locaStepper.run();
+          finished = locaStepper.run() == LOCA::Abstract::Iterator::Finished;
         }
       catch (const Stop &)
         {}
     }
     LOCA::destroyGlobalData(data);
+    return finished;
   }
 } // namespace nsm

@@ -46,17 +46,23 @@ namespace nsm
       return s.str();
     }
 
-    /// Largest frequency at which the scene evaluates the receptance.
-    double band_max(const Scene &scene)
+    /// Largest frequency at which the scene evaluates the receptance: the
+    /// poles below it are counted, and give the internal resonances.
+    double receptance_band(const Scene &scene)
     {
-      if (scene.discretisation.adaptive_band_max > 0)
-        return scene.discretisation.adaptive_band_max;
       double w = 0;
       for (const double f : scene.output.receptance_frequencies)
         w = std::max(w, f);
       if (scene.output.backbone)
         w = std::max(w, scene.harmonic_balance.harmonics * scene.continuation.omega_max);
       return w;
+    }
+
+    /// The band over which adaptive refinement resolves the receptance.
+    double refinement_band(const Scene &scene)
+    {
+      return scene.discretisation.adaptive_band_max > 0 ? scene.discretisation.adaptive_band_max :
+                                                           receptance_band(scene);
     }
 
     CsvTable spectrum_table(const Discretisation &d, const unsigned int modes)
@@ -150,7 +156,7 @@ namespace nsm
     if (scene.discretisation.refinement == Refinement::adaptive)
       timed(report, "adaptive refinement", [&] {
         for (std::string &note :
-             refine_adaptively(*discretisation, scene.discretisation, band_max(scene)))
+             refine_adaptively(*discretisation, scene.discretisation, refinement_band(scene)))
           report.notes.push_back(std::move(note));
       });
     report.notes.push_back(describe(*discretisation));
@@ -162,7 +168,7 @@ namespace nsm
     std::unique_ptr<Receptance> receptance;
     if (needs_receptance || needs_backbone)
       timed(report, "receptance set-up", [&] {
-        receptance = std::make_unique<Receptance>(*discretisation, scene.receptance, band_max(scene));
+        receptance = std::make_unique<Receptance>(*discretisation, scene.receptance, receptance_band(scene));
       });
     if (needs_receptance)
       timed(report, "receptance", [&] { tables.push_back(receptance_table(*receptance, scene)); });

@@ -7,6 +7,7 @@
 #include <nsm/scene.h>
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -57,8 +58,12 @@ namespace nsm
     std::vector<double>        folds;  ///< Omega of each fold turned or leapt
   };
 
+  /// +1 where the branch leaves grazing upwards in Omega (the physical force
+  /// sign), -1 with the paper's eq. (5): the one place this is derived.
+  double branch_direction(const Scene &scene);
+
   /// Every W = w_j / k in [Omega min, Omega max] with k <= M, w_j from the
-  /// FE clamped-free spectrum; sorted by W.
+  /// FE clamped-free spectrum up to Harmonics x Omega max; sorted by W.
   std::vector<InternalResonance> internal_resonances(const Receptance &receptance,
                                                      const Scene      &scene);
 
@@ -101,12 +106,14 @@ namespace nsm
   private:
     NewtonCost cost_;
     struct Impl;
-    Impl *impl_;
+    std::unique_ptr<Impl> impl_;
   };
 
   /// Pseudo-arclength from a converged start point with LOCA::Stepper.
   /// `accept` is called for every converged step and returns false to stop.
-  void run_arclength(HarmonicBalance                                &hb,
+  /// Returns true if LOCA finished its run (it reached Omega min or max, or
+  /// accept stopped it), false if it failed to converge a step.
+  bool run_arclength(HarmonicBalance                                &hb,
                      const Scene                                    &scene,
                      const BackbonePoint                            &start,
                      const std::function<bool(const BackbonePoint &)> &accept);

@@ -225,6 +225,20 @@ def check_fields_vtk(name, summary):
         assert png in summary
 
 
+def check_resonances_band(name, summary):
+    """Every w_j / k in [Omega min, Omega max] with k <= M and w_j <= M Omega
+    max, w_j from spectrum.csv: none missing, none extra."""
+    harmonics, omega_min, omega_max = 40, 1.5, 1.95
+    spectrum = table(f"{name}/spectrum.csv", ["j", "omega_clamped_free", "omega_clamped_clamped"])
+    assert spectrum[-1][1] > harmonics * omega_max, "spectrum.csv covers the band"
+    expected = sorted((w / k, int(j), k) for j, w, _ in spectrum for k in range(1, harmonics + 1)
+                      if w <= harmonics * omega_max and omega_min <= w / k <= omega_max)
+    resonances = table(f"{name}/resonances.csv", ["omega", "mode", "harmonic"])
+    assert len(resonances) == len(expected), (len(resonances), len(expected))
+    for (omega, mode, harmonic), (w, j, k) in zip(resonances, expected):
+        assert (mode, harmonic) == (j, k) and abs(omega / w - 1) < 1e-12, (omega, mode, harmonic)
+
+
 def check_nothing_requested(name, summary):
     assert "nothing to do" in summary
     assert not os.path.exists(name), "no output directory without a requested output"
