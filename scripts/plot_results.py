@@ -2,7 +2,7 @@
 """Plots of an nsm-bar output directory (run by nsm-bar when Output/Plots = true).
 
 usage: plot_results.py DIRECTORY --gap G0
-Writes backbone.png (from backbone.csv, resonances.csv, fields.csv) and, per
+Writes backbone.png (from backbone.csv, tongues.csv, resonances.csv, fields.csv) and, per
 field k, field_k_spacetime.png and field_k_tip.png; prints "wrote PATH" per file.
 """
 import argparse
@@ -18,9 +18,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def read(path):
+    """Columns as lists of numbers; the branch column stays text."""
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
-    return {key: [float(r[key]) for r in rows] for key in rows[0]} if rows else {}
+    return {key: [r[key] if key == "branch" else float(r[key]) for r in rows]
+            for key in rows[0]} if rows else {}
 
 
 def save(figure, path):
@@ -32,12 +34,33 @@ def save(figure, path):
 def backbone_plot(directory):
     points = read(os.path.join(directory, "backbone.csv"))
     figure, axes = plt.subplots(figsize=(8, 5))
+    # The main branch: a line through consecutive main points of one segment.
+    runs, run = [], []
+    for w, e, g, b in zip(points["Omega"], points["energy"], points["segment"], points["branch"]):
+        if run and (b != "main" or g != run[-1][2]):
+            runs.append(run)
+            run = []
+        if b == "main":
+            run.append((w, e, g))
+    runs.append(run)
+    for n, r in enumerate(x for x in runs if x):
+        axes.semilogy([p[0] for p in r], [p[1] for p in r], "-", marker=".", markersize=3,
+                      linewidth=1.2, color="C0", label="main branch" if n == 0 else None)
+    tongue = [(w, e) for w, e, b in zip(points["Omega"], points["energy"], points["branch"])
+              if b == "tongue"]
+    if tongue:
+        axes.semilogy([w for w, _ in tongue], [e for _, e in tongue], "x", markersize=3,
+                      color="C3", alpha=0.6, label="resonance tongues")
+    tongues = os.path.join(directory, "tongues.csv")
+    if os.path.exists(tongues):
+        t = read(tongues)
+        # The tongues with most points are labelled w_j/k at their top.
+        order = sorted(range(len(t.get("points", []))), key=lambda i: -t["points"][i])[:12]
+        for i in order:
+            axes.annotate(f"$\\omega_{{{int(t['mode'][i])}}}/{int(t['harmonic'][i])}$",
+                          (t["omega_resonance"][i], t["max_energy"][i]), fontsize=7, color="C3",
+                          ha="center", va="bottom")
     segments = sorted(set(points["segment"]))
-    for n, s in enumerate(segments):
-        omega = [w for w, g in zip(points["Omega"], points["segment"]) if g == s]
-        energy = [e for e, g in zip(points["energy"], points["segment"]) if g == s]
-        axes.semilogy(omega, energy, "-", marker=".", markersize=3, linewidth=1,
-                      color=plt.cm.tab10(n % 10), label="backbone segments" if n == 0 else None)
     low, high = min(points["Omega"]), max(points["Omega"])
     margin = 0.02 * (high - low or 1)
     axes.set_xlim(low - margin, high + margin)
@@ -62,7 +85,9 @@ def backbone_plot(directory):
         axes.plot(f["Omega"], f["energy"], "r*", markersize=12, label="fields")
     axes.set_xlabel("$\\Omega$ [rad/s]")
     axes.set_ylabel("energy (period mean)")
-    axes.set_title(f"Backbone: {len(points['Omega'])} points, {len(segments)} segments")
+    main = points["branch"].count("main")
+    axes.set_title(f"Backbone: {main} main points, {len(points['Omega']) - main} on tongues, "
+                   f"{len(segments)} segments")
     axes.legend(loc="upper left", fontsize=8)
     save(figure, os.path.join(directory, "backbone.png"))
 

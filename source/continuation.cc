@@ -1,4 +1,5 @@
 #include <nsm/continuation.h>
+#include <nsm/main_branch.h>
 
 #include <algorithm>
 #include <cmath>
@@ -28,6 +29,12 @@ namespace nsm
   double branch_direction(const Scene &scene)
   {
     return scene.contact.sign == ForceSign::physical ? 1.0 : -1.0;
+  }
+
+  unsigned int Backbone::main_points() const
+  {
+    return std::count_if(points.begin(), points.end(),
+                         [](const BackbonePoint &p) { return p.branch == Branch::main; });
   }
 
   const InternalResonance &nearest_resonance(const std::vector<InternalResonance> &resonances,
@@ -80,6 +87,8 @@ namespace nsm
         , newton_(hb, scene.harmonic_balance)
         , leap_newton_(hb, leap_parameters(scene.harmonic_balance))
         , direction_(branch_direction(scene))
+        , near_(direction_ > 0 ? scene.continuation.omega_min : scene.continuation.omega_max)
+        , far_(direction_ > 0 ? scene.continuation.omega_max : scene.continuation.omega_min)
       {}
 
       /// A converged solve becomes a point only if it is a genuine contact
@@ -128,10 +137,13 @@ namespace nsm
                            " is out of range: allowed 1 to " + std::to_string(poles.size()) +
                            " (clamped-free modes below Harmonics x Omega max)");
         const double w = std::sqrt(poles[mode - 1]);
-        for (double offset = scene_.continuation.initial_step; offset < 0.05 * w; offset *= 2)
+        // The contact lasts a vanishing share of the period at grazing; 5 % of
+        // w_j away the branch is far beyond its grazing end. A start before
+        // the range is traced up to it; one beyond it has no point in it.
+        for (double offset = scene_.continuation.grazing_offset; offset < 0.05; offset *= 2)
           {
-            const double omega = w + direction_ * offset;
-            if (omega < scene_.continuation.omega_min || omega > scene_.continuation.omega_max)
+            const double omega = w * (1 + direction_ * offset);
+            if (beyond(omega, far_))
               break;
             hb_.set_omega(omega);
             const std::vector<double> guess = hb_.grazing_guess();
@@ -143,17 +155,24 @@ namespace nsm
                 s << "start at grazing of clamped-free mode " << mode << " (w = " << w
                   << ") at Omega = " << omega;
                 backbone.events.push_back(s.str());
+                if (point.measures.energy > scene_.continuation.energy_max)
+                  throw InputError("parameter 'Continuation/Energy max' = " +
+                                   std::to_string(scene_.continuation.energy_max) +
+                                   " is out of range: allowed above the energy at grazing, " +
+                                   std::to_string(point.measures.energy));
+                span_ = std::abs(far_ - (beyond(near_, omega) ? near_ : omega));
                 return point;
               }
           }
         std::ostringstream s;
-        s << "no converged non-trivial solution near grazing of clamped-free mode " << mode
-          << " (w = " << w << ") within Continuation/Omega min..max";
+        s << "no converged non-trivial solution within 5 % of grazing of clamped-free mode "
+          << mode << " (w = " << w << ") and before the end of Continuation/Omega min..max";
         throw NumericalError(s.str());
       }
 
       enum class SegmentEnd
       {
+        approach,  ///< the start of the range reached from a start before it
         range,     ///< Omega min or max reached
         fold,      ///< no convergence below Min step, or LOCA gave up
         tongue,    ///< energy above Energy max (climbing a resonance tongue)
@@ -167,9 +186,12 @@ namespace nsm
       {
         for (unsigned int segment = 0;; ++segment)
           {
-            const SegmentEnd end = scene_.continuation.method == ContinuationMethod::sequential ?
-                                     sequential(backbone, segment) :
-                                     arclength(backbone, segment);
+            SegmentEnd end = scene_.continuation.method == ContinuationMethod::sequential ||
+                                 beyond(near_, backbone.points.back().omega) ?
+                               sequential(backbone, segment) :
+                               arclength(backbone, segment);
+            if (end == SegmentEnd::approach)
+              end = arclength(backbone, segment);
             const double omega = backbone.points.back().omega;
             if (end == SegmentEnd::range)
               return backbone.events.push_back(event_message("end of the Omega range", omega));
@@ -206,6 +228,13 @@ namespace nsm
         return omega <= scene_.continuation.omega_max && omega >= scene_.continuation.omega_min;
       }
 
+      /// a lies beyond b in the direction of continuation.
+      bool beyond(const double a, const double b) const { return direction_ * (a - b) > 0; }
+
+      /// Steps never exceed a tenth of the range covered, so that a narrow
+      /// range still gets points.
+      double max_step() const { return std::min(scene_.continuation.max_step, span_ / 10); }
+
       /// A step whose solution moved by more than a fifth of the solution
       /// itself has jumped to another branch (over a fold), not followed it.
       static bool stays_on_branch(const BackbonePoint &from, const BackbonePoint &to)
@@ -220,18 +249,26 @@ namespace nsm
       }
 
       /// Steps in Omega with a secant predictor; quarters the step on failure
-      /// or on a jump to another branch.
+      /// or on a jump to another branch. Steps stop exactly at the start of
+      /// the range (coming from before it) and at its end.
       SegmentEnd sequential(Backbone &backbone, unsigned int segment)
       {
         const auto       &c     = scene_.continuation;
-        double            step  = c.initial_step;
+        double            step  = std::min(c.initial_step, max_step());
         const std::size_t first = backbone.points.size() - 1;
         while (!full(backbone))
           {
             const BackbonePoint current = backbone.points.back();
-            const double        omega   = current.omega + direction_ * step;
-            if (!in_range(omega))
+            if (current.omega == far_)
               return SegmentEnd::range;
+            const bool before = beyond(near_, current.omega);
+            if (!before && c.method == ContinuationMethod::arclength)
+              return SegmentEnd::approach;
+            double omega = current.omega + direction_ * step;
+            if (before && beyond(omega, near_))
+              omega = near_;
+            if (beyond(omega, far_))
+              omega = far_;
             std::vector<double> guess = current.x;
             if (backbone.points.size() - 1 > first)
               {
@@ -246,7 +283,7 @@ namespace nsm
                 if (point.measures.energy > c.energy_max)
                   return SegmentEnd::tongue;
                 if (point.newton_iterations <= 4)
-                  step = std::min(1.5 * step, c.max_step);
+                  step = std::min(1.5 * step, max_step());
                 backbone.points.push_back(std::move(point));
                 continue;
               }
@@ -350,6 +387,7 @@ namespace nsm
                     point.measures.energy > energy / 4)
                   {
                     backbone.events.push_back(event_message("leapt to a new segment", omega));
+                    ++backbone.leaps;
                     backbone.points.push_back(std::move(point));
                     return true;
                   }
@@ -364,7 +402,9 @@ namespace nsm
       const std::vector<InternalResonance> &resonances_;
       NewtonSolver                          newton_;
       NewtonSolver                          leap_newton_;
-      double                                direction_;
+      const double                          direction_;
+      const double                          near_, far_; ///< the range's ends, first met and last
+      double                                span_ = 0;   ///< of the range covered from the start
       std::optional<std::size_t>            first_fold_; ///< in the current segment
     };
   } // namespace
@@ -378,6 +418,17 @@ namespace nsm
     backbone.points.push_back(tracer.start(backbone));
     tracer.trace(backbone);
     backbone.newton_cost = tracer.newton_cost();
+    // Points traced on the way from grazing to the range are not written.
+    const auto &c = scene.continuation;
+    auto       &p = backbone.points;
+    p.erase(std::remove_if(p.begin(), p.end(),
+                           [&](const BackbonePoint &q) {
+                             return q.omega < c.omega_min || q.omega > c.omega_max;
+                           }),
+            p.end());
+    for (BackbonePoint &point : p)
+      classify(hb, c.tongue_share, point);
+    backbone.tongues = collect_tongues(p);
     return backbone;
   }
 } // namespace nsm

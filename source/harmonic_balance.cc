@@ -460,6 +460,23 @@ namespace nsm
     return result;
   }
 
+  std::vector<double> HarmonicBalance::harmonic_energies(const std::vector<double> &x) const
+  {
+    // a^2 (gamma + 2 w^2 gamma') / 4 per cosine or sine (a_0^2 gamma(0) / 2),
+    // in the angle variables a^2 gamma = c^2 sin cos, a^2 gamma' = c^2 dtheta/dw^2.
+    std::vector<double> energies(harmonics_ + 1, 0.0);
+    for (unsigned int i = 0; i < n_unknowns(); ++i)
+      {
+        if (has_unfolding() && i == 1)
+          continue;
+        const Phase &p = phases_[orders_[i]];
+        const double c = force_scale_ * x[i];
+        energies[orders_[i]] += c * c * (p.sin * p.cos + 2 * p.omega2 * p.dtheta_domega2) /
+                                (orders_[i] == 0 ? 2.0 : 4.0);
+      }
+    return energies;
+  }
+
   double HarmonicBalance::contact_fraction(const std::vector<double> &x) const
   {
     std::vector<double> gram;

@@ -317,6 +317,9 @@ namespace nsm
     stepper.set("Max Nonlinear Iterations", static_cast<int>(scene.harmonic_balance.max_iterations));
     stepper.set("Compute Eigenvalues", false);
     params->sublist("LOCA").sublist("Predictor").set("Method", "Tangent");
+    // Unscaled arclength: a step of length ds changes Omega by at most ds,
+    // so Max step bounds the Omega increments as in sequential stepping.
+    stepper.set("Enable Arc Length Scaling", false);
     auto &step = params->sublist("LOCA").sublist("Step Size");
     step.set("Method", "Adaptive");
     step.set("Initial Step Size", direction * c.initial_step);

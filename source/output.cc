@@ -21,8 +21,8 @@ namespace nsm
   std::string write_csv(const std::string &directory, const CsvTable &table)
   {
     for (const auto &row : table.rows)
-      for (const double v : row)
-        if (!std::isfinite(v))
+      for (const CsvCell &v : row)
+        if (std::holds_alternative<double>(v) && !std::isfinite(std::get<double>(v)))
           throw NumericalError("a non-finite value was about to be written to " +
                                table.file_name + "; nothing was written");
 
@@ -34,7 +34,10 @@ namespace nsm
       for (const auto &row : table.rows)
         {
           for (std::size_t c = 0; c < row.size(); ++c)
-            out << (c ? "," : "") << row[c];
+            {
+              out << (c ? "," : "");
+              std::visit([&](const auto &value) { out << value; }, row[c]);
+            }
           out << '\n';
         }
     });

@@ -96,13 +96,28 @@ namespace nsm
     {
       CsvTable table{"backbone.csv",
                      {"segment", "Omega", "energy", "energy_spread", "max_contact_force",
-                      "contact_fraction", "newton_iterations", "residual"},
+                      "contact_fraction", "newton_iterations", "residual", "branch",
+                      "resonance_mode", "resonance_harmonic"},
                      {}};
       for (const BackbonePoint &p : backbone.points)
         table.rows.push_back({double(p.segment), p.omega, p.measures.energy,
                               p.measures.energy_spread, p.measures.max_contact_force,
                               p.measures.contact_fraction, double(p.newton_iterations),
-                              p.residual});
+                              p.residual, p.branch == Branch::main ? "main" : "tongue",
+                              double(p.resonance.mode), double(p.resonance.harmonic)});
+      return table;
+    }
+
+    CsvTable tongue_table(const Backbone &backbone)
+    {
+      CsvTable table{"tongues.csv",
+                     {"mode", "harmonic", "omega_resonance", "foot_omega_begin",
+                      "foot_omega_end", "max_energy", "points"},
+                     {}};
+      for (const Tongue &t : backbone.tongues)
+        table.rows.push_back({double(t.resonance.mode), double(t.resonance.harmonic),
+                              t.resonance.omega, t.foot_begin, t.foot_end, t.max_energy,
+                              double(t.points)});
       return table;
     }
 
@@ -183,10 +198,13 @@ namespace nsm
         if (scene.output.backbone)
           {
             tables.push_back(backbone_table(backbone));
+            tables.push_back(tongue_table(backbone));
             tables.push_back(resonance_table(resonances));
           }
         std::ostringstream s;
-        s << "backbone: " << backbone.points.size() << " converged points, "
+        s << "backbone: " << backbone.points.size() << " points (" << backbone.main_points()
+          << " main, " << backbone.points.size() - backbone.main_points() << " on "
+          << backbone.tongues.size() << " tongues), " << backbone.leaps << " leaps, "
           << backbone.folds.size() << " folds, " << hb->n_unknowns() << " unknowns";
         report.notes.push_back(s.str());
         for (const std::string &event : backbone.events)

@@ -252,6 +252,8 @@ namespace nsm
     prm.declare_entry("Min step", "1e-6", Double(), "Smallest step before a fold is declared, > 0, <= Initial step.");
     prm.declare_entry("Max step", "1e-2", Double(), "Largest step, >= Initial step.");
     prm.declare_entry("Max steps", "2000", Integer(), "Most backbone points, 1 to 1e6.");
+    prm.declare_entry("Grazing offset", "1e-5", Double(), "Relative distance of the first try from grazing, W = w_j (1 +- offset), doubled until Newton converges; 1e-12 to 1e-2.");
+    prm.declare_entry("Tongue share", "0.02", Double(), "A point is labelled a tongue point if the energy of one harmonic k >= 3 stands above the geometric mean of harmonics k - 2 and k + 2 by more than this share of the total energy; otherwise it is on the main branch. 1e-4 to 1.");
     prm.leave_subsection();
 
     prm.enter_subsection("Output");
@@ -320,6 +322,20 @@ namespace nsm
     {
       const double value = prm.get_double(name);
       require_positive(value, section + "/" + name);
+      return value;
+    }
+
+    double get_in(dealii::ParameterHandler &prm,
+                  const std::string        &section,
+                  const std::string        &name,
+                  const double              min,
+                  const double              max)
+    {
+      const double value = prm.get_double(name);
+      require(value >= min && value <= max,
+              section + "/" + name,
+              "a number in [" + format_value(min) + ", " + format_value(max) + "]",
+              format_value(value));
       return value;
     }
 
@@ -445,6 +461,8 @@ namespace nsm
               ">= Initial step = " + format_value(c.initial_step),
               format_value(c.max_step));
       c.max_steps = get_integer(prm, "Continuation", "Max steps", 1, 1000000);
+      c.grazing_offset = get_in(prm, "Continuation", "Grazing offset", 1e-12, 1e-2);
+      c.tongue_share   = get_in(prm, "Continuation", "Tongue share", 1e-4, 1);
       prm.leave_subsection();
 
       prm.enter_subsection("Output");

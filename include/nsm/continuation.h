@@ -13,6 +13,19 @@
 
 namespace nsm
 {
+  enum class Branch
+  {
+    main,  ///< the nonsmooth mode: no harmonic stands out of the spectrum
+    tongue ///< near W = w_j / k, harmonic k drives mode j near its resonance
+  };
+
+  struct InternalResonance
+  {
+    double       omega; ///< w_j / k
+    unsigned int mode;  ///< j
+    unsigned int harmonic; ///< k
+  };
+
   struct BackbonePoint
   {
     unsigned int             segment;
@@ -21,13 +34,18 @@ namespace nsm
     unsigned int             newton_iterations;
     double                   residual;
     std::vector<double>      x; ///< scaled unknowns
+    Branch                   branch    = Branch::main;
+    InternalResonance        resonance = {0, 0, 0}; ///< of a tongue point; zero on the main branch
   };
 
-  struct InternalResonance
+  /// A run of tongue points of one resonance along the backbone.
+  struct Tongue
   {
-    double       omega; ///< w_j / k
-    unsigned int mode;  ///< j
-    unsigned int harmonic; ///< k
+    InternalResonance resonance;
+    double            foot_begin; ///< Omega of the point before it
+    double            foot_end;   ///< Omega of the point after it
+    double            max_energy; ///< highest energy written on it
+    unsigned int      points;
   };
 
   /// Wall time and Newton iterations of the solves that converged and of
@@ -53,9 +71,13 @@ namespace nsm
   struct Backbone
   {
     std::vector<BackbonePoint> points;
+    std::vector<Tongue>        tongues;
     NewtonCost                 newton_cost; ///< sequential method and leaps
     std::vector<std::string>   events; ///< folds, leaps, stops: for the summary
     std::vector<double>        folds;  ///< Omega of each fold turned or leapt
+    unsigned int               leaps = 0;
+
+    unsigned int main_points() const;
   };
 
   /// +1 where the branch leaves grazing upwards in Omega (the physical force

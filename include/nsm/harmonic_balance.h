@@ -86,6 +86,10 @@ namespace nsm
 
     PeriodicSolutionMeasures measure(const std::vector<double> &x) const;
 
+    /// Period-mean energy carried by each harmonic k = 0..M (Parseval: they
+    /// add up to the energy of measure()).
+    std::vector<double> harmonic_energies(const std::vector<double> &x) const;
+
     /// a and b of the solution x at the current W.
     FourierCoefficients coefficients(const std::vector<double> &x) const;
 

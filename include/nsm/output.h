@@ -4,16 +4,20 @@
 #include <functional>
 #include <iosfwd>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace nsm
 {
+  /// A number, or a label such as a branch name.
+  using CsvCell = std::variant<double, std::string>;
+
   /// A table held in memory until it is written.
   struct CsvTable
   {
-    std::string                      file_name;
-    std::vector<std::string>         columns;
-    std::vector<std::vector<double>> rows;
+    std::string                       file_name;
+    std::vector<std::string>          columns;
+    std::vector<std::vector<CsvCell>> rows;
   };
 
   /// Writes `table` to directory/file_name with full double precision:

@@ -125,6 +125,8 @@ namespace nsm
       double             min_step     = 1e-6;
       double             max_step     = 1e-2;
       unsigned int       max_steps    = 2000;
+      double             grazing_offset = 1e-5;
+      double             tongue_share   = 0.02;
     } continuation;
 
     struct Output

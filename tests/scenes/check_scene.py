@@ -27,11 +27,16 @@ def run(executable, scene_directory, name):
     return result.stdout
 
 
+BRANCHES = {"main": 0.0, "tongue": 1.0}
+
+
 def table(path, header):
+    """Rows as numbers; the branch labels main / tongue read as 0 / 1."""
     with open(path, newline="") as f:
         rows = list(csv.reader(f))
     assert rows[0] == header, f"{path}: header {rows[0]} != {header}"
-    values = [[float(v) for v in row] for row in rows[1:]]
+    values = [[BRANCHES[v] if c == "branch" else float(v) for c, v in zip(header, row)]
+              for row in rows[1:]]
     for row in values:
         assert all(math.isfinite(v) for v in row), f"{path}: non-finite value in {row}"
     return values
@@ -71,11 +76,15 @@ def check_spectrum_receptance(name, summary):
 def check_backbone(name, below_w1):
     points = table(f"{name}/backbone.csv",
                    ["segment", "Omega", "energy", "energy_spread", "max_contact_force",
-                    "contact_fraction", "newton_iterations", "residual"])
+                    "contact_fraction", "newton_iterations", "residual", "branch",
+                    "resonance_mode", "resonance_harmonic"])
     assert len(points) > 20, len(points)
     segments = [p[0] for p in points]
     assert segments == sorted(segments), "segments are numbered along the branch"
-    for segment, omega, energy, spread, force, fraction, iterations, residual in points:
+    for (segment, omega, energy, spread, force, fraction, iterations, residual, branch, mode,
+         harmonic) in points:
+        # main points carry no resonance, tongue points one of the map's
+        assert (mode, harmonic) == (0, 0) if branch == 0 else (mode >= 1 and harmonic >= 3)
         assert (omega < W1) if below_w1 else (omega > W1), omega
         assert energy > 0 and force > 0 and 0 < fraction < 1
         assert residual <= TOLERANCE, residual
@@ -249,7 +258,7 @@ def check_no_field_outputs(name, summary):
     """A backbone scene without fields, VTK and plots writes none of them and
     spends no time on them."""
     files = sorted(os.listdir(name))
-    assert files == ["backbone.csv", "resonances.csv"], files
+    assert files == ["backbone.csv", "resonances.csv", "tongues.csv"], files
     for stage in ("fields", "plots"):
         assert f"  {stage} " not in summary, stage
 

@@ -226,3 +226,57 @@ TEST(Backbone, HigherModesStartAtTheirOwnGrazing)
     EXPECT_GT(p.omega, w2);
   EXPECT_GT(backbone.points.back().measures.energy, 1.5 * linear);
 }
+
+TEST(Backbone, StartsWithin1e4OfGrazingAndEndsExactlyAtOmegaMax)
+{
+  // Uniform bar: w1 = pi / 2 exactly.
+  auto scene = uniform_scene(20);
+  HbModel    model(scene);
+  const auto backbone = model.backbone();
+  const double w1 = M_PI / 2;
+  ASSERT_GT(backbone.points.size(), 3u);
+  EXPECT_GT(backbone.points.front().omega, w1);
+  EXPECT_LT(backbone.points.front().omega / w1 - 1, 1e-4);
+  EXPECT_EQ(backbone.points.back().omega, scene.continuation.omega_max);
+  for (const auto &p : backbone.points)
+    EXPECT_LE(p.measures.energy, scene.continuation.energy_max);
+}
+
+TEST(Backbone, NarrowRangeJustAboveGrazingGetsPointsUpToItsEnd)
+{
+  // Omega max = w1 + 5e-4 on the seed bar (w1 from method.md).
+  auto scene = seed_scene(nsm::ForceSign::physical, 1.5, w1_seed + 5e-4);
+  HbModel    model(scene);
+  const auto backbone = model.backbone();
+  ASSERT_GE(backbone.points.size(), 3u);
+  EXPECT_EQ(backbone.points.back().omega, scene.continuation.omega_max);
+  for (const auto &p : backbone.points)
+    EXPECT_GT(p.omega, w1_seed - 1e-6);
+}
+
+TEST(Backbone, RangeAboveGrazingIsReachedFromGrazing)
+{
+  // Omega min above w1: the branch is traced from grazing, and only points in
+  // [Omega min, Omega max] are written, the first exactly at Omega min; its
+  // energy is the one the full branch has there.
+  auto scene = uniform_scene(20);
+  scene.continuation.omega_max = 1.7;
+  HbModel    full(scene);
+  const auto reference = nsm::solve_on_branch(full.hb, scene, full.backbone(), 1.65);
+  scene.continuation.omega_min = 1.65;
+  HbModel    part(scene);
+  const auto backbone = part.backbone();
+  ASSERT_GT(backbone.points.size(), 3u);
+  EXPECT_EQ(backbone.points.front().omega, 1.65);
+  for (const auto &p : backbone.points)
+    EXPECT_TRUE(p.omega >= 1.65 && p.omega <= 1.7) << p.omega;
+  EXPECT_NEAR(backbone.points.front().measures.energy / reference.measures.energy, 1.0, 1e-9);
+}
+
+TEST(Backbone, EnergyMaxBelowTheGrazingEnergyIsAnInputError)
+{
+  auto scene = uniform_scene(20);
+  scene.continuation.energy_max = 1e-8; // grazing: about 0.5 g0^2 = 5e-7
+  HbModel model(scene);
+  EXPECT_THROW(model.backbone(), nsm::InputError);
+}

@@ -128,6 +128,8 @@ TEST(Scene, DeclaredDefaultsAreTheStructDefaults)
   EXPECT_EQ(pc.min_step, dc.min_step);
   EXPECT_EQ(pc.max_step, dc.max_step);
   EXPECT_EQ(pc.max_steps, dc.max_steps);
+  EXPECT_EQ(pc.grazing_offset, dc.grazing_offset);
+  EXPECT_EQ(pc.tongue_share, dc.tongue_share);
   const auto &po = parsed.output, &dout = d.output;
   EXPECT_EQ(po.directory, dout.directory);
   EXPECT_EQ(po.spectrum_modes, dout.spectrum_modes);
