@@ -41,9 +41,10 @@ namespace
     const double other = tracing - cost.receptance_seconds - cost.residual_seconds -
                          cost.jacobian_seconds - cost.linear_solve_seconds;
     const auto &newton = backbone.newton_cost;
-    std::printf("| %s | %s | %zu | %zu | %.3f | %.3f | %.3f | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.2f | %.3f (%.1f it) | %lu solves, %.2f s |\n",
+    std::printf("| %s | %s | %zu | %u | %zu | %u | %zu | %.3f | %.3f | %.3f | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.2f | %.3f (%.1f it) | %lu solves, %.2f s |\n",
                 name, method == nsm::ContinuationMethod::sequential ? "sequential" : "arclength",
-                backbone.points.size(), backbone.folds.size(), setup, tracing, total,
+                backbone.points.size(), backbone.main_points(), backbone.tongues.size(),
+                backbone.leaps, backbone.folds.size(), setup, tracing, total,
                 100 * cost.receptance_seconds / tracing, 100 * cost.residual_seconds / tracing,
                 100 * cost.jacobian_seconds / tracing, 100 * cost.linear_solve_seconds / tracing,
                 100 * other / tracing,
@@ -56,8 +57,8 @@ namespace
 
 int main()
 {
-  std::printf("| mesh | method | points | folds | set-up [s] | backbone [s] | total [s] | receptance | residual | Jacobian (+dR/dW) | linear solves | NOX/LOCA, predictors, measures | ms per point (all) | ms per converged Newton solve | failed solves (folds, leaps) |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| mesh | method | points | main points | tongues | leaps | folds | set-up [s] | backbone [s] | total [s] | receptance | residual | Jacobian (+dR/dW) | linear solves | NOX/LOCA, predictors, measures | ms per point (all) | ms per converged Newton solve | failed solves (folds, leaps) |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const auto method : {nsm::ContinuationMethod::sequential, nsm::ContinuationMethod::arclength})
     {
       run("FE_Q(1), 4000 cells", 1, 4000, method);

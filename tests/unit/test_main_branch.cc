@@ -83,8 +83,8 @@ TEST(MainBranch, UniformBarMainPointsAreCloseToTheExactEnergy)
 {
   // Uniform bar, M = 40, grazing to W = 2.08. Every point written is
   // labelled; the main ones must be the accurate ones. Measured: 94.6 % of
-  // 56 main points within 5 % of the exact energy, median error 2.3 %; over
-  // all 741 points only a minority is.
+  // 56 main points within 5 % of the exact energy, median error 2.3 %; of
+  // all 730 points 16.6 %.
   auto scene = testing_helpers::hb_scene("1", 40);
   scene.continuation.omega_max  = 2.08;
   scene.continuation.energy_max = 1;
@@ -118,7 +118,7 @@ TEST(MainBranch, UniformBarMainPointsAreCloseToTheExactEnergy)
   std::sort(main_errors.begin(), main_errors.end());
   EXPECT_GE(within(main_errors), 0.9);
   EXPECT_LE(main_errors[main_errors.size() / 2], 0.025);
-  EXPECT_LT(within(all_errors), 0.6); // the labels matter: unlabelled, most points are off
+  EXPECT_LT(within(all_errors), 0.5); // the labels matter: unlabelled, most points are off
   EXPECT_FALSE(backbone.tongues.empty());
   EXPECT_EQ(backbone.main_points(), main_errors.size());
 }
