@@ -194,7 +194,8 @@ namespace nsm
               end = arclength(backbone, segment);
             const double omega = backbone.points.back().omega;
             if (end == SegmentEnd::range)
-              return backbone.events.push_back(event_message("end of the Omega range", omega));
+              return backbone.events.push_back(event_message(
+                in_range(omega) ? "end of the Omega range" : "left the Omega range", omega));
             if (end == SegmentEnd::max_steps)
               return backbone.events.push_back(event_message("Max steps reached", omega));
             if (end == SegmentEnd::refused)
