@@ -372,11 +372,12 @@ namespace nsm
           --first;
         const std::vector<double> guesses[] = {front.x, backbone.points[first].x};
         const double              energy    = front.measures.energy;
-        for (double distance = c.initial_step; distance <= 0.05 * front.omega; distance *= 2)
+        for (double distance = c.initial_step;
+             distance <= 0.05 * front.omega && beyond(far_, front.omega); distance *= 2)
           {
-            const double omega = front.omega + direction_ * distance;
-            if (!in_range(omega))
-              break;
+            // The last try lands exactly on the end of the range.
+            const double omega =
+              beyond(front.omega + direction_ * distance, far_) ? far_ : front.omega + direction_ * distance;
             hb_.set_omega(omega);
             for (const std::vector<double> &guess : {guesses[0], guesses[1], hb_.grazing_guess()})
               {
@@ -393,6 +394,8 @@ namespace nsm
                     return true;
                   }
               }
+            if (omega == far_)
+              break;
           }
         backbone.events.push_back(event_message("branch lost after the fold", front.omega));
         return false;

@@ -9,10 +9,14 @@
 #include <nsm/receptance.h>
 #include <nsm/spectrum.h>
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <ctime>
 #include <fstream>
 #include <iomanip>
@@ -129,13 +133,36 @@ namespace nsm
       return table;
     }
     /// Runs the shipped plotting script on the files just written.
+    /// Runs a program with these arguments, without a shell (no character of
+    /// an argument is interpreted), its output to `log`; returns whether it
+    /// exited with status 0.
+    bool run_program(const std::vector<std::string> &arguments, const std::string &log)
+    {
+      std::vector<char *> argv;
+      for (const std::string &a : arguments)
+        argv.push_back(const_cast<char *>(a.c_str()));
+      argv.push_back(nullptr);
+      posix_spawn_file_actions_t actions;
+      posix_spawn_file_actions_init(&actions);
+      posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
+                                       O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+      pid_t      pid;
+      const bool spawned =
+        posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ) == 0;
+      posix_spawn_file_actions_destroy(&actions);
+      int status = 0;
+      return spawned && waitpid(pid, &status, 0) == pid && WIFEXITED(status) &&
+             WEXITSTATUS(status) == 0;
+    }
+
     std::vector<std::string> make_plots(const Scene &scene)
     {
-      std::ostringstream command;
-      command << NSM_PYTHON << " " << NSM_PLOT_SCRIPT << " '" << scene.output.directory
-              << "' --gap " << scene.contact.gap << " > '" << scene.output.directory
-              << "/plots.log' 2>&1";
-      if (std::system(command.str().c_str()) != 0)
+      std::ostringstream gap;
+      gap.precision(17);
+      gap << scene.contact.gap;
+      if (!run_program({NSM_PYTHON, NSM_PLOT_SCRIPT, scene.output.directory, "--gap", gap.str()},
+                       scene.output.directory + "/plots.log"))
         throw NumericalError("the plotting script failed; see " + scene.output.directory + "/plots.log");
       std::vector<std::string> files;
       std::ifstream            log(scene.output.directory + "/plots.log");

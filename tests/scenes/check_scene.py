@@ -248,6 +248,18 @@ def check_resonances_band(name, summary):
         assert (mode, harmonic) == (j, k) and abs(omega / w - 1) < 1e-12, (omega, mode, harmonic)
 
 
+def check_plots_shell_free(name, summary):
+    directory = name + "'; touch INJECTED; echo '"
+    injected = os.path.exists("INJECTED")
+    written = os.path.exists(os.path.join(directory, "backbone.png"))
+    shutil.rmtree(directory, ignore_errors=True)
+    if injected:
+        os.remove("INJECTED")
+    assert not injected, "a shell ran the commands in Output/Directory"
+    assert written, "the plot is written into the directory named, quotes and all"
+    assert "end of the Omega range at Omega = 1.93" in summary, "the last point is at Omega max"
+
+
 def check_nothing_requested(name, summary):
     assert "nothing to do" in summary
     assert not os.path.exists(name), "no output directory without a requested output"
