@@ -20,7 +20,9 @@ int main(int argc, char **argv)
   const std::string argument = argc == 2 ? argv[1] : NSM_DEFAULT_SCENE;
   if (argument == "--help" || argument == "-h")
     {
-      std::cout << usage;
+      std::cout << usage
+                << "exit codes: 0 done, 2 bad input, 3 numerical failure, 4 other error, 5 a file could "
+                   "not be written whole\n";
       return 0;
     }
   if (argument == "--print-parameters")
@@ -41,6 +43,11 @@ int main(int argc, char **argv)
     {
       std::cerr << "nsm-bar: input error: " << e.what() << '\n';
       return 2;
+    }
+  catch (const nsm::OutputError &e)
+    {
+      std::cerr << "nsm-bar: output error: " << e.what() << '\n';
+      return 5;
     }
   catch (const nsm::NumericalError &e)
     {

@@ -47,14 +47,17 @@ namespace nsm
                                const std::function<void(std::ostream &)> &write)
   {
     const std::string temporary = path + ".partial";
-    {
-      std::ofstream out(temporary);
-      out.precision(17);
-      write(out);
-      if (!out)
-        throw InputError("parameter 'Output/Directory': cannot write " + path);
-    }
-    std::filesystem::rename(temporary, path);
+    std::ofstream     out(temporary);
+    out.precision(17);
+    write(out);
+    // The last buffer is written by close(): it is checked too.
+    out.close();
+    std::error_code error;
+    if (out.fail() || (std::filesystem::rename(temporary, path, error), error))
+      {
+        std::filesystem::remove(temporary, error);
+        throw OutputError("cannot write " + path + " whole (disk full or file size limit?)");
+      }
     return path;
   }
 } // namespace nsm

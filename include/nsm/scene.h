@@ -21,6 +21,13 @@ namespace nsm
     using std::runtime_error::runtime_error;
   };
 
+  /// A file could not be written whole (disk full, file size limit, ...).
+  class OutputError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
   /// A numerical failure that the run cannot recover from.
   class NumericalError : public std::runtime_error
   {

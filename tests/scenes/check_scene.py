@@ -9,7 +9,9 @@ import bisect
 import csv
 import math
 import os
+import resource
 import shutil
+import signal
 import subprocess
 import sys
 
@@ -258,6 +260,30 @@ def check_plots_shell_free(name, summary):
     assert not injected, "a shell ran the commands in Output/Directory"
     assert written, "the plot is written into the directory named, quotes and all"
     assert "end of the Omega range at Omega = 1.93" in summary, "the last point is at Omega max"
+
+
+def check_full_disk(name, summary):
+    """backbone.csv is larger than 4 KiB: under that file size limit (SIGXFSZ
+    ignored, so writes fail with EFBIG as on a full disk) its write fails."""
+    assert os.path.getsize(f"{name}/backbone.csv") > 4096
+    shutil.rmtree(name)
+
+    def limit():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (4096, 4096))
+
+    result = subprocess.run([sys.argv[1], os.path.join(sys.argv[2], name + ".prm")],
+                            capture_output=True, text=True, preexec_fn=limit)
+    assert result.returncode == 5, (result.returncode, result.stderr)
+    assert "output error" in result.stderr and "backbone.csv" in result.stderr, result.stderr
+    files = os.listdir(name)
+    assert not [f for f in files if f.endswith(".partial")], files
+    for f in files:
+        with open(os.path.join(name, f)) as stream:
+            text = stream.read()
+        assert text.endswith("\n"), f"{f} is truncated"
+        widths = {len(line.split(",")) for line in text.splitlines()}
+        assert len(widths) == 1, f"{f} is truncated"
 
 
 def check_nothing_requested(name, summary):
