@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <type_traits>
 
 namespace nsm
 {
@@ -301,19 +302,37 @@ namespace nsm
 
   namespace
   {
+    /// A value of [min, max]: an integer (long) or a real number (double).
+    template <typename Number>
+    Number get_in(dealii::ParameterHandler &prm,
+                  const std::string        &section,
+                  const std::string        &name,
+                  const Number              min,
+                  const Number              max)
+    {
+      constexpr bool integer = std::is_integral_v<Number>;
+      const Number value = integer ? Number(prm.get_integer(name)) : Number(prm.get_double(name));
+      const auto   text  = [](const Number v) {
+        if constexpr (std::is_integral_v<Number>)
+          return std::to_string(v);
+        else
+          return format_value(v);
+      };
+      require(value >= min && value <= max,
+              section + "/" + name,
+              std::string(integer ? "an integer" : "a number") + " in [" + text(min) + ", " +
+                text(max) + "]",
+              text(value));
+      return value;
+    }
+
     long get_integer(dealii::ParameterHandler &prm,
                      const std::string        &section,
                      const std::string        &name,
                      const long                min,
                      const long                max)
     {
-      const long value = prm.get_integer(name);
-      require(value >= min && value <= max,
-              section + "/" + name,
-              "an integer in [" + std::to_string(min) + ", " +
-                std::to_string(max) + "]",
-              std::to_string(value));
-      return value;
+      return get_in<long>(prm, section, name, min, max);
     }
 
     double get_positive(dealii::ParameterHandler &prm,
@@ -322,20 +341,6 @@ namespace nsm
     {
       const double value = prm.get_double(name);
       require_positive(value, section + "/" + name);
-      return value;
-    }
-
-    double get_in(dealii::ParameterHandler &prm,
-                  const std::string        &section,
-                  const std::string        &name,
-                  const double              min,
-                  const double              max)
-    {
-      const double value = prm.get_double(name);
-      require(value >= min && value <= max,
-              section + "/" + name,
-              "a number in [" + format_value(min) + ", " + format_value(max) + "]",
-              format_value(value));
       return value;
     }
 
@@ -462,7 +467,7 @@ namespace nsm
               format_value(c.max_step));
       c.max_steps = get_integer(prm, "Continuation", "Max steps", 1, 1000000);
       c.grazing_offset = get_in(prm, "Continuation", "Grazing offset", 1e-12, 1e-2);
-      c.tongue_share   = get_in(prm, "Continuation", "Tongue share", 1e-4, 1);
+      c.tongue_share   = get_in(prm, "Continuation", "Tongue share", 1e-4, 1.0);
       prm.leave_subsection();
 
       prm.enter_subsection("Output");
