@@ -248,10 +248,10 @@ namespace nsm
                       ">= 1.");
     prm.declare_entry("Omega min", "0", Double(), "Lower end of the Omega range, >= 0.");
     prm.declare_entry("Omega max", "2.2", Double(), "Upper end of the Omega range, > Omega min; harmonics up to Harmonics x Omega max are resolved.");
-    prm.declare_entry("Energy max", "1", Double(), "Points above it are not kept: the branch is climbing a resonance tongue, and the run leaps past it to a new segment; > 0.");
-    prm.declare_entry("Initial step", "1e-3", Double(), "First step in Omega (arclength: in arclength), offset of the start from grazing, and first leap distance; > 0.");
+    prm.declare_entry("Energy max", "1", Double(), "Points above it are not kept: the branch is climbing a resonance tongue, and the run leaps past it to a new segment; > 0, and above the energy at grazing.");
+    prm.declare_entry("Initial step", "1e-3", Double(), "First step in Omega (arclength: in arclength, unscaled) and first leap distance; > 0.");
     prm.declare_entry("Min step", "1e-6", Double(), "Smallest step before a fold is declared, > 0, <= Initial step.");
-    prm.declare_entry("Max step", "1e-2", Double(), "Largest step, >= Initial step.");
+    prm.declare_entry("Max step", "1e-2", Double(), "Largest step in Omega (arclength: in arclength, unscaled, so also in Omega), >= Initial step; never more than a tenth of the range covered.");
     prm.declare_entry("Max steps", "2000", Integer(), "Most backbone points, 1 to 1e6.");
     prm.declare_entry("Grazing offset", "1e-5", Double(), "Relative distance of the first try from grazing, W = w_j (1 +- offset), doubled until Newton converges; 1e-12 to 1e-2.");
     prm.declare_entry("Tongue share", "0.02", Double(), "A point is labelled a tongue point if the energy of one harmonic k >= 3 stands above the geometric mean of harmonics k - 2 and k + 2 by more than this share of the total energy; otherwise it is on the main branch. 1e-4 to 1.");
