@@ -18,12 +18,17 @@ namespace nsm
       for (unsigned int k = 1; k <= top; ++k)
         {
           const double w = std::sqrt(receptance.poles()[j]);
-          if (w <= top * c.omega_max && w / k >= c.omega_min && w / k <= c.omega_max)
+          if (w <= top * c.omega_max && in_omega_range(scene, w / k))
             found.push_back({w / k, j + 1, k});
         }
     std::sort(found.begin(), found.end(),
               [](const auto &a, const auto &b) { return a.omega < b.omega; });
     return found;
+  }
+
+  bool in_omega_range(const Scene &scene, const double omega)
+  {
+    return omega >= scene.continuation.omega_min && omega <= scene.continuation.omega_max;
   }
 
   double branch_direction(const Scene &scene)
@@ -224,10 +229,7 @@ namespace nsm
         return backbone.points.size() >= scene_.continuation.max_steps;
       }
 
-      bool in_range(double omega) const
-      {
-        return omega <= scene_.continuation.omega_max && omega >= scene_.continuation.omega_min;
-      }
+      bool in_range(double omega) const { return in_omega_range(scene_, omega); }
 
       /// a lies beyond b in the direction of continuation.
       bool beyond(const double a, const double b) const { return direction_ * (a - b) > 0; }
@@ -426,9 +428,7 @@ namespace nsm
     const auto &c = scene.continuation;
     auto       &p = backbone.points;
     p.erase(std::remove_if(p.begin(), p.end(),
-                           [&](const BackbonePoint &q) {
-                             return q.omega < c.omega_min || q.omega > c.omega_max;
-                           }),
+                           [&](const BackbonePoint &q) { return !in_omega_range(scene, q.omega); }),
             p.end());
     for (BackbonePoint &point : p)
       classify(hb, c.tongue_share, point);

@@ -5,25 +5,39 @@
 
 namespace nsm
 {
+  namespace
+  {
+    /// harmonic_excess() with the total energy given.
+    double excess(const std::vector<double> &energies, const unsigned int k, const double total)
+    {
+      // k = 0 is the static part, k = 1 the fundamental, and k = 2 has no
+      // oscillating neighbour below it.
+      if (k < 3 || k >= energies.size())
+        return 0;
+      // The geometric mean of the same-parity neighbours follows a smooth
+      // decay, and the odd-even alternation of symmetric motions.
+      const bool   above    = k + 2 < energies.size();
+      const double envelope = above ? std::sqrt(energies[k - 2] * energies[k + 2]) : energies[k - 2];
+      return (energies[k] - envelope) / total;
+    }
+
+    double total_of(const std::vector<double> &energies)
+    {
+      return std::accumulate(energies.begin(), energies.end(), 0.0);
+    }
+  } // namespace
+
   double harmonic_excess(const std::vector<double> &energies, const unsigned int k)
   {
-    // k = 0 is the static part, k = 1 the fundamental, and k = 2 has no
-    // oscillating neighbour below it.
-    if (k < 3 || k >= energies.size())
-      return 0;
-    const double total = std::accumulate(energies.begin(), energies.end(), 0.0);
-    // The geometric mean of the same-parity neighbours follows a smooth
-    // decay, and the odd-even alternation of symmetric motions.
-    const bool   above    = k + 2 < energies.size();
-    const double envelope = above ? std::sqrt(energies[k - 2] * energies[k + 2]) : energies[k - 2];
-    return (energies[k] - envelope) / total;
+    return excess(energies, k, total_of(energies));
   }
 
   SpectralExcess spectral_excess(const std::vector<double> &energies)
   {
+    const double   total = total_of(energies);
     SpectralExcess worst{0, 0.0};
     for (unsigned int k = 3; k < energies.size(); ++k)
-      if (const double share = harmonic_excess(energies, k); share > worst.share)
+      if (const double share = excess(energies, k, total); share > worst.share)
         worst = {k, share};
     return worst;
   }

@@ -80,6 +80,9 @@ namespace nsm
     unsigned int main_points() const;
   };
 
+  /// Omega min <= omega <= Omega max.
+  bool in_omega_range(const Scene &scene, double omega);
+
   /// +1 where the branch leaves grazing upwards in Omega (the physical force
   /// sign), -1 with the paper's eq. (5): the one place this is derived.
   double branch_direction(const Scene &scene);
