@@ -45,6 +45,13 @@ namespace nsm
         notes.push_back(note.str());
         if (error <= params.adaptive_tolerance * scale || step == params.adaptive_steps)
           return notes;
+        if (d.min_cell_size() / 2 < params.smallest_cell() * d.bar().length())
+          {
+            notes.push_back("adaptive refinement stops: halving the smallest cell would put "
+                            "the round-off floor eps p^2 L / h_min above Discretisation/Round-off "
+                            "limit");
+            return notes;
+          }
         d.refine(indicators, params.adaptive_fraction);
       }
   }

@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <type_traits>
 
@@ -11,12 +12,17 @@ namespace nsm
 {
   namespace
   {
+    /// The shortest text that reads back as the same double.
     std::string format_value(const double value)
     {
-      std::ostringstream out;
-      out.precision(17);
-      out << value;
-      return out.str();
+      for (int digits = 6;; ++digits)
+        {
+          std::ostringstream out;
+          out.precision(digits);
+          out << value;
+          if (digits >= 17 || std::stod(out.str()) == value)
+            return out.str();
+        }
     }
 
     void require(const bool         ok,
@@ -163,6 +169,14 @@ namespace nsm
                       "none",
                       Selection("none|graded|adaptive"),
                       "Mesh refinement towards the contact end x = L.");
+    prm.declare_entry("Round-off limit",
+                      "1e-7",
+                      Double(),
+                      "Largest accepted round-off floor eps p^2 L / h_min of the stiffness matrix: "
+                      "the relative error that rounding alone puts on gamma and the "
+                      "spectrum when the smallest cell is h_min. Graded meshes with smaller "
+                      "cells are rejected; adaptive refinement stops before it makes them. "
+                      "1e-12 to 1e-6: beyond, the LU of K - w^2 M itself breaks down.");
     prm.enter_subsection("Graded");
     prm.declare_entry("Ratio",
                       "0.8",
@@ -344,6 +358,32 @@ namespace nsm
       return value;
     }
 
+    /// Smallest cell of a graded mesh relative to L (make_mesh's sizes).
+    double graded_smallest_cell(const Scene::Discretisation &d, const unsigned int layers)
+    {
+      double total = d.cells - layers;
+      for (unsigned int i = 1; i <= layers; ++i)
+        total += std::pow(d.graded_ratio, i);
+      return std::pow(d.graded_ratio, layers) / total;
+    }
+
+    void require_graded_cells_above_roundoff(const Scene::Discretisation &d)
+    {
+      if (graded_smallest_cell(d, d.graded_layers) >= d.smallest_cell())
+        return;
+      unsigned int allowed = d.graded_layers;
+      while (allowed > 0 && graded_smallest_cell(d, allowed) < d.smallest_cell())
+        --allowed;
+      require(false,
+              "Discretisation/Graded/Layers",
+              "at most " + std::to_string(allowed) + " with Ratio = " +
+                format_value(d.graded_ratio) + " and Cells = " + std::to_string(d.cells) +
+                " (more make cells smaller than " + format_value(d.smallest_cell()) +
+                " L, where the round-off floor eps p^2 L / h_min exceeds "
+                "Discretisation/Round-off limit = " + format_value(d.roundoff_limit) + ")",
+              std::to_string(d.graded_layers));
+    }
+
     void read(dealii::ParameterHandler &prm, Scene &s)
     {
       prm.enter_subsection("Bar");
@@ -368,6 +408,7 @@ namespace nsm
       d.cells  = get_integer(prm, "Discretisation", "Cells", 1, 1000000);
       d.quadrature_points =
         get_integer(prm, "Discretisation", "Quadrature points", 0, 64);
+      d.roundoff_limit = get_in(prm, "Discretisation", "Round-off limit", 1e-12, 1e-6);
       const std::string refinement = prm.get("Refinement");
       d.refinement = refinement == "none"   ? Refinement::none :
                      refinement == "graded" ? Refinement::graded :
@@ -380,13 +421,7 @@ namespace nsm
               format_value(d.graded_ratio));
       d.graded_layers = get_integer(
         prm, "Discretisation/Graded", "Layers", 0, d.cells);
-      // Cells much smaller than that make the mass matrix numerically singular.
-      require(std::pow(d.graded_ratio, d.graded_layers) >= 1e-8,
-              "Discretisation/Graded/Layers",
-              "Ratio^Layers >= 1e-8 (the smallest cell at least 1e-8 of "
-              "the others)",
-              std::to_string(d.graded_layers) + " with Ratio = " +
-                format_value(d.graded_ratio));
+      require_graded_cells_above_roundoff(d);
       prm.leave_subsection();
       prm.enter_subsection("Adaptive");
       d.adaptive_steps =
@@ -540,6 +575,11 @@ namespace nsm
         throw InputError("scene '" + path + "': " + e.what());
       }
     return scene;
+  }
+
+  double Scene::Discretisation::smallest_cell() const
+  {
+    return std::numeric_limits<double>::epsilon() * degree * degree / roundoff_limit;
   }
 
   unsigned int Scene::field_time_samples() const

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
+#include <tuple>
 #include <string>
 
 extern "C"
@@ -84,27 +86,50 @@ namespace nsm
       return p;
     }
 
-    /// Eigenvalues with indices [first, last] (1-based), or all below
-    /// `upper` when last == 0.
+    /// Which matrix LAPACK factors by Cholesky. dsbgvx reduces the pencil
+    /// to standard form with that factor, so an eigenvalue's absolute error
+    /// is about eps times the largest eigenvalue of the reduced problem:
+    /// - mass: K phi = lambda M phi, error eps lambda_max; accurate for the
+    ///   high modes, but tiny cells (lambda_max ~ 1 / h_min^2) ruin the low
+    ///   ones;
+    /// - stiffness: M phi = mu K phi with mu = 1 / lambda, error eps / lambda_1;
+    ///   accurate for the low modes whatever the smallest cell.
+    enum class Factored
+    {
+      mass,
+      stiffness
+    };
+
+    /// Eigenvalues lambda of K phi = lambda M phi, ascending: indices
+    /// [first, last] (1-based), or all lambda <= upper when last == 0.
     std::vector<double> banded_eigenvalues(const BandedPencil &p,
+                                           const Factored      form,
                                            int                 first,
                                            int                 last,
-                                           double              upper)
+                                           const double        upper)
     {
-      std::vector<double> k = p.k, m = p.m;
+      const bool inverse = form == Factored::stiffness;
+      if (last == 0 && upper <= 0) // K is positive definite: no lambda <= 0
+        return {};
+      std::vector<double> a = inverse ? p.m : p.k, b = inverse ? p.k : p.m;
       const int           ld = p.bandwidth + 1;
       // All of them: 'A' with abstol = 0 takes LAPACK's QR path (dsterf),
-      // far faster than bisection; the refinement below restores accuracy.
-      const bool   all    = first == 1 && last == p.n;
-      const char   range  = all ? 'A' : last > 0 ? 'I' : 'V';
-      const double lower  = -1.0;
+      // far faster than bisection; the refinement restores accuracy.
+      const bool   all   = first == 1 && last == p.n;
+      const char   range = all ? 'A' : last > 0 ? 'I' : 'V';
+      // mu = 1 / lambda reverses the order: lambda indices [first, last] are
+      // mu indices [n + 1 - last, n + 1 - first]; lambda <= upper is mu >= 1 / upper.
+      if (inverse && range == 'I')
+        std::tie(first, last) = std::make_pair(p.n + 1 - last, p.n + 1 - first);
+      const double lower  = inverse ? 1.0 / upper : -1.0;
+      const double top    = inverse ? std::numeric_limits<double>::max() : upper;
       const double abstol = all ? 0.0 : 2 * dlamch_("S", 1);
       int                 found = 0, info = 0, ldq = 1, ldz = 1;
       std::vector<double> w(p.n), work(7 * p.n);
       std::vector<int>    iwork(5 * p.n), ifail(p.n);
       double              q = 0, z = 0;
-      dsbgvx_("N", &range, "U", &p.n, &p.bandwidth, &p.bandwidth, k.data(),
-              &ld, m.data(), &ld, &q, &ldq, &lower, &upper, &first, &last,
+      dsbgvx_("N", &range, "U", &p.n, &p.bandwidth, &p.bandwidth, a.data(),
+              &ld, b.data(), &ld, &q, &ldq, &lower, &top, &first, &last,
               &abstol, &found, w.data(), &z, &ldz, work.data(), iwork.data(),
               ifail.data(), &info, 1, 1, 1);
       if (info != 0)
@@ -112,7 +137,31 @@ namespace nsm
                              std::to_string(info) +
                              ") on the generalised eigenproblem K phi = w^2 M phi");
       w.resize(found);
+      if (inverse)
+        {
+          std::reverse(w.begin(), w.end());
+          for (double &l : w)
+            l = 1.0 / l;
+        }
       return w;
+    }
+
+    /// The lowest `count` eigenvalues, each from the form that is accurate
+    /// for it: the stiffness form below sqrt(lambda_1 lambda_max), where the
+    /// two forms' relative errors eps lambda / lambda_1 and eps lambda_max /
+    /// lambda are equal, the mass form above.
+    std::vector<double> lowest_eigenvalues(const BandedPencil &p, const int count)
+    {
+      std::vector<double> low = banded_eigenvalues(p, Factored::stiffness, 1, count, 0.0);
+      const double lambda_max = banded_eigenvalues(p, Factored::mass, p.n, p.n, 0.0).at(0);
+      const double split      = std::sqrt(low.front() * lambda_max);
+      if (low.back() <= split)
+        return low;
+      const std::vector<double> high = banded_eigenvalues(p, Factored::mass, 1, count, 0.0);
+      for (std::size_t j = 0; j < low.size(); ++j)
+        if (low[j] > split)
+          low[j] = high[j];
+      return low;
     }
 
     /// LU factors of K - sigma M in LAPACK general band storage.
@@ -177,12 +226,31 @@ namespace nsm
       return s;
     }
 
-    /// Refines an eigenvalue and returns the mass-normalised mode's value at
-    /// the contact row: two steps of inverse iteration shifted at the LAPACK
-    /// eigenvalue; the Rayleigh update sigma + 1 / (x^T M y) corrects the
-    /// eigenvalue by a quantity that is itself small, so it keeps full
-    /// relative accuracy even for the low modes.
-    double refine_eigenpair(const BandedPencil &p, double &eigenvalue)
+    /// An eigenvalue refined with its mass-normalised mode.
+    struct Eigenpair
+    {
+      double              value;
+      std::vector<double> mode;
+    };
+
+    /// A generic start vector for inverse iteration (a low-discrepancy
+    /// sequence): modes localised in small cells, with nearly no motion at
+    /// any one chosen node, still have a component along it.
+    std::vector<double> generic_vector(const int n)
+    {
+      std::vector<double> x(n);
+      for (int i = 0; i < n; ++i)
+        x[i] = 0.5 + std::fmod(0.6180339887498949 * (i + 1), 1.0);
+      return x;
+    }
+
+    /// Shifted inverse iteration at a LAPACK eigenvalue from `start`. The
+    /// Rayleigh update sigma + 1 / (x^T M y) corrects the eigenvalue by a
+    /// quantity that is itself small, so it keeps full relative accuracy even
+    /// for the low modes.
+    Eigenpair refine_eigenpair(const BandedPencil        &p,
+                               const double               eigenvalue,
+                               const std::vector<double> &start)
     {
       double sigma = eigenvalue;
       ShiftedLU lu(p, sigma);
@@ -196,26 +264,30 @@ namespace nsm
         throw NumericalError("K - w^2 M is singular at the eigenvalue " +
                              std::to_string(eigenvalue) +
                              " and near it: inverse iteration failed");
-      std::vector<double> x(p.n, 1.0);
-      if (p.contact_row >= 0)
-        {
-          std::fill(x.begin(), x.end(), 0.0);
-          x[p.contact_row] = 1.0;
-        }
-      for (int step = 0; step < 2; ++step)
+      Eigenpair            pair{eigenvalue, start};
+      std::vector<double> &x = pair.mode;
+      for (int step = 0; step < 3; ++step)
         {
           const std::vector<double> mx = banded_product(p, p.m, x);
           std::vector<double>       y  = mx;
           lu.solve(y);
           const std::vector<double> my = banded_product(p, p.m, y);
-          if (step == 1)
-            eigenvalue = sigma + dot(x, mx) / dot(x, my);
+          pair.value = sigma + dot(x, mx) / dot(x, my);
           const double norm = std::sqrt(dot(y, my));
           for (double &v : y)
             v /= norm;
           x = std::move(y);
         }
-      return p.contact_row >= 0 ? x[p.contact_row] : 0.0;
+      return pair;
+    }
+
+    /// Whether inverse iteration found eigenpair j and not a neighbour: the
+    /// refined value is nearer to LAPACK's value j than to j - 1 or j + 1.
+    bool resolved(const std::vector<double> &lapack, const std::size_t j, const double refined)
+    {
+      const double distance = std::abs(refined - lapack[j]);
+      return (j == 0 || distance < 0.5 * (lapack[j] - lapack[j - 1])) &&
+             (j + 1 == lapack.size() || distance < 0.5 * (lapack[j + 1] - lapack[j]));
     }
   } // namespace
 
@@ -227,15 +299,18 @@ namespace nsm
     const BandedPencil pencil = make_pencil(discretisation, ends);
     if (count == 0 || count > static_cast<unsigned int>(pencil.n))
       count = pencil.n;
-    ModalData data;
-    data.eigenvalues = banded_eigenvalues(pencil, 1, count, 0.0);
-    if (with_contact_residues)
-      data.contact_residues.resize(count);
-    for (unsigned int j = 0; j < count; ++j)
+    const std::vector<double> lapack = lowest_eigenvalues(pencil, count);
+    ModalData                 data;
+    const std::vector<double> start = generic_vector(pencil.n);
+    for (std::size_t j = 0; j < lapack.size(); ++j)
       {
-        const double phi = refine_eigenpair(pencil, data.eigenvalues[j]);
+        Eigenpair pair = refine_eigenpair(pencil, lapack[j], start);
+        if (!resolved(lapack, j, pair.value))
+          break;
+        data.eigenvalues.push_back(pair.value);
         if (with_contact_residues)
-          data.contact_residues[j] = phi * phi;
+          data.contact_residues.push_back(
+            pencil.contact_row >= 0 ? std::pow(pair.mode[pencil.contact_row], 2) : 0.0);
       }
     return data;
   }
@@ -245,6 +320,7 @@ namespace nsm
                                         const double          omega_max)
   {
     return banded_eigenvalues(make_pencil(discretisation, ends),
+                              Factored::stiffness,
                               0,
                               0,
                               omega_max * omega_max);

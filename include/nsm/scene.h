@@ -102,6 +102,11 @@ namespace nsm
       double       adaptive_tolerance = 1e-8;
       double       adaptive_fraction  = 0.3;
       double       adaptive_band_max  = 0.0; ///< 0: derived from the scene
+      double       roundoff_limit     = 1e-7;
+
+      /// Smallest cell size, relative to L, that keeps the round-off floor
+      /// eps p^2 L / h_min of the stiffness matrix within `roundoff_limit`.
+      double smallest_cell() const;
     } discretisation;
 
     struct Receptance

@@ -26,13 +26,15 @@ namespace nsm
 
   /// The lowest `count` eigenpairs (count = 0: all). Eigenvalues from LAPACK
   /// dsbgvx, each refined, with its mode, by shifted inverse iteration on a
-  /// banded LU; residues only when asked for.
+  /// banded LU; residues only when asked for. Stops before the first
+  /// eigenpair that inverse iteration cannot tell from a neighbour (a cluster
+  /// tighter than LAPACK's accuracy), so it may return fewer than `count`.
   ModalData compute_spectrum(const Discretisation &discretisation,
                              EndCondition          ends,
                              unsigned int          count,
                              bool                  with_contact_residues);
 
-  /// Eigenvalues w_j^2 <= omega_max^2 (unrefined: used to count poles).
+  /// Eigenvalues w_j^2 <= omega_max^2 (unrefined, from the stiffness-factored form, accurate for the low modes: used to count poles).
   std::vector<double> eigenvalues_below(const Discretisation &discretisation,
                                         EndCondition          ends,
                                         double                omega_max);

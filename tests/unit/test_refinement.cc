@@ -32,3 +32,31 @@ TEST(Refinement, GradedMeshShrinksTowardsTheContactEnd)
   EXPECT_NEAR(d.min_cell_size(), s / 8, 1e-14);
   EXPECT_EQ(d.n_dofs(), 11u);
 }
+
+TEST(Refinement, AdaptiveRefinementStopsAtTheRoundOffLimit)
+{
+  // Round-off limit 1e-12 with p = 1: no cell below eps / 1e-12 = 2.2e-4 L.
+  // The tolerance 1e-14 is out of reach, so only the limit stops the
+  // refinement before its 30 steps: halving 0.025 six times gives 3.9e-4,
+  // once more 2e-4. With the limit 1e-7 the same run refines further.
+  for (const double limit : {1e-12, 1e-7})
+    {
+      nsm::Scene scene = testing_helpers::bar_scene("1.5 - x", 1, 40);
+      scene.discretisation.refinement         = nsm::Refinement::adaptive;
+      scene.discretisation.adaptive_steps     = 30;
+      scene.discretisation.adaptive_tolerance = 1e-14;
+      scene.discretisation.roundoff_limit     = limit;
+      const nsm::BarModel bar(scene.bar);
+      nsm::Discretisation d(bar, scene.discretisation);
+      const auto notes = nsm::refine_adaptively(d, scene.discretisation, 2.0);
+      const bool stopped = notes.back().find("stops") != std::string::npos;
+      if (limit == 1e-12)
+        {
+          EXPECT_TRUE(stopped) << notes.back();
+          EXPECT_GE(d.min_cell_size(), scene.discretisation.smallest_cell());
+          EXPECT_LT(d.min_cell_size() / 2, scene.discretisation.smallest_cell());
+        }
+      else
+        EXPECT_LT(d.min_cell_size(), 1e-4);
+    }
+}

@@ -44,7 +44,7 @@ namespace
       {"cells_zero", "subsection Discretisation\n set Cells = 0\nend\n", "Discretisation/Cells", "[1, 1000000]"},
       {"ratio_large", "subsection Discretisation\n subsection Graded\n  set Ratio = 1.5\n end\nend\n", "Graded/Ratio", "0 < ratio <= 1"},
       {"layers_too_many", "subsection Discretisation\n set Cells = 4\n subsection Graded\n  set Layers = 5\n end\nend\n", "Graded/Layers", "[0, 4]"},
-      {"grading_extreme", "subsection Discretisation\n set Cells = 100\n subsection Graded\n  set Ratio = 0.5\n  set Layers = 80\n end\nend\n", "Graded/Layers", "Ratio^Layers >= 1e-8"},
+      {"grading_extreme", "subsection Discretisation\n set Cells = 100\n subsection Graded\n  set Ratio = 0.5\n  set Layers = 80\n end\nend\n", "Graded/Layers", "at most 22 with Ratio = 0.5 and Cells = 100"},
       {"fraction_zero", "subsection Discretisation\n subsection Adaptive\n  set Refine fraction = 0\n end\nend\n", "Refine fraction", "0 < fraction <= 1"},
       {"method_unknown", "subsection Receptance\n set Method = iterative\nend\n", "Method", "direct|modal"},
       {"frequency_negative", "subsection Output\n set Receptance frequencies = 1, -2\nend\n", "Output/Receptance frequencies", ">= 0"},

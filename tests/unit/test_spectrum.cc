@@ -120,3 +120,36 @@ TEST(Spectrum, ConvergesExponentiallyInP)
     }
   EXPECT_LT(best, 1e-13);
 }
+
+TEST(Spectrum, StronglyGradedMeshesKeepTheBesselFrequencies)
+{
+  // The hostile scenes of issue 9: FE_Q(1) on 4000 cells whose last 50 or 60
+  // shrink by 0.8, so the smallest cell is 3.6e-9 L or 3.9e-10 L. The
+  // round-off floor eps p^2 L / h_min is 6e-8 or 5.7e-7 (the second scene
+  // needs Round-off limit >= 5.7e-7). Linear elements resolve w_j to
+  // (w_j h)^2 / 24 <= 1e-7 for the two lowest modes of each end condition
+  // (h = 2.5e-4 L): error bounds 1e-7 + floor. The mass-factored LAPACK form
+  // errs by eps lambda_max ~ 12 eps / h_min^2, far above lambda_1 = 3.7 on
+  // the second mesh: it gave w1 = 3.67 there.
+  for (const auto &[layers, bound] : std::vector<std::pair<unsigned int, double>>{{50, 2e-7},
+                                                                                 {60, 7e-7}})
+    {
+      nsm::Scene scene = testing_helpers::bar_scene("1.5 - x", 1, 4000);
+      scene.discretisation.refinement    = nsm::Refinement::graded;
+      scene.discretisation.graded_ratio  = 0.8;
+      scene.discretisation.graded_layers = layers;
+      const nsm::BarModel       bar(scene.bar);
+      const nsm::Discretisation d(bar, scene.discretisation);
+      const auto free    = nsm::compute_spectrum(d, nsm::EndCondition::clamped_free, 2, false);
+      const auto clamped = nsm::compute_spectrum(d, nsm::EndCondition::clamped_clamped, 2, false);
+      ASSERT_EQ(free.eigenvalues.size(), 2u);
+      ASSERT_EQ(clamped.eigenvalues.size(), 2u);
+      for (unsigned int j = 0; j < 2; ++j)
+        {
+          EXPECT_NEAR(std::sqrt(free.eigenvalues[j]) / exact_clamped_free()[j], 1.0, bound)
+            << layers << " layers, mode " << j + 1;
+          EXPECT_NEAR(std::sqrt(clamped.eigenvalues[j]) / exact_clamped_clamped()[j], 1.0, bound)
+            << layers << " layers, mode " << j + 1;
+        }
+    }
+}
