@@ -46,14 +46,13 @@ namespace nsm
   double BarModel::cross_section(const double x) const
   {
     const double a = section_->value(dealii::Point<1>(x));
-    if (!(std::isfinite(a) && a > 0))
+    if (!(a >= 1 / Scene::magnitude_limit && a <= Scene::magnitude_limit))
       {
         std::ostringstream msg;
         msg.precision(17);
         msg << "parameter 'Bar/Cross section' = '" << expression_
-            << "' is out of range: allowed A(x) > 0 and finite on [0, L], "
-               "but A("
-            << x << ") = " << a;
+            << "' is out of range: allowed A(x) > 0, within [" << 1 / Scene::magnitude_limit
+            << ", " << Scene::magnitude_limit << "] on [0, L], but A(" << x << ") = " << a;
         throw InputError(msg.str());
       }
     return a;

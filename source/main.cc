@@ -59,4 +59,14 @@ int main(int argc, char **argv)
       std::cerr << "nsm-bar: error: " << e.what() << '\n';
       return 4;
     }
+  catch (const char *message) // NOX throws these
+    {
+      std::cerr << "nsm-bar: numerical failure: " << message << '\n';
+      return 3;
+    }
+  catch (...)
+    {
+      std::cerr << "nsm-bar: error: an exception of unknown type\n";
+      return 4;
+    }
 }

@@ -1,0 +1,25 @@
+// Reading a scene file: the file checks and the pattern checks, with
+// messages that name the parameter's full path and its allowed values.
+#pragma once
+
+#include <string>
+
+namespace dealii
+{
+  class ParameterHandler;
+} // namespace dealii
+
+namespace nsm
+{
+  /// Reads the scene file `path` into `prm`, whose entries are declared with
+  /// bounded patterns. The file must be a readable regular file whose
+  /// `include` lines form no cycle. It is parsed with every entry accepted as
+  /// text, then each value is checked against its declared pattern, so that
+  /// a rejection names the entry as Section/Subsection/Name and says its
+  /// allowed values in words. Throws InputError.
+  void read_scene_file(const std::string &path, dealii::ParameterHandler &prm);
+
+  /// A deal.II pattern description in words:
+  /// "[Double 0...1 (inclusive)]" -> "a number in [0, 1]".
+  std::string allowed_values(const std::string &pattern_description);
+} // namespace nsm
