@@ -9,15 +9,6 @@
 
 namespace nsm
 {
-  void make_directory(const std::string &directory)
-  {
-    std::error_code error;
-    std::filesystem::create_directories(directory, error);
-    if (error || !std::filesystem::is_directory(directory))
-      throw InputError("parameter 'Output/Directory' = '" + directory +
-                       "' cannot be created: " + error.message());
-  }
-
   std::string write_csv(const std::string &directory, const CsvTable &table)
   {
     for (const auto &row : table.rows)

@@ -4,6 +4,7 @@
 #include <nsm/field_output.h>
 #include <nsm/fields.h>
 #include <nsm/harmonic_balance.h>
+#include <nsm/output_directory.h>
 #include <nsm/discretisation.h>
 #include <nsm/pipeline.h>
 #include <nsm/receptance.h>
@@ -162,19 +163,23 @@ namespace nsm
              WEXITSTATUS(status) == 0;
     }
 
-    std::vector<std::string> make_plots(const Scene &scene)
+    std::vector<std::string> make_plots(const Scene &scene, const std::string &directory)
     {
       std::ostringstream gap;
       gap.precision(17);
       gap << scene.contact.gap;
-      if (!run_program({NSM_PYTHON, NSM_PLOT_SCRIPT, scene.output.directory, "--gap", gap.str()},
-                       scene.output.directory + "/plots.log"))
-        throw NumericalError("the plotting script failed; see " + scene.output.directory + "/plots.log");
+      const std::string log_path = directory + "/plots.log";
+      const bool ok = run_program({NSM_PYTHON, NSM_PLOT_SCRIPT, directory, "--gap", gap.str()}, log_path);
       std::vector<std::string> files;
-      std::ifstream            log(scene.output.directory + "/plots.log");
-      for (std::string line; std::getline(log, line);)
+      std::string              last;
+      std::ifstream            log(log_path);
+      for (std::string line; std::getline(log, line); last = line)
         if (line.rfind("wrote ", 0) == 0)
           files.push_back(line.substr(6));
+      // The log goes with the failed run's staging directory: its last line is kept.
+      if (!ok)
+        throw NumericalError("the plotting script failed: " + last);
+      files.push_back(log_path);
       return files;
     }
   } // namespace
@@ -197,6 +202,8 @@ namespace nsm
         return report;
       }
 
+    // Checked before any work: an unwritable directory is known now.
+    OutputDirectory output(scene.output.directory);
     std::unique_ptr<Discretisation> discretisation;
     timed(report, "mesh and assembly", [&] {
       discretisation = std::make_unique<Discretisation>(bar, scene.discretisation);
@@ -256,8 +263,7 @@ namespace nsm
       });
 
     timed(report, "output", [&] {
-      const std::string &directory = scene.output.directory;
-      make_directory(directory);
+      const std::string &directory = output.staging();
       for (const CsvTable &table : tables)
         report.files.push_back(write_csv(directory, table));
       const FieldOutputOptions options{scene.field_time_samples(), scene.output.vtk, scene.output.plots};
@@ -270,9 +276,10 @@ namespace nsm
     });
     if (scene.output.plots)
       timed(report, "plots", [&] {
-        for (std::string &f : make_plots(scene))
+        for (std::string &f : make_plots(scene, output.staging()))
           report.files.push_back(std::move(f));
       });
+    report.files = output.commit(report.files);
     return report;
   }
 

@@ -30,7 +30,4 @@ namespace nsm
   /// complete, so no half-written file remains. Returns the path.
   std::string write_atomically(const std::string                         &path,
                                const std::function<void(std::ostream &)> &write);
-
-  /// Creates the directory (and parents) if missing; throws InputError.
-  void make_directory(const std::string &directory);
 } // namespace nsm

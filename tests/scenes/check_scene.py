@@ -262,11 +262,24 @@ def check_plots_shell_free(name, summary):
     assert "end of the Omega range at Omega = 1.93" in summary, "the last point is at Omega max"
 
 
+def snapshot(directory):
+    """Every file under a directory with its content."""
+    files = {}
+    for root, _, names in os.walk(directory):
+        for n in names:
+            path = os.path.join(root, n)
+            with open(path, "rb") as stream:
+                files[os.path.relpath(path, directory)] = stream.read()
+    return files
+
+
 def check_full_disk(name, summary):
     """backbone.csv is larger than 4 KiB: under that file size limit (SIGXFSZ
-    ignored, so writes fail with EFBIG as on a full disk) its write fails."""
+    ignored, so writes fail with EFBIG as on a full disk) its write fails. The
+    directory then still holds the previous complete output, byte for byte,
+    and no staging directory is left beside it."""
     assert os.path.getsize(f"{name}/backbone.csv") > 4096
-    shutil.rmtree(name)
+    before = snapshot(name)
 
     def limit():
         signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
@@ -276,14 +289,9 @@ def check_full_disk(name, summary):
                             capture_output=True, text=True, preexec_fn=limit)
     assert result.returncode == 5, (result.returncode, result.stderr)
     assert "output error" in result.stderr and "backbone.csv" in result.stderr, result.stderr
-    files = os.listdir(name)
-    assert not [f for f in files if f.endswith(".partial")], files
-    for f in files:
-        with open(os.path.join(name, f)) as stream:
-            text = stream.read()
-        assert text.endswith("\n"), f"{f} is truncated"
-        widths = {len(line.split(",")) for line in text.splitlines()}
-        assert len(widths) == 1, f"{f} is truncated"
+    assert len(result.stderr.strip().splitlines()) == 1, result.stderr
+    assert snapshot(name) == before, "the previous output was changed"
+    assert not [f for f in os.listdir(".") if f.startswith(f".{name}.nsm-bar-")], "staging left"
 
 
 def check_nothing_requested(name, summary):
@@ -296,7 +304,9 @@ def check_no_field_outputs(name, summary):
     """A backbone scene without fields, VTK and plots writes none of them and
     spends no time on them."""
     files = sorted(os.listdir(name))
-    assert files == ["backbone.csv", "resonances.csv", "tongues.csv"], files
+    assert files == ["backbone.csv", "nsm-bar.manifest", "resonances.csv", "tongues.csv"], files
+    with open(f"{name}/nsm-bar.manifest") as f:
+        assert sorted(f.read().split()) == ["backbone.csv", "resonances.csv", "tongues.csv"]
     for stage in ("fields", "plots"):
         assert f"  {stage} " not in summary, stage
 

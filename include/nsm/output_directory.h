@@ -1,0 +1,43 @@
+// The output directory of one run, written whole or not at all.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace nsm
+{
+  /// Files go into a hidden staging sibling of `Output/Directory`, which
+  /// commit() swaps in for it in one rename, so the directory holds either
+  /// the previous complete output or the new one, never a mixture, and never
+  /// a file of an earlier run listed as new. A run that fails, or is killed,
+  /// leaves the previous output as it was; its staging directory is removed
+  /// at once, or by the next run into the same directory.
+  class OutputDirectory
+  {
+  public:
+    /// Checks the target and creates the staging directory. The target must
+    /// be missing, empty, or an earlier run's output (it holds the manifest),
+    /// so that no file nsm-bar did not write is ever replaced. Throws
+    /// InputError naming Output/Directory.
+    explicit OutputDirectory(const std::string &target);
+    ~OutputDirectory();
+    OutputDirectory(const OutputDirectory &) = delete;
+    OutputDirectory &operator=(const OutputDirectory &) = delete;
+
+    /// Where this run writes its files.
+    const std::string &staging() const { return staging_; }
+
+    /// Writes the manifest of `files` (paths under staging()), swaps the
+    /// staging directory in and removes the previous output. Returns the
+    /// files' final paths. Throws OutputError.
+    std::vector<std::string> commit(const std::vector<std::string> &files);
+
+    /// The file every nsm-bar output directory holds: the files it lists.
+    static constexpr const char *manifest = "nsm-bar.manifest";
+
+  private:
+    std::string target_;
+    std::string staging_;
+    bool        committed_ = false;
+  };
+} // namespace nsm
