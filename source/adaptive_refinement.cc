@@ -1,4 +1,5 @@
 #include <nsm/adaptive_refinement.h>
+#include <nsm/progress.h>
 #include <nsm/receptance.h>
 
 #include <algorithm>
@@ -17,7 +18,8 @@ namespace nsm
 
   std::vector<std::string> refine_adaptively(Discretisation              &d,
                                              const Scene::Discretisation &params,
-                                             const double                 band_max)
+                                             const double                 band_max,
+                                             Progress                    *progress)
   {
     const std::vector<double> band = band_frequencies(band_max);
     const Scene::Receptance   direct{ReceptanceMethod::direct, 0};
@@ -43,6 +45,8 @@ namespace nsm
              << " DoFs, estimated relative error of gamma over [0, " << band_max
              << "]: " << error / scale;
         notes.push_back(note.str());
+        if (progress)
+          progress->update([&] { return note.str(); });
         if (error <= params.adaptive_tolerance * scale || step == params.adaptive_steps)
           return notes;
         if (d.min_cell_size() / 2 < params.smallest_cell() * d.bar().length())

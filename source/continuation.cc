@@ -1,4 +1,5 @@
 #include <nsm/continuation.h>
+#include <nsm/progress.h>
 #include <nsm/main_branch.h>
 
 #include <algorithm>
@@ -94,6 +95,7 @@ namespace nsm
         , direction_(branch_direction(scene))
         , near_(direction_ > 0 ? scene.continuation.omega_min : scene.continuation.omega_max)
         , far_(direction_ > 0 ? scene.continuation.omega_max : scene.continuation.omega_min)
+        , progress_("continuation", scene.output.progress_every)
       {}
 
       /// A converged solve becomes a point only if it is a genuine contact
@@ -224,8 +226,15 @@ namespace nsm
       }
 
     private:
-      bool full(const Backbone &backbone) const
+      /// Called after each point: Max steps reached? Also reports progress.
+      bool full(const Backbone &backbone)
       {
+        progress_.update([&] {
+          std::ostringstream s;
+          s << backbone.points.size() << " points, Omega = " << backbone.points.back().omega
+            << " (range " << near_ << " to " << far_ << "), " << backbone.leaps << " leaps";
+          return s.str();
+        });
         return backbone.points.size() >= scene_.continuation.max_steps;
       }
 
@@ -412,6 +421,7 @@ namespace nsm
       const double                          near_, far_; ///< the range's ends, first met and last
       double                                span_ = 0;   ///< of the range covered from the start
       std::optional<std::size_t>            first_fold_; ///< in the current segment
+      Progress                              progress_;
     };
   } // namespace
 

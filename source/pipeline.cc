@@ -7,6 +7,7 @@
 #include <nsm/output_directory.h>
 #include <nsm/discretisation.h>
 #include <nsm/pipeline.h>
+#include <nsm/progress.h>
 #include <nsm/receptance.h>
 #include <nsm/spectrum.h>
 
@@ -210,8 +211,9 @@ namespace nsm
     });
     if (scene.discretisation.refinement == Refinement::adaptive)
       timed(report, "adaptive refinement", [&] {
+        Progress progress("adaptive refinement", scene.output.progress_every);
         for (std::string &note :
-             refine_adaptively(*discretisation, scene.discretisation, refinement_band(scene)))
+             refine_adaptively(*discretisation, scene.discretisation, refinement_band(scene), &progress))
           report.notes.push_back(std::move(note));
       });
     report.notes.push_back(describe(*discretisation));
@@ -255,11 +257,19 @@ namespace nsm
     if (needs_fields)
       timed(report, "fields", [&] {
         const auto &o = scene.output;
+        Progress    progress("fields", o.progress_every);
+        const auto  report_count = [&] { return std::to_string(fields.size()) + " fields"; };
         for (const double omega : o.fields_at)
-          fields.emplace_back(*hb, *discretisation, solve_on_branch(*hb, scene, backbone, omega),
-                              scene.contact.sign);
+          {
+            fields.emplace_back(*hb, *discretisation, solve_on_branch(*hb, scene, backbone, omega),
+                                scene.contact.sign);
+            progress.update(report_count);
+          }
         for (std::size_t i = 0; o.fields_every > 0 && i < backbone.points.size(); i += o.fields_every)
-          fields.emplace_back(*hb, *discretisation, backbone.points[i], scene.contact.sign);
+          {
+            fields.emplace_back(*hb, *discretisation, backbone.points[i], scene.contact.sign);
+            progress.update(report_count);
+          }
       });
 
     timed(report, "output", [&] {
@@ -267,9 +277,15 @@ namespace nsm
       for (const CsvTable &table : tables)
         report.files.push_back(write_csv(directory, table));
       const FieldOutputOptions options{scene.field_time_samples(), scene.output.vtk, scene.output.plots};
+      Progress progress("output", scene.output.progress_every);
       for (std::size_t i = 0; i < fields.size(); ++i)
-        for (std::string &f : write_field(directory, i, fields[i], *discretisation, options))
-          report.files.push_back(std::move(f));
+        {
+          for (std::string &f : write_field(directory, i, fields[i], *discretisation, options))
+            report.files.push_back(std::move(f));
+          progress.update([&] {
+            return std::to_string(i + 1) + " of " + std::to_string(fields.size()) + " fields written";
+          });
+        }
       if (!fields.empty())
         for (std::string &f : write_field_collection(directory, fields, scene.output.vtk))
           report.files.push_back(std::move(f));
