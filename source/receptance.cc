@@ -109,7 +109,9 @@ namespace nsm
     solver.solve(h);
     for (const double v : h)
       if (!std::isfinite(v))
-        throw NumericalError(pole_message(omega));
+        throw NumericalError(std::isfinite(omega * omega * discretisation_.mass().linfty_norm()) ?
+                               pole_message(omega) :
+                               "w^2 M overflows at w = " + std::to_string(omega));
     return h;
   }
 

@@ -123,6 +123,8 @@ def snapshot(directory):
 
 def complete(directory):
     """A whole output: exactly the files its manifest lists."""
+    if not os.path.isfile(os.path.join(directory, "nsm-bar.manifest")):
+        return False
     with open(os.path.join(directory, "nsm-bar.manifest")) as f:
         manifest = set(f.read().split())
     return listing(directory) == manifest | {"nsm-bar.manifest"}
@@ -207,8 +209,8 @@ BACKBONE = SMALL + section("Continuation", Omega_min=1.5, Omega_max=1.93, Energy
 
 def rows(executable):
     """name, scene text, exit code, words the one-line message must hold;
-    optional: setup(row), check(row), preexec, arguments, files the run may
-    leave (besides the row's own)."""
+    optional: setup(row), check(row), preexec, env, files the run may leave
+    (besides the row's own)."""
     graded = lambda layers: section("Discretisation", Cells=4000, Refinement="graded") + \
         "subsection Discretisation\n subsection Graded\n  set Ratio = 0.8\n" \
         f"  set Layers = {layers}\n end\nend\n"
@@ -220,6 +222,10 @@ def rows(executable):
         dict(name="shell_injection", scene=BACKBONE + output(
             Directory="out'; touch INJECTED; echo '", Backbone="true", Plots="true"),
              code=0, check=no_injection, leaves={"out'; touch INJECTED; echo '"}),
+        dict(name="plot_fails", scene=BACKBONE + output(Directory="out", Backbone="true",
+                                                        Plots="true"),
+             env={"MPLBACKEND": "no_such_backend"}, code=3,
+             words=["plotting script failed"]),
         # 2. full disk (files limited to 1 KiB; backbone.csv needs more): exit 5,
         # nothing left
         dict(name="full_disk", scene=BACKBONE + output(Directory="out", Backbone="true"),
@@ -329,7 +335,8 @@ def run_row(executable, row):
             row["setup"](row)
         before = listing(".")
         result = subprocess.run([executable, row["scene_file"]], capture_output=True,
-                                text=True, preexec_fn=row.get("preexec"), timeout=600)
+                                text=True, preexec_fn=row.get("preexec"), timeout=600,
+                                env={**os.environ, **row.get("env", {})})
         row["stdout"], row["stderr"] = result.stdout, result.stderr
         name = row["name"]
         assert result.returncode == row["code"], \
@@ -358,9 +365,9 @@ def main():
         try:
             run_row(executable, row)
             print(f"ok   {row['name']} ({time.time() - start:.1f} s)")
-        except AssertionError as e:
+        except Exception as e:  # an assertion, or a row whose setup broke
             failures.append(str(e))
-            print(f"FAIL {e}")
+            print(f"FAIL {row['name']}: {e}")
     if failures:
         sys.exit(f"{len(failures)} hostile inputs mishandled")
     print("all hostile inputs handled")
