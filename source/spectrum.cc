@@ -149,19 +149,33 @@ namespace nsm
     /// The lowest `count` eigenvalues, each from the form that is accurate
     /// for it: the stiffness form below sqrt(lambda_1 lambda_max), where the
     /// two forms' relative errors eps lambda / lambda_1 and eps lambda_max /
-    /// lambda are equal, the mass form above.
+    /// lambda are equal, the mass form above. Bisection (ranges 'I') finds a
+    /// few eigenvalues cheaply, QR (all of them) many: each form is asked
+    /// only for its own share.
     std::vector<double> lowest_eigenvalues(const BandedPencil &p, const int count)
     {
-      std::vector<double> low = banded_eigenvalues(p, Factored::stiffness, 1, count, 0.0);
+      const double lambda_1   = banded_eigenvalues(p, Factored::stiffness, 1, 1, 0.0).at(0);
       const double lambda_max = banded_eigenvalues(p, Factored::mass, p.n, p.n, 0.0).at(0);
-      const double split      = std::sqrt(low.front() * lambda_max);
-      if (low.back() <= split)
-        return low;
-      const std::vector<double> high = banded_eigenvalues(p, Factored::mass, 1, count, 0.0);
-      for (std::size_t j = 0; j < low.size(); ++j)
-        if (low[j] > split)
-          low[j] = high[j];
-      return low;
+      const double split      = std::sqrt(lambda_1 * lambda_max);
+      if (count < p.n)
+        {
+          std::vector<double> low = banded_eigenvalues(p, Factored::stiffness, 1, count, 0.0);
+          if (low.back() <= split)
+            return low;
+          const std::vector<double> high = banded_eigenvalues(p, Factored::mass, 1, count, 0.0);
+          for (std::size_t j = 0; j < low.size(); ++j)
+            if (low[j] > split)
+              low[j] = high[j];
+          return low;
+        }
+      std::vector<double> all = banded_eigenvalues(p, Factored::mass, 1, p.n, 0.0);
+      const int below = std::upper_bound(all.begin(), all.end(), split) - all.begin();
+      if (below > 0)
+        {
+          const std::vector<double> low = banded_eigenvalues(p, Factored::stiffness, 1, below, 0.0);
+          std::copy(low.begin(), low.end(), all.begin());
+        }
+      return all;
     }
 
     /// LU factors of K - sigma M in LAPACK general band storage.
@@ -198,96 +212,47 @@ namespace nsm
       bool                singular_ = false;
     };
 
-    std::vector<double> banded_product(const BandedPencil       &p,
-                                       const std::vector<double> &ab,
-                                       const std::vector<double> &x)
+    /// gamma(0) = e_N^T K^{-1} e_N from a band LU of K.
+    double static_receptance(const BandedPencil &p)
     {
-      // Upper band storage: column j holds A(i, j) for j - bandwidth <= i <= j.
-      const int           ld = p.bandwidth + 1;
-      std::vector<double> y(p.n, 0.0);
-      for (int j = 0; j < p.n; ++j)
-        {
-          const double *column = &ab[j * ld + p.bandwidth - j];
-          y[j] += column[j] * x[j];
-          for (int i = std::max(0, j - p.bandwidth); i < j; ++i)
-            {
-              y[i] += column[i] * x[j];
-              y[j] += column[i] * x[i];
-            }
-        }
-      return y;
-    }
-
-    double dot(const std::vector<double> &a, const std::vector<double> &b)
-    {
-      double s = 0;
-      for (std::size_t i = 0; i < a.size(); ++i)
-        s += a[i] * b[i];
-      return s;
-    }
-
-    /// An eigenvalue refined with its mass-normalised mode.
-    struct Eigenpair
-    {
-      double              value;
-      std::vector<double> mode;
-    };
-
-    /// A generic start vector for inverse iteration (a low-discrepancy
-    /// sequence): modes localised in small cells, with nearly no motion at
-    /// any one chosen node, still have a component along it.
-    std::vector<double> generic_vector(const int n)
-    {
-      std::vector<double> x(n);
-      for (int i = 0; i < n; ++i)
-        x[i] = 0.5 + std::fmod(0.6180339887498949 * (i + 1), 1.0);
-      return x;
-    }
-
-    /// Shifted inverse iteration at a LAPACK eigenvalue from `start`. The
-    /// Rayleigh update sigma + 1 / (x^T M y) corrects the eigenvalue by a
-    /// quantity that is itself small, so it keeps full relative accuracy even
-    /// for the low modes.
-    Eigenpair refine_eigenpair(const BandedPencil        &p,
-                               const double               eigenvalue,
-                               const std::vector<double> &start)
-    {
-      double sigma = eigenvalue;
-      ShiftedLU lu(p, sigma);
-      // An exactly zero pivot: shift off the eigenvalue by a growing amount.
-      for (double shift = 1e-13; lu.singular() && shift < 1e-7; shift *= 10)
-        {
-          sigma = eigenvalue * (1 + shift);
-          lu    = ShiftedLU(p, sigma);
-        }
+      const ShiftedLU lu(p, 0.0);
       if (lu.singular())
-        throw NumericalError("K - w^2 M is singular at the eigenvalue " +
-                             std::to_string(eigenvalue) +
-                             " and near it: inverse iteration failed");
-      Eigenpair            pair{eigenvalue, start};
-      std::vector<double> &x = pair.mode;
-      for (int step = 0; step < 3; ++step)
-        {
-          const std::vector<double> mx = banded_product(p, p.m, x);
-          std::vector<double>       y  = mx;
-          lu.solve(y);
-          const std::vector<double> my = banded_product(p, p.m, y);
-          pair.value = sigma + dot(x, mx) / dot(x, my);
-          const double norm = std::sqrt(dot(y, my));
-          for (double &v : y)
-            v /= norm;
-          x = std::move(y);
-        }
-      return pair;
+        throw NumericalError("the stiffness matrix K is singular: no static receptance");
+      std::vector<double> x(p.n, 0.0);
+      x[p.contact_row] = 1.0;
+      lu.solve(x);
+      return x[p.contact_row];
     }
 
-    /// Whether inverse iteration found eigenpair j and not a neighbour: the
-    /// refined value is nearer to LAPACK's value j than to j - 1 or j + 1.
-    bool resolved(const std::vector<double> &lapack, const std::size_t j, const double refined)
+    /// The residues r_j = phi_j(L)^2 of gamma(w) = sum_j r_j / (lambda_j - w^2)
+    /// from the spectra alone. gamma is a ratio of determinants,
+    /// gamma = gamma(0) (prod lambda_i / prod mu_k) prod (mu_k - w^2) / prod (lambda_i - w^2),
+    /// with lambda the clamped-free eigenvalues (its poles) and mu the
+    /// clamped-clamped ones (its zeros), which interlace. Pairing each mu_k
+    /// with its neighbour lambda makes every factor of r_j a ratio near 1:
+    /// r_j = gamma(0) lambda_j prod_k (1 - lambda_j / mu_k) / (1 - lambda_j / lambda_k'),
+    /// k' = k below j and k + 1 from j on.
+    std::vector<double> contact_residues(const std::vector<double> &lambda,
+                                         const std::vector<double> &mu,
+                                         const double               gamma0,
+                                         const std::size_t          count)
     {
-      const double distance = std::abs(refined - lapack[j]);
-      return (j == 0 || distance < 0.5 * (lapack[j] - lapack[j - 1])) &&
-             (j + 1 == lapack.size() || distance < 0.5 * (lapack[j + 1] - lapack[j]));
+      std::vector<double> r(count);
+      for (std::size_t j = 0; j < count; ++j)
+        {
+          double product  = gamma0 * lambda[j];
+          int    exponent = 0;
+          for (std::size_t k = 0; k < mu.size(); ++k)
+            {
+              const double pole = lambda[k < j ? k : k + 1];
+              product *= (1 - lambda[j] / mu[k]) / (1 - lambda[j] / pole);
+              int e;
+              product = std::frexp(product, &e); // no overflow over thousands of factors
+              exponent += e;
+            }
+          r[j] = std::ldexp(product, exponent);
+        }
+      return r;
     }
   } // namespace
 
@@ -299,18 +264,19 @@ namespace nsm
     const BandedPencil pencil = make_pencil(discretisation, ends);
     if (count == 0 || count > static_cast<unsigned int>(pencil.n))
       count = pencil.n;
-    const std::vector<double> lapack = lowest_eigenvalues(pencil, count);
-    ModalData                 data;
-    const std::vector<double> start = generic_vector(pencil.n);
-    for (std::size_t j = 0; j < lapack.size(); ++j)
+    ModalData data;
+    data.eigenvalues = lowest_eigenvalues(pencil, count);
+    if (with_contact_residues)
       {
-        Eigenpair pair = refine_eigenpair(pencil, lapack[j], start);
-        if (!resolved(lapack, j, pair.value))
-          break;
-        data.eigenvalues.push_back(pair.value);
-        if (with_contact_residues)
-          data.contact_residues.push_back(
-            pencil.contact_row >= 0 ? std::pow(pair.mode[pencil.contact_row], 2) : 0.0);
+        // Residues need every pole and zero, whatever `count`.
+        const std::vector<double> lambda =
+          count == static_cast<unsigned int>(pencil.n) ? data.eigenvalues :
+                                                         lowest_eigenvalues(pencil, pencil.n);
+        const BandedPencil clamped = make_pencil(discretisation, EndCondition::clamped_clamped);
+        data.contact_residues = contact_residues(lambda,
+                                                 lowest_eigenvalues(clamped, clamped.n),
+                                                 static_receptance(pencil),
+                                                 count);
       }
     return data;
   }

@@ -24,11 +24,10 @@ namespace nsm
     std::vector<double> contact_residues;
   };
 
-  /// The lowest `count` eigenpairs (count = 0: all). Eigenvalues from LAPACK
-  /// dsbgvx, each refined, with its mode, by shifted inverse iteration on a
-  /// banded LU; residues only when asked for. Stops before the first
-  /// eigenpair that inverse iteration cannot tell from a neighbour (a cluster
-  /// tighter than LAPACK's accuracy), so it may return fewer than `count`.
+  /// The lowest `count` eigenvalues (count = 0: all), from LAPACK dsbgvx in
+  /// the form accurate for each (method.md), and with them, if asked (for
+  /// the clamped-free bar), the residues phi_j(L)^2 from the clamped-free and
+  /// clamped-clamped spectra and gamma(0): no eigenvector is computed.
   ModalData compute_spectrum(const Discretisation &discretisation,
                              EndCondition          ends,
                              unsigned int          count,
