@@ -90,7 +90,7 @@ def check_backbone(name, below_w1):
         assert (omega < W1) if below_w1 else (omega > W1), omega
         assert energy > 0 and force > 0 and 0 < fraction < 1
         assert residual <= TOLERANCE, residual
-        assert iterations >= 0
+        assert iterations >= 1, "sequential points take at least one Newton iteration"
         assert spread < 0.2, "energy varies over the period by the truncation only"
     check_full_precision(f"{name}/backbone.csv")
     return points
@@ -177,6 +177,8 @@ def check_fields_vtk(name, summary):
         # Contact end never beyond the wall by more than the truncation:
         # measured 1.3 % of g0 at M = 40, tolerance 2 %.
         assert max(r[1] for r in tip) <= 1.02 * gap, max(r[1] for r in tip) / gap
+        # ... and reaches it: a contact motion touches the wall at u = g0.
+        assert max(r[1] for r in tip) >= 0.98 * gap, max(r[1] for r in tip) / gap
 
         points, arrays = read_vtu(f"{name}/field_{k}.vtu")
         u = arrays["displacement"]

@@ -97,6 +97,15 @@ TEST(Backbone, PhysicalSeedBranchLeavesGrazingUpwards)
   const auto backbone = model.backbone();
   ASSERT_GT(backbone.points.size(), 50u);
   const double linear = backbone.points.front().measures.energy;
+  // Independent of the contact law: at grazing the motion is the first linear
+  // mode with u(L) = g0, of energy w1^2 g0^2 / (2 phi_1(L)^2). The start lies
+  // 1e-5 relative above w1 with a brief impact (contact fraction 1.4 %):
+  // measured 1.1e-3 above the linear energy, so 1 % bounds it, while a wrong
+  // gap or residue is off by tens of per cent (a wall at g0 / 2: by 75 %).
+  const auto modes =
+    nsm::compute_spectrum(model.discretisation, nsm::EndCondition::clamped_free, 1, true);
+  const double g0 = model.scene.contact.gap;
+  EXPECT_NEAR(linear / (modes.eigenvalues[0] * g0 * g0 / (2 * modes.contact_residues[0])), 1.0, 1e-2);
   for (const auto &p : backbone.points)
     {
       EXPECT_GT(p.omega, w1_seed) << "energy " << p.measures.energy;
@@ -155,6 +164,18 @@ TEST(Backbone, SequentialAndArclengthAgree)
       const auto pa = nsm::solve_on_branch(arclength.hb, scene, ba, omega);
       EXPECT_NEAR(pa.measures.energy / ps.measures.energy, 1.0, 1e-9) << "W = " << omega;
     }
+  // LOCA's own points, as it wrote them: each is the sequential branch's
+  // solution at its W. Both meet the residual tolerance 1e-10 with a Jacobian
+  // of order 1, so their energies agree to 1e-8.
+  unsigned int compared = 0;
+  for (const auto &pa : ba.points)
+    if (pa.segment == 0 && pa.omega > bs.points.front().omega && pa.omega < 1.69)
+      {
+        const auto ps = nsm::solve_on_branch(sequential.hb, scene, bs, pa.omega);
+        EXPECT_NEAR(pa.measures.energy / ps.measures.energy, 1.0, 1e-8) << "W = " << pa.omega;
+        ++compared;
+      }
+  EXPECT_GT(compared, 10u);
 }
 
 TEST(Backbone, ArclengthGoesRoundAFoldAtAnInternalResonance)

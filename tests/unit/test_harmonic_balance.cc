@@ -103,19 +103,21 @@ TEST(HarmonicBalance, BoundedThroughPolesAndZerosOfGamma)
   const double zero = 9.40759441432538 / 5;                           // w_cc,3 / 5
   for (const double w : {pole, zero})
     {
-      std::vector<double> r0, j0, d0, r1;
+      std::vector<double> r0, j0, d0, r1, j1, d1;
       for (const double shift : {-1e-9, 0.0, 1e-9})
         {
           hb.set_omega(w + shift);
-          hb.evaluate(point.x, &r1, &j0, &d0);
-          for (const auto *v : {&r1, &j0, &d0})
+          hb.evaluate(point.x, &r1, &j1, &d1);
+          for (const auto *v : {&r1, &j1, &d1})
             for (const double value : *v)
               ASSERT_TRUE(std::isfinite(value)) << "W = " << w + shift;
           if (!r0.empty())
             {
-              EXPECT_LT(relative_difference(r1, r0), 1e-6) << "W = " << w;
+              EXPECT_LT(relative_difference(r1, r0), 1e-6) << "R, W = " << w;
+              EXPECT_LT(relative_difference(j1, j0), 1e-6) << "J, W = " << w;
+              EXPECT_LT(relative_difference(d1, d0), 1e-6) << "dR/dW, W = " << w;
             }
-          r0 = r1;
+          r0 = r1, j0 = j1, d0 = d1;
         }
     }
 }

@@ -31,6 +31,19 @@ TEST(Refinement, GradedMeshShrinksTowardsTheContactEnd)
   EXPECT_NEAR(d.max_cell_size(), s, 1e-14);
   EXPECT_NEAR(d.min_cell_size(), s / 8, 1e-14);
   EXPECT_EQ(d.n_dofs(), 11u);
+  // Where: the cell at the contact end x = L is the smallest, the one at
+  // the clamp x = 0 the largest.
+  for (const auto &cell : d.dof_handler().active_cell_iterators())
+    {
+      if (std::abs(cell->vertex(1)[0] - 1.0) < 1e-14)
+        {
+          EXPECT_NEAR(cell->diameter(), s / 8, 1e-14);
+        }
+      if (std::abs(cell->vertex(0)[0]) < 1e-14)
+        {
+          EXPECT_NEAR(cell->diameter(), s, 1e-14);
+        }
+    }
 }
 
 TEST(Refinement, AdaptiveRefinementStopsAtTheRoundOffLimit)

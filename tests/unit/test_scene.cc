@@ -26,7 +26,7 @@ namespace
   {
     return {
       {"unknown_parameter", "subsection Bar\n set Lenght = 1\nend\n", "Lenght", "declared"},
-      {"unknown_subsection", "subsection Baar\n set Length = 1\nend\n", "Baar", ""},
+      {"unknown_subsection", "subsection Baar\n set Length = 1\nend\n", "Baar", "no such subsection"},
       {"malformed_section", "subsection Bar\n set Cross section = 1.5 - * x\nend\n", "Bar/Cross section", "expression"},
       {"unknown_variable", "subsection Bar\n set Cross section = 1.5 - y\nend\n", "Bar/Cross section", "expression"},
       {"section_negative", "subsection Bar\n set Cross section = 0.5 - x\nend\n", "Bar/Cross section", "A(x) > 0"},
