@@ -1,0 +1,104 @@
+#!/usr/bin/env python3
+"""Plants deliberate bugs, one at a time, and checks that the suite catches each.
+
+usage: run_mutations.py [WORK_DIRECTORY]   (default /tmp/nsm-mutations)
+Copies the tracked sources of this repository into WORK_DIRECTORY/src, builds
+them once, checks that the unmutated suite passes, then for each mutation:
+applies it, rebuilds (only what it touches), runs CTest, and restores the
+file. Fails unless every mutation makes at least one test fail. Takes about
+15 minutes on 2 cores; not part of CTest.
+"""
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+# (name, file, text, replacement): the text must occur exactly once.
+MUTATIONS = [
+    ("wall at g0 / 2", "source/harmonic_balance.cc",
+     ", gap_(scene.contact.gap)", ", gap_(0.5 * scene.contact.gap)"),
+    ("gap doubled", "source/harmonic_balance.cc",
+     ", gap_(scene.contact.gap)", ", gap_(2 * scene.contact.gap)"),
+    ("force sign flipped", "source/harmonic_balance.cc",
+     "sign_(scene.contact.sign == ForceSign::physical ? 1.0 : -1.0)",
+     "sign_(scene.contact.sign == ForceSign::physical ? -1.0 : 1.0)"),
+    ("graded layer at the clamp", "source/discretisation.cc",
+     "sizes[i] = std::pow(params.graded_ratio, i - first + 1);",
+     "sizes[params.cells - 1 - i] = std::pow(params.graded_ratio, i - first + 1);"),
+    ("energy off by 1 %", "source/harmonic_balance.cc",
+     "result.energy = ec[0];", "result.energy = 1.01 * ec[0];"),
+    ("one Gram-matrix entry 1 % wrong", "source/harmonic_balance.cc",
+     "gram[i * n + j] += norm * coefficient * (sine_term ? is[m] : ic[m]);",
+     "gram[i * n + j] += (i == 1 && j == 2 ? 1.01 : 1.0) * norm * coefficient * "
+     "(sine_term ? is[m] : ic[m]);"),
+    ("receptance derivative 1 % wrong", "source/receptance.cc",
+     "value.dgamma_domega2 += term / distance;",
+     "value.dgamma_domega2 += 1.01 * term / distance;"),
+]
+
+
+def run(command, cwd, log):
+    with open(log, "w") as out:
+        return subprocess.run(command, cwd=cwd, stdout=out, stderr=subprocess.STDOUT).returncode
+
+
+def failed_tests(build, log):
+    run(["ctest", "-j2", "--timeout", "600"], build, log)
+    with open(log) as f:
+        text = f.read()
+    return re.findall(r"^\s*\d+ - (\S+) \(", text, re.MULTILINE)
+
+
+def main():
+    work = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else "/tmp/nsm-mutations")
+    src, build = os.path.join(work, "src"), os.path.join(work, "build")
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(build)
+    tracked = subprocess.run(["git", "ls-files"], cwd=ROOT, capture_output=True, text=True,
+                             check=True).stdout.split()
+    for path in tracked:
+        os.makedirs(os.path.dirname(os.path.join(src, path)) or src, exist_ok=True)
+        shutil.copy2(os.path.join(ROOT, path), os.path.join(src, path))
+    log = os.path.join(work, "build.log")
+    if run(["cmake", src, "-DCMAKE_BUILD_TYPE=Release"], build, log) or \
+            run(["make", "-j2"], build, log):
+        sys.exit(f"the unmutated sources do not build: see {log}")
+    baseline = failed_tests(build, os.path.join(work, "baseline.log"))
+    if baseline:
+        sys.exit(f"the unmutated suite fails: {baseline}")
+    print("unmutated: all tests pass", flush=True)
+    survivors = []
+    for name, path, text, replacement in MUTATIONS:
+        start = time.time()
+        file = os.path.join(src, path)
+        with open(file) as f:
+            original = f.read()
+        assert original.count(text) == 1, f"{name}: the text occurs {original.count(text)} times"
+        with open(file, "w") as f:
+            f.write(original.replace(text, replacement))
+        try:
+            slug = re.sub(r"\W+", "_", name)
+            if run(["make", "-j2"], build, os.path.join(work, slug + ".build.log")):
+                failures = ["(does not build)"]
+            else:
+                failures = failed_tests(build, os.path.join(work, slug + ".log"))
+        finally:
+            with open(file, "w") as f:
+                f.write(original)
+        caught = bool(failures)
+        shown = ", ".join(failures[:6]) + (" ..." if len(failures) > 6 else "")
+        print(f"{'caught  ' if caught else 'SURVIVED'} {name}: {len(failures)} failing "
+              f"({shown}) [{time.time() - start:.0f} s]", flush=True)
+        if not caught:
+            survivors.append(name)
+    if survivors:
+        sys.exit(f"mutations not caught: {survivors}")
+    print("every mutation is caught")
+
+
+if __name__ == "__main__":
+    main()
