@@ -173,7 +173,11 @@ namespace nsm
           }
         std::ostringstream s;
         s << "no converged non-trivial solution within 5 % of grazing of clamped-free mode "
-          << mode << " (w = " << w << ") and before the end of Continuation/Omega min..max";
+          << mode << " (w = " << w << ") and before the end of Continuation/Omega min..max"
+          << "; Contact/Alpha = " << scene_.contact.alpha << " gives alpha gamma(0) = "
+          << scene_.contact.alpha * hb_.receptance()(0.0).gamma
+          << " (the contact law's switch lambda - alpha g balances force and gap for alpha "
+             "gamma(0) near 1, where the start converges most easily)";
         throw NumericalError(s.str());
       }
 

@@ -1,0 +1,129 @@
+#!/usr/bin/env python3
+"""Runs a hard case, tests/hard/NAME.prm, and checks what it wrote.
+
+usage: check_hard.py NSM_BAR HARD_DIRECTORY NAME
+Every case: exit 0, and every written point meets the residual tolerance, has
+a finite positive energy, lies on the physical side of grazing (above w_j of
+its mode) and carries a branch label; the run summary reports the points.
+Cases with a scaling law (gaps) are also run at the default gap g0 = 1e-3,
+with both continuation methods, and their energies must scale as g0^2 to
+1e-10 at equal Omega. Uses the standard library only.
+"""
+import csv
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+TOLERANCE = 1e-10  # Harmonic balance/Tolerance (default)
+
+
+def run(executable, scene_text, name, failure=None):
+    """The run's summary; with `failure`, the run must instead end cleanly
+    (exit 3, one line on stderr) with a message holding these words."""
+    shutil.rmtree(name, ignore_errors=True)
+    path = name + ".prm"
+    with open(path, "w") as f:
+        f.write(scene_text)
+    result = subprocess.run([executable, path], capture_output=True, text=True, timeout=900)
+    if failure:
+        lines = result.stderr.strip().splitlines()
+        assert result.returncode == 3 and len(lines) == 1 and failure in lines[0], \
+            f"{name}: exit {result.returncode}, expected a failure naming {failure}: {result.stderr}"
+        assert not os.path.exists(name), f"{name}: a failed run wrote files"
+        return None
+    assert result.returncode == 0, f"{name}: exit {result.returncode}: {result.stderr.strip()}"
+    return result.stdout
+
+
+def rows(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def setting(text, name):
+    match = re.search(rf"set {name}\s*=\s*(\S+)", text)
+    return match.group(1) if match else None
+
+
+def check_points(name, text):
+    mode = int(setting(text, "Mode") or 1)
+    w = float(rows(f"{name}/spectrum.csv")[mode - 1]["omega_clamped_free"])
+    points = rows(f"{name}/backbone.csv")
+    assert len(points) >= 3, f"{name}: {len(points)} points"
+    for p in points:
+        omega, energy, residual = float(p["Omega"]), float(p["energy"]), float(p["residual"])
+        assert residual <= TOLERANCE, f"{name}: residual {residual} at {omega}"
+        assert math.isfinite(energy) and energy > 0, f"{name}: energy {energy} at {omega}"
+        assert omega > w, f"{name}: Omega {omega} below grazing w_{mode} = {w}"
+        assert p["branch"] in ("main", "tongue"), p["branch"]
+    return points
+
+
+def check_gap_scaling(executable, name, text):
+    """Energies scale as g0^2 at equal Omega, in both methods."""
+    gap = float(setting(text, "Gap"))
+    for method in ("sequential", "arclength"):
+        scaled = text + f"subsection Continuation\n  set Method = {method}\nend\n"
+        reference = re.sub(r"set Gap = \S+", "set Gap = 1e-3", scaled)
+        reference = re.sub(r"set Energy max = \S+", "set Energy max = 1", reference)
+        reference = reference.replace(f"Directory = {name}", f"Directory = {name}_reference")
+        run(executable, scaled, name)
+        run(executable, reference, name + "_reference")
+        a = {p["Omega"]: float(p["energy"]) for p in rows(f"{name}/backbone.csv")}
+        b = {p["Omega"]: float(p["energy"]) for p in rows(f"{name}_reference/backbone.csv")}
+        common = set(a) & set(b)
+        assert len(common) >= 3, f"{name} ({method}): {len(common)} points at equal Omega"
+        factor = (gap / 1e-3) ** 2
+        for omega in common:
+            assert abs(a[omega] / (factor * b[omega]) - 1) <= 1e-10, \
+                f"{name} ({method}): E / (g0^2 scaled E) - 1 = {a[omega] / (factor * b[omega]) - 1} at {omega}"
+        shutil.rmtree(name + "_reference")
+
+
+def check_near_resonances(executable, name, text):
+    """Branches that end within 1e-9 relative of a pole and of a zero of
+    gamma(k Omega): the last point lies exactly there and meets every check."""
+    w1 = float(rows(f"{name}/spectrum.csv")[0]["omega_clamped_free"])
+    resonance = next(r for r in rows(f"{name}/resonances.csv") if float(r["omega"]) > 1.01 * w1)
+    pole = float(resonance["omega"])
+    zeros = [float(r["omega_clamped_clamped"]) / k for r in rows(f"{name}/spectrum.csv")
+             for k in range(1, 21)]
+    zero = min(z for z in zeros if z > 1.01 * w1)
+    for target in (pole * (1 + 1e-9), zero * (1 - 1e-9)):
+        scene = text.replace("set Omega max = 2.2", f"set Omega max = {target!r}")
+        run(executable, scene, name)
+        points = check_points(name, scene)
+        assert float(points[-1]["Omega"]) == target, (points[-1]["Omega"], target)
+    return pole, zero
+
+
+def main():
+    executable, directory, name = sys.argv[1:4]
+    with open(os.path.join(directory, name + ".prm")) as f:
+        text = f.read()
+    # A case that cannot be computed says so: "# fails naming: WORDS".
+    expected = re.search(r"^# fails naming: (.+)$", text, re.MULTILINE)
+    if expected:
+        run(executable, text, name, failure=expected.group(1).strip())
+        print(f"{name}: fails cleanly, naming {expected.group(1).strip()}")
+        return
+    summary = run(executable, text, name)
+    points = check_points(name, text)
+    assert "backbone:" in summary
+    if name.startswith("gap_"):
+        check_gap_scaling(executable, name, text)
+    if name == "near_resonance":
+        pole, zero = check_near_resonances(executable, name, text)
+        print(f"{name}: branches end at 1e-9 from the resonance {pole:.10g} and the zero {zero:.10g}")
+        points = check_points(name, text)
+    main_points = sum(p["branch"] == "main" for p in points)
+    print(f"{name}: {len(points)} points ({main_points} main), Omega "
+          f"{float(points[0]['Omega']):.6g} to {float(points[-1]['Omega']):.6g}; all checks passed")
+    shutil.rmtree(name)
+
+
+if __name__ == "__main__":
+    main()
