@@ -125,6 +125,16 @@ TEST(Backbone, SeedEq5BranchPassesThePapersFrequencyBelowW1)
   const auto backbone = model.backbone();
   for (const auto &p : backbone.points)
     EXPECT_LT(p.omega, w1_seed);
+  // Independent of the sign of the law: the branch leaves grazing (just below
+  // w1 here) with the first linear mode at u(L) = g0, of energy
+  // w1^2 g0^2 / (2 phi_1(L)^2), to 1 % as on the physical side.
+  const auto modes =
+    nsm::compute_spectrum(model.discretisation, nsm::EndCondition::clamped_free, 1, true);
+  const double gap = model.scene.contact.gap;
+  EXPECT_NEAR(backbone.points.front().measures.energy /
+                (modes.eigenvalues[0] * gap * gap / (2 * modes.contact_residues[0])),
+              1.0,
+              1e-2);
   const auto   at_figure = nsm::solve_on_branch(model.hb, model.scene, backbone, 1.907);
   const double g0 = model.scene.contact.gap;
   // method.md: energies of order g0^2 there (measured 0.69 g0^2).
