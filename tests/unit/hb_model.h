@@ -6,8 +6,10 @@
 #include <nsm/discretisation.h>
 #include <nsm/harmonic_balance.h>
 #include <nsm/receptance.h>
+#include <nsm/spectrum.h>
 
 #include <memory>
+#include <utility>
 
 #include "scene_helpers.h"
 
@@ -37,6 +39,16 @@ namespace testing_helpers
     {}
 
     nsm::Backbone backbone() { return nsm::compute_backbone(hb, scene, resonances); }
+
+    /// w_j^2 (1-based mode j) and the energy of that linear mode with u(L) =
+    /// g0, w_j^2 g0^2 / (2 phi_j(L)^2): the motion at grazing, whatever the
+    /// contact law and its sign.
+    std::pair<double, double> grazing(unsigned int mode) const
+    {
+      const auto   modes = nsm::compute_spectrum(discretisation, nsm::EndCondition::clamped_free, mode, true);
+      const double l = modes.eigenvalues[mode - 1], g0 = scene.contact.gap;
+      return {l, l * g0 * g0 / (2 * modes.contact_residues[mode - 1])};
+    }
 
     nsm::Scene                          scene;
     nsm::BarModel                       bar;

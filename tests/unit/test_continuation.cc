@@ -102,10 +102,7 @@ TEST(Backbone, PhysicalSeedBranchLeavesGrazingUpwards)
   // 1e-5 relative above w1 with a brief impact (contact fraction 1.4 %):
   // measured 1.1e-3 above the linear energy, so 1 % bounds it, while a wrong
   // gap or residue is off by tens of per cent (a wall at g0 / 2: by 75 %).
-  const auto modes =
-    nsm::compute_spectrum(model.discretisation, nsm::EndCondition::clamped_free, 1, true);
-  const double g0 = model.scene.contact.gap;
-  EXPECT_NEAR(linear / (modes.eigenvalues[0] * g0 * g0 / (2 * modes.contact_residues[0])), 1.0, 1e-2);
+  EXPECT_NEAR(linear / model.grazing(1).second, 1.0, 1e-2);
   for (const auto &p : backbone.points)
     {
       EXPECT_GT(p.omega, w1_seed) << "energy " << p.measures.energy;
@@ -128,13 +125,7 @@ TEST(Backbone, SeedEq5BranchPassesThePapersFrequencyBelowW1)
   // Independent of the sign of the law: the branch leaves grazing (just below
   // w1 here) with the first linear mode at u(L) = g0, of energy
   // w1^2 g0^2 / (2 phi_1(L)^2), to 1 % as on the physical side.
-  const auto modes =
-    nsm::compute_spectrum(model.discretisation, nsm::EndCondition::clamped_free, 1, true);
-  const double gap = model.scene.contact.gap;
-  EXPECT_NEAR(backbone.points.front().measures.energy /
-                (modes.eigenvalues[0] * gap * gap / (2 * modes.contact_residues[0])),
-              1.0,
-              1e-2);
+  EXPECT_NEAR(backbone.points.front().measures.energy / model.grazing(1).second, 1.0, 1e-2);
   const auto   at_figure = nsm::solve_on_branch(model.hb, model.scene, backbone, 1.907);
   const double g0 = model.scene.contact.gap;
   // method.md: energies of order g0^2 there (measured 0.69 g0^2).
@@ -245,10 +236,8 @@ TEST(Backbone, HigherModesStartAtTheirOwnGrazing)
   scene.continuation.energy_max = 1e-3;
   HbModel    model(scene);
   const auto backbone = model.backbone();
-  const auto modes =
-    nsm::compute_spectrum(model.discretisation, nsm::EndCondition::clamped_free, 2, true);
-  const double w2 = std::sqrt(modes.eigenvalues[1]), g0 = scene.contact.gap;
-  const double linear = modes.eigenvalues[1] * g0 * g0 / (2 * modes.contact_residues[1]);
+  const auto [l2, linear] = model.grazing(2);
+  const double w2 = std::sqrt(l2);
   ASSERT_GT(backbone.points.size(), 20u);
   EXPECT_GT(backbone.points.front().omega, w2);
   EXPECT_LT(backbone.points.front().omega, w2 + 0.01);
