@@ -154,21 +154,28 @@ namespace nsm
     /// only for its own share.
     std::vector<double> lowest_eigenvalues(const BandedPencil &p, const int count)
     {
-      const double lambda_1   = banded_eigenvalues(p, Factored::stiffness, 1, 1, 0.0).at(0);
-      const double lambda_max = banded_eigenvalues(p, Factored::mass, p.n, p.n, 0.0).at(0);
-      const double split      = std::sqrt(lambda_1 * lambda_max);
       if (count < p.n)
         {
           std::vector<double> low = banded_eigenvalues(p, Factored::stiffness, 1, count, 0.0);
-          if (low.back() <= split)
+          // A Rayleigh quotient K_ii / M_ii bounds lambda_max from below: when
+          // even that bound puts the split above every eigenvalue asked for,
+          // the stiffness form serves them all without asking for lambda_max.
+          double lambda_max = 0;
+          for (int i = 0; i < p.n; ++i)
+            lambda_max = std::max(lambda_max, p.at(p.k, i, i) / p.at(p.m, i, i));
+          if (low.back() * low.back() <= low.front() * lambda_max)
             return low;
-          const std::vector<double> high = banded_eigenvalues(p, Factored::mass, 1, count, 0.0);
+          lambda_max = banded_eigenvalues(p, Factored::mass, p.n, p.n, 0.0).at(0);
+          const double              split = std::sqrt(low.front() * lambda_max);
+          const std::vector<double> high  = banded_eigenvalues(p, Factored::mass, 1, count, 0.0);
           for (std::size_t j = 0; j < low.size(); ++j)
             if (low[j] > split)
               low[j] = high[j];
           return low;
         }
-      std::vector<double> all = banded_eigenvalues(p, Factored::mass, 1, p.n, 0.0);
+      std::vector<double> all      = banded_eigenvalues(p, Factored::mass, 1, p.n, 0.0);
+      const double        lambda_1 = banded_eigenvalues(p, Factored::stiffness, 1, 1, 0.0).at(0);
+      const double        split    = std::sqrt(lambda_1 * all.back());
       const int below = std::upper_bound(all.begin(), all.end(), split) - all.begin();
       if (below > 0)
         {

@@ -10,15 +10,17 @@ usage: benchmark_runs.py [--repeats N] SCENE BINARY [BINARY ...]
 import argparse
 import os
 import re
+import shutil
 import statistics
 import subprocess
+import tempfile
 import time
 
 
-def one_run(binary, scene):
+def one_run(binary, scene, directory):
     start = time.perf_counter()
     process = subprocess.Popen([binary, scene], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                               text=True)
+                               text=True, cwd=directory)
     _, status, usage = os.wait4(process.pid, 0)
     wall = time.perf_counter() - start
     out = process.stdout.read()
@@ -37,9 +39,14 @@ def main():
     parser.add_argument("binaries", nargs="+")
     args = parser.parse_args()
     results = {b: [] for b in args.binaries}
+    scene = os.path.abspath(args.scene)
+    # Each binary in its own working directory: its outputs never meet another's.
+    directories = {b: tempfile.mkdtemp(prefix="benchmark_runs_") for b in args.binaries}
     for _ in range(args.repeats):
         for binary in args.binaries:  # interleaved: drifts hit every binary alike
-            results[binary].append(one_run(binary, args.scene))
+            results[binary].append(one_run(os.path.abspath(binary), scene, directories[binary]))
+    for d in directories.values():
+        shutil.rmtree(d)
     baseline = args.binaries[0]
     print(f"scene {args.scene}, {args.repeats} interleaved repeats; min / median / max")
     for binary in args.binaries:
