@@ -69,7 +69,6 @@ namespace nsm
   } // namespace
 
   OutputDirectory::OutputDirectory(const std::string &target)
-    : target_(target)
   {
     fs::path path = fs::path(target).lexically_normal();
     if (path.filename().empty())

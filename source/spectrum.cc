@@ -15,11 +15,10 @@ extern "C"
                const double *, const int *, const int *, const double *,
                int *, double *, double *, const int *, double *, int *, int *,
                int *, std::size_t, std::size_t, std::size_t);
-  void dgbtrf_(const int *, const int *, const int *, const int *, double *,
-               const int *, int *, int *);
-  void dgbtrs_(const char *, const int *, const int *, const int *,
-               const int *, const double *, const int *, const int *,
-               double *, const int *, int *, std::size_t);
+  void dpbtrf_(const char *, const int *, const int *, double *, const int *, int *,
+               std::size_t);
+  void dpbtrs_(const char *, const int *, const int *, const int *, const double *,
+               const int *, double *, const int *, int *, std::size_t);
   double dlamch_(const char *, std::size_t);
 }
 
@@ -114,7 +113,7 @@ namespace nsm
       std::vector<double> a = inverse ? p.m : p.k, b = inverse ? p.k : p.m;
       const int           ld = p.bandwidth + 1;
       // All of them: 'A' with abstol = 0 takes LAPACK's QR path (dsterf),
-      // far faster than bisection; the refinement restores accuracy.
+      // far faster than bisection.
       const bool   all   = first == 1 && last == p.n;
       const char   range = all ? 'A' : last > 0 ? 'I' : 'V';
       // mu = 1 / lambda reverses the order: lambda indices [first, last] are
@@ -185,49 +184,19 @@ namespace nsm
       return all;
     }
 
-    /// LU factors of K - sigma M in LAPACK general band storage.
-    class ShiftedLU
-    {
-    public:
-      ShiftedLU(const BandedPencil &p, const double sigma)
-        : n_(p.n)
-        , kl_(p.bandwidth)
-        , ld_(3 * p.bandwidth + 1)
-        , lu_(ld_ * n_, 0.0)
-        , pivots_(n_)
-      {
-        for (int j = 0; j < n_; ++j)
-          for (int i = std::max(0, j - kl_); i <= std::min(n_ - 1, j + kl_); ++i)
-            lu_[(2 * kl_ + i - j) + j * ld_] = p.at(p.k, i, j) - sigma * p.at(p.m, i, j);
-        int info = 0;
-        dgbtrf_(&n_, &n_, &kl_, &kl_, lu_.data(), &ld_, pivots_.data(), &info);
-        singular_ = info != 0;
-      }
-      bool singular() const { return singular_; }
-      void solve(std::vector<double> &b) const
-      {
-        const int one = 1;
-        int       info = 0;
-        dgbtrs_("N", &n_, &kl_, &kl_, &one, lu_.data(), &ld_, pivots_.data(),
-                b.data(), &n_, &info, 1);
-      }
-
-    private:
-      int                 n_, kl_, ld_;
-      std::vector<double> lu_;
-      std::vector<int>    pivots_;
-      bool                singular_ = false;
-    };
-
-    /// gamma(0) = e_N^T K^{-1} e_N from a band LU of K.
+    /// gamma(0) = e_N^T K^{-1} e_N from a band Cholesky factor of K (its
+    /// upper band storage is LAPACK's).
     double static_receptance(const BandedPencil &p)
     {
-      const ShiftedLU lu(p, 0.0);
-      if (lu.singular())
-        throw NumericalError("the stiffness matrix K is singular: no static receptance");
+      std::vector<double> factor = p.k;
+      const int           ld = p.bandwidth + 1, one = 1;
+      int                 info = 0;
+      dpbtrf_("U", &p.n, &p.bandwidth, factor.data(), &ld, &info, 1);
+      if (info != 0)
+        throw NumericalError("the stiffness matrix K is not positive definite: no static receptance");
       std::vector<double> x(p.n, 0.0);
       x[p.contact_row] = 1.0;
-      lu.solve(x);
+      dpbtrs_("U", &p.n, &p.bandwidth, &one, factor.data(), &ld, x.data(), &p.n, &info, 1);
       return x[p.contact_row];
     }
 
