@@ -17,11 +17,14 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
+TEXT_COLUMNS = ("branch", "verified")
+
+
 def read(path):
-    """Columns as lists of numbers; the branch column stays text."""
+    """Columns as lists of numbers (nan where empty); the text columns stay text."""
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
-    return {key: [r[key] if key == "branch" else float(r[key]) for r in rows]
+    return {key: [r[key] if key in TEXT_COLUMNS else float(r[key] or "nan") for r in rows]
             for key in rows[0]} if rows else {}
 
 
@@ -51,6 +54,12 @@ def backbone_plot(directory):
     if tongue:
         axes.semilogy([w for w, _ in tongue], [e for _, e in tongue], "x", markersize=3,
                       color="C3", alpha=0.6, label="resonance tongues")
+    # Points whose time integration does not come back after one period.
+    failed = [(w, e) for w, e, v in zip(points["Omega"], points["energy"], points.get("verified", []))
+              if v == "false"]
+    if failed:
+        axes.semilogy([w for w, _ in failed], [e for _, e in failed], "o", markersize=6,
+                      markerfacecolor="none", color="C1", label="not periodic in time")
     tongues = os.path.join(directory, "tongues.csv")
     if os.path.exists(tongues):
         t = read(tongues)
@@ -86,8 +95,12 @@ def backbone_plot(directory):
     axes.set_xlabel("$\\Omega$ [rad/s]")
     axes.set_ylabel("energy (period mean)")
     main = points["branch"].count("main")
-    axes.set_title(f"Backbone: {main} main points, {len(points['Omega']) - main} on tongues, "
-                   f"{len(segments)} segments")
+    title = (f"Backbone: {main} main points, {len(points['Omega']) - main} on tongues, "
+             f"{len(segments)} segments")
+    if "verified" in points:
+        checked = sum(v in ("true", "false") for v in points["verified"])
+        title += f"\n{checked} verified in time, {len(failed)} not periodic"
+    axes.set_title(title)
     axes.legend(loc="upper left", fontsize=8)
     save(figure, os.path.join(directory, "backbone.png"))
 

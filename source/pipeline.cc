@@ -10,6 +10,7 @@
 #include <nsm/progress.h>
 #include <nsm/receptance.h>
 #include <nsm/spectrum.h>
+#include <nsm/time_verification.h>
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -98,20 +99,74 @@ namespace nsm
         }
       return table;
     }
-    CsvTable backbone_table(const Backbone &backbone)
+    using Verifications = std::vector<std::optional<PointVerification>>;
+
+    /// The verification columns of one row; empty cells for a point not verified.
+    std::vector<CsvCell> verification_cells(const std::optional<PointVerification> &v)
+    {
+      if (!v)
+        return std::vector<CsvCell>(6, std::string());
+      return {v->verified ? "true" : "false", v->time.periodicity_defect, v->time.periodicity_defect_end,
+              v->time.energy_drift, v->impulse_ratio, v->time.contact_fraction};
+    }
+
+    CsvTable backbone_table(const Backbone &backbone, const Verifications &verifications)
     {
       CsvTable table{"backbone.csv",
                      {"segment", "Omega", "energy", "energy_spread", "max_contact_force",
                       "contact_fraction", "newton_iterations", "residual", "branch",
                       "resonance_mode", "resonance_harmonic"},
                      {}};
-      for (const BackbonePoint &p : backbone.points)
-        table.rows.push_back({double(p.segment), p.omega, p.measures.energy,
-                              p.measures.energy_spread, p.measures.max_contact_force,
-                              p.measures.contact_fraction, double(p.newton_iterations),
-                              p.residual, p.branch == Branch::main ? "main" : "tongue",
-                              double(p.resonance.mode), double(p.resonance.harmonic)});
+      if (!verifications.empty())
+        for (const char *c : {"verified", "periodicity_defect", "periodicity_defect_end", "energy_drift",
+                              "impulse_ratio", "verified_contact_fraction"})
+          table.columns.push_back(c);
+      for (std::size_t i = 0; i < backbone.points.size(); ++i)
+        {
+          const BackbonePoint &p = backbone.points[i];
+          table.rows.push_back({double(p.segment), p.omega, p.measures.energy,
+                                p.measures.energy_spread, p.measures.max_contact_force,
+                                p.measures.contact_fraction, double(p.newton_iterations),
+                                p.residual, p.branch == Branch::main ? "main" : "tongue",
+                                double(p.resonance.mode), double(p.resonance.harmonic)});
+          if (!verifications.empty())
+            for (CsvCell &cell : verification_cells(verifications[i]))
+              table.rows.back().push_back(std::move(cell));
+        }
       return table;
+    }
+
+    /// The summary line of a field's verification.
+    std::string field_verification(const PeriodicField &field, const Discretisation &discretisation, const Scene &scene)
+    {
+      const PointVerification v = verify_in_time(field, discretisation, scene);
+      std::ostringstream      s;
+      s.precision(6);
+      s << "field at Omega = " << field.omega() << " verified in time: one-period defect / g0 "
+        << v.time.periodicity_defect << " (" << (v.verified ? "periodic" : "NOT periodic")
+        << " to Verify tolerance), after " << scene.output.verify_periods << " periods "
+        << v.time.periodicity_defect_end << ", impulse ratio " << v.impulse_ratio;
+      return s.str();
+    }
+
+    /// "verification in time: ..." for the run summary.
+    std::string verification_summary(const Verifications &verifications, const Scene &scene)
+    {
+      std::vector<double> defects;
+      unsigned int        flagged = 0;
+      for (const auto &v : verifications)
+        if (v)
+          {
+            defects.push_back(v->time.periodicity_defect);
+            flagged += !v->verified;
+          }
+      std::sort(defects.begin(), defects.end());
+      std::ostringstream s;
+      s << "verification in time: " << defects.size() << " points, " << flagged
+        << " not periodic to Verify tolerance = " << scene.output.verify_tolerance;
+      if (!defects.empty())
+        s << "; one-period defect / g0: median " << defects[defects.size() / 2] << ", max " << defects.back();
+      return s.str();
     }
 
     CsvTable tongue_table(const Backbone &backbone)
@@ -231,12 +286,6 @@ namespace nsm
         hb         = std::make_unique<HarmonicBalance>(scene, *receptance);
         resonances = internal_resonances(*receptance, scene);
         backbone   = compute_backbone(*hb, scene, resonances);
-        if (scene.output.backbone)
-          {
-            tables.push_back(backbone_table(backbone));
-            tables.push_back(tongue_table(backbone));
-            tables.push_back(resonance_table(resonances));
-          }
         std::ostringstream s;
         s << "backbone: " << backbone.points.size() << " points (" << backbone.main_points()
           << " main, " << backbone.points.size() - backbone.main_points() << " on "
@@ -246,6 +295,20 @@ namespace nsm
         for (const std::string &event : backbone.events)
           report.notes.push_back("  " + event);
       });
+
+    Verifications verifications;
+    if (scene.output.verify_in_time)
+      timed(report, "verification in time", [&] {
+        Progress progress("verification in time", scene.output.progress_every);
+        verifications = verify_backbone(*hb, *discretisation, backbone, scene, progress);
+        report.notes.push_back(verification_summary(verifications, scene));
+      });
+    if (scene.output.backbone)
+      {
+        tables.push_back(backbone_table(backbone, verifications));
+        tables.push_back(tongue_table(backbone));
+        tables.push_back(resonance_table(resonances));
+      }
 
     std::vector<PeriodicField> fields;
     if (needs_fields)
@@ -257,6 +320,8 @@ namespace nsm
           {
             fields.emplace_back(*hb, *discretisation, solve_on_branch(*hb, scene, backbone, omega),
                                 scene.contact.sign);
+            if (o.verify_in_time)
+              report.notes.push_back(field_verification(fields.back(), *discretisation, scene));
             progress.update(report_count);
           }
         for (std::size_t i = 0; o.fields_every > 0 && i < backbone.points.size(); i += o.fields_every)

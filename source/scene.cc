@@ -552,6 +552,26 @@ namespace nsm
                       Patterns::Double(0, 1e6),
                       "Seconds between progress lines on stderr during long stages "
                       "(continuation, adaptive refinement, fields); 0 = never.");
+    prm.declare_entry("Verify in time",
+                      text(d.verify_in_time),
+                      Patterns::Bool(),
+                      "Integrate backbone points in time on the same FE model with the physical "
+                      "wall and write how far they are from periodic (backbone.csv); needs "
+                      "Backbone = true.");
+    prm.declare_entry("Verify every",
+                      text(d.verify_every),
+                      Patterns::Integer(1, 1000000),
+                      "Verify every n-th backbone point (the fields' points always).");
+    prm.declare_entry("Verify periods", text(d.verify_periods), Patterns::Integer(1, 1000), "Periods integrated.");
+    prm.declare_entry("Verify steps",
+                      text(d.verify_steps),
+                      Patterns::Integer(16, 10000000),
+                      "Time steps per period of the verification (midpoint rule).");
+    prm.declare_entry("Verify tolerance",
+                      text(d.verify_tolerance),
+                      Patterns::Double(1e-12, 1e3),
+                      "A point whose one-period defect max |u(T) - u(0)| / g0 exceeds this is "
+                      "flagged verified = false.");
     prm.leave_subsection();
   }
 
@@ -574,6 +594,11 @@ namespace nsm
     vtk            = prm.get_bool("VTK");
     plots          = prm.get_bool("Plots");
     progress_every = prm.get_double("Progress every");
+    verify_in_time   = prm.get_bool("Verify in time");
+    verify_every     = get_unsigned(prm, "Verify every");
+    verify_periods   = get_unsigned(prm, "Verify periods");
+    verify_steps     = get_unsigned(prm, "Verify steps");
+    verify_tolerance = prm.get_double("Verify tolerance");
     prm.leave_subsection();
   }
 
@@ -602,6 +627,10 @@ namespace nsm
             "Output/Fields at",
             "empty (and Fields every = 0) when Contact/Enabled = false",
             "a list");
+    require(!output.verify_in_time || output.backbone,
+            "Output/Verify in time",
+            "false unless Output/Backbone = true (the results are columns of backbone.csv)",
+            "true");
     require(!output.backbone || contact.enabled,
             "Output/Backbone",
             "false when Contact/Enabled = false (no contact, no nonsmooth mode)",

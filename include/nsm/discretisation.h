@@ -41,6 +41,7 @@ namespace nsm
     unsigned int n_dofs() const { return dof_handler_.n_dofs(); }
     unsigned int n_cells() const;
     unsigned int contact_dof() const { return contact_dof_; }
+    unsigned int clamped_dof() const { return clamped_dof_; }
     double       min_cell_size() const;
     double       max_cell_size() const;
 

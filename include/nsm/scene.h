@@ -184,6 +184,11 @@ namespace nsm
       bool                vtk                = false;
       bool                plots              = false;
       double              progress_every     = 5.0; ///< seconds; 0 = never
+      bool                verify_in_time     = false;
+      unsigned int        verify_every       = 1;
+      unsigned int        verify_periods     = 5;
+      unsigned int        verify_steps       = 4000; ///< time steps per period
+      double              verify_tolerance   = 0.01; ///< largest periodicity defect of a verified point
 
       bool fields() const { return !fields_at.empty() || fields_every > 0; }
 

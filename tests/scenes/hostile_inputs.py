@@ -289,6 +289,12 @@ def rows(executable):
              words=["Continuation/Mode", "[1, 4000]"]),
         dict(name="fields_outside_range", scene=output(Directory="out", Fields_at=5), code=2,
              words=["Output/Fields at", "[Omega min, Omega max]"]),
+        dict(name="verify_without_backbone", scene=spectrum_scene() +
+             output(Verify_in_time="true"), code=2,
+             words=["Output/Verify in time", "Backbone = true"]),
+        dict(name="verify_steps_few", scene=output(Directory="out", Backbone="true",
+                                                   Verify_in_time="true", Verify_steps=3), code=2,
+             words=["Output/Verify steps", "[16, 10000000]"]),
         # 9. accepted bad values
         dict(name="tolerance_loose", scene=section("Harmonic balance", Tolerance=1) +
              spectrum_scene(), code=2, words=["Harmonic balance/Tolerance", "1e-06"]),
