@@ -7,7 +7,10 @@ a finite positive energy, lies on the physical side of grazing (above w_j of
 its mode) and carries a branch label; the run summary reports the points.
 Cases with a scaling law (gaps) are also run at the default gap g0 = 1e-3,
 with both continuation methods, and their energies must scale as g0^2 to
-1e-10 at equal Omega. Uses the standard library only.
+1e-10 at equal Omega, and their verification defects (relative to g0) must
+not depend on g0. Every 10th point of every case is verified in time (one
+period of 1000 steps), and its defect is reported. Uses the standard library
+only.
 """
 import csv
 import math
@@ -18,6 +21,9 @@ import subprocess
 import sys
 
 TOLERANCE = 1e-10  # Harmonic balance/Tolerance (default)
+VERIFY_TOLERANCE = 0.01  # Output/Verify tolerance (default)
+VERIFICATION = ("subsection Output\n  set Verify in time = true\n  set Verify every = 10\n"
+                "  set Verify periods = 1\n  set Verify steps = 1000\nend\n")
 
 
 def run(executable, scene_text, name, failure=None):
@@ -59,7 +65,18 @@ def check_points(name, text):
         assert math.isfinite(energy) and energy > 0, f"{name}: energy {energy} at {omega}"
         assert omega > w, f"{name}: Omega {omega} below grazing w_{mode} = {w}"
         assert p["branch"] in ("main", "tongue"), p["branch"]
+    for i, p in enumerate(points):
+        if i % 10:
+            assert p["verified"] == "", f"{name}: point {i} verified"
+            continue
+        defect = float(p["periodicity_defect"])
+        assert math.isfinite(defect) and defect >= 0, f"{name}: defect {defect}"
+        assert p["verified"] == ("true" if defect <= VERIFY_TOLERANCE else "false"), p["verified"]
     return points
+
+
+def defects(points):
+    return sorted(float(p["periodicity_defect"]) for p in points if p["verified"])
 
 
 def check_gap_scaling(executable, name, text):
@@ -76,6 +93,13 @@ def check_gap_scaling(executable, name, text):
         b = {p["Omega"]: float(p["energy"]) for p in rows(f"{name}_reference/backbone.csv")}
         common = set(a) & set(b)
         assert len(common) >= 3, f"{name} ({method}): {len(common)} points at equal Omega"
+        # The time integration is linear between impacts: its defect / g0 is scale-free.
+        da = {p["Omega"]: float(p["periodicity_defect"]) for p in rows(f"{name}/backbone.csv") if p["verified"]}
+        db = {p["Omega"]: float(p["periodicity_defect"]) for p in rows(f"{name}_reference/backbone.csv")
+              if p["verified"]}
+        for omega in set(da) & set(db):
+            assert abs(da[omega] - db[omega]) <= 1e-8 * max(db[omega], 1e-3), \
+                f"{name} ({method}): defect {da[omega]} != {db[omega]} at the default gap, Omega {omega}"
         factor = (gap / 1e-3) ** 2
         for omega in common:
             assert abs(a[omega] / (factor * b[omega]) - 1) <= 1e-10, \
@@ -103,7 +127,7 @@ def check_near_resonances(executable, name, text):
 def main():
     executable, directory, name = sys.argv[1:4]
     with open(os.path.join(directory, name + ".prm")) as f:
-        text = f.read()
+        text = f.read() + VERIFICATION
     # A case that cannot be computed says so: "# fails naming: WORDS".
     expected = re.search(r"^# fails naming: (.+)$", text, re.MULTILINE)
     if expected:
@@ -120,8 +144,11 @@ def main():
         print(f"{name}: branches end at 1e-9 from the resonance {pole:.10g} and the zero {zero:.10g}")
         points = check_points(name, text)
     main_points = sum(p["branch"] == "main" for p in points)
+    d = defects(points)
     print(f"{name}: {len(points)} points ({main_points} main), Omega "
-          f"{float(points[0]['Omega']):.6g} to {float(points[-1]['Omega']):.6g}; all checks passed")
+          f"{float(points[0]['Omega']):.6g} to {float(points[-1]['Omega']):.6g}; {len(d)} verified in "
+          f"time, one-period defect / g0 median {d[len(d) // 2]:.3g}, max {d[-1]:.3g}, "
+          f"{sum(x > VERIFY_TOLERANCE for x in d)} above {VERIFY_TOLERANCE}; all checks passed")
     shutil.rmtree(name)
 
 
