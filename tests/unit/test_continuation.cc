@@ -126,11 +126,11 @@ TEST(Backbone, SeedEq5BranchPassesThePapersFrequencyBelowW1)
   // w1 here) with the first linear mode at u(L) = g0, of energy
   // w1^2 g0^2 / (2 phi_1(L)^2), to 1 % as on the physical side.
   EXPECT_NEAR(backbone.points.front().measures.energy / model.grazing(1).second, 1.0, 1e-2);
-  const auto   at_figure = nsm::solve_on_branch(model.hb, model.scene, backbone, 1.907);
-  const double g0 = model.scene.contact.gap;
-  // method.md: energies of order g0^2 there (measured 0.69 g0^2).
-  EXPECT_GT(at_figure.measures.energy, 0.1 * g0 * g0);
-  EXPECT_LT(at_figure.measures.energy, 10 * g0 * g0);
+  const auto at_figure = nsm::solve_on_branch(model.hb, model.scene, backbone, 1.907);
+  // 0.6 % below w1 the eq. (5) motion is still the first linear mode with
+  // u(L) = g0, whose energy g0^2 (w1^2 + W^2) / (4 phi_1(L)^2) is the grazing
+  // energy to 0.6 %: within 10 % of it (measured 4 % above, 0.69 g0^2).
+  EXPECT_NEAR(at_figure.measures.energy / model.grazing(1).second, 1.0, 0.1);
 }
 
 TEST(Backbone, DoublingTheGapMultipliesEnergiesByFour)
