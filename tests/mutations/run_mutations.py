@@ -6,7 +6,7 @@ Copies the tracked sources of this repository into WORK_DIRECTORY/src, builds
 them once, checks that the unmutated suite passes, then for each mutation:
 applies it, rebuilds (only what it touches), runs CTest, and restores the
 file. Fails unless every mutation makes at least one test fail. Takes about
-12 minutes on 2 cores; run by .ci/run, not part of CTest.
+20 minutes on 2 cores; run by .ci/run, not part of CTest.
 """
 import os
 import re
