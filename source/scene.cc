@@ -551,7 +551,7 @@ namespace nsm
                       text(d.progress_every),
                       Patterns::Double(0, 1e6),
                       "Seconds between progress lines on stderr during long stages "
-                      "(continuation, adaptive refinement, fields); 0 = never.");
+                      "(continuation, adaptive refinement, fields, verification); 0 = never.");
     prm.declare_entry("Verify in time",
                       text(d.verify_in_time),
                       Patterns::Bool(),
@@ -566,7 +566,7 @@ namespace nsm
     prm.declare_entry("Verify steps",
                       text(d.verify_steps),
                       Patterns::Integer(16, 10000000),
-                      "Time steps per period of the verification (midpoint rule).");
+                      "Time steps per period of the verification (Newmark, average acceleration).");
     prm.declare_entry("Verify tolerance",
                       text(d.verify_tolerance),
                       Patterns::Double(1e-12, 1e3),

@@ -19,6 +19,8 @@
 
 namespace nsm
 {
+  class Progress;
+
   struct TimeVerification
   {
     double periodicity_defect;     ///< max over DoFs of |u(T) - u(0)| / g0
@@ -92,5 +94,5 @@ namespace nsm
                                                                 const Discretisation &discretisation,
                                                                 const Backbone       &backbone,
                                                                 const Scene          &scene,
-                                                                class Progress       &progress);
+                                                                Progress             &progress);
 } // namespace nsm
