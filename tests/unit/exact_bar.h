@@ -43,6 +43,36 @@ namespace exact
     return w == 0 ? 1.0 : std::tan(w) / w;
   }
 
+  /// The uniform bar's first nonsmooth mode (L = E = rho = A = 1, period T in
+  /// (3, 4), Yoong, Thorin, Legrand 2018): at mid-contact, at rest, a tent
+  /// with its peak u* at x* = (T - 2) / 2 and u(L) = g0, of energy
+  /// g0^2 / (2 (T - 3)^2). The wall's force is the strain of the tent's right
+  /// leg over a dwell of 4 - T centred on t = 0.
+  struct UniformMode
+  {
+    UniformMode(double period, double gap)
+      : T(period)
+      , g0(gap)
+      , x_peak((period - 2) / 2)
+      , energy(gap * gap / (2 * (period - 3) * (period - 3)))
+    {
+      // (u*^2 / x* + (u* - g0)^2 / (1 - x*)) / 2 = energy.
+      const double a = 1 / x_peak + 1 / (1 - x_peak), b = -2 * g0 / (1 - x_peak),
+                   c = g0 * g0 / (1 - x_peak) - 2 * energy;
+      peak  = (-b + std::sqrt(b * b - 4 * a * c)) / (2 * a);
+      force = (peak - g0) / (1 - x_peak);
+    }
+
+    /// Coefficient of cos(k 2 pi t / T) in the contact force (k = 0: mean).
+    double force_harmonic(unsigned int k) const
+    {
+      const double dwell = 4 - T;
+      return k == 0 ? force * dwell / T : 2 * force * std::sin(M_PI * k * dwell / T) / (M_PI * k);
+    }
+
+    double T, g0, x_peak, energy, peak = 0, force = 0;
+  };
+
   /// The first `count` roots of f on (0, inf): sign changes on a fine grid,
   /// then bisection to machine precision.
   inline std::vector<double> roots(const std::function<double(double)> &f,

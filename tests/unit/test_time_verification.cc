@@ -6,48 +6,41 @@
 
 #include <cmath>
 
+#include "exact_bar.h"
 #include "hb_model.h"
 
 namespace
 {
   constexpr double g0 = 1e-3;
 
-  /// The uniform bar's first nonsmooth mode at mid-contact (period T in
-  /// (3, 4), L = c = 1): a tent with its peak at x* = (T - 2) / 2, u(L) = g0,
-  /// at rest, of energy g0^2 / (2 (T - 3)^2); the integration of its period.
-  /// The strain at L stays that of the tent's right leg until the kink that
-  /// leaves x* reaches L, after 1 - x*: the dwell is 2 (1 - x*) = 4 - T and
-  /// the wall's impulse 2 (u* - g0).
+  /// The uniform bar's exact mode (exact_bar.h) on a mesh of FE_Q(1), and the
+  /// integration of its period. The impulse per period is 2 (u* - g0).
   struct ExactMode
   {
     ExactMode(unsigned int cells, double period, unsigned int steps)
-      : scene(testing_helpers::bar_scene("1", 1, cells))
+      : exact(period, g0)
+      , scene(testing_helpers::bar_scene("1", 1, cells))
       , bar(scene.bar)
       , discretisation(bar, scene.discretisation)
       , integrator(discretisation, g0, period, steps)
       , u(discretisation.n_dofs())
       , v(discretisation.n_dofs())
+      , exact_impulse(2 * (exact.peak - g0))
     {
-      const double x_peak = (period - 2) / 2;
-      // Peak height from the strain energy (u_p^2 / x* + (u_p - g0)^2 / (1 - x*)) / 2 = energy.
-      const double a = 1 / x_peak + 1 / (1 - x_peak), b = -2 * g0 / (1 - x_peak),
-                   c = g0 * g0 / (1 - x_peak) - 2 * energy(period);
-      peak             = (-b + std::sqrt(b * b - 4 * a * c)) / (2 * a);
-      const auto x     = discretisation.support_points();
+      const double x_peak = exact.x_peak, peak = exact.peak;
+      const auto   x      = discretisation.support_points();
       for (unsigned int i = 0; i < x.size(); ++i)
         u[i] = x[i] <= x_peak ? peak * x[i] / x_peak : peak + (g0 - peak) * (x[i] - x_peak) / (1 - x_peak);
       result = integrator.run(u, v, 2);
-      exact_impulse = 2 * (peak - g0);
     }
 
-    static double energy(double period) { return g0 * g0 / (2 * (period - 3) * (period - 3)); }
-
+    exact::UniformMode         exact;
     nsm::Scene                 scene;
     nsm::BarModel              bar;
     nsm::Discretisation        discretisation;
     nsm::ContactTimeIntegrator integrator;
     dealii::Vector<double>     u, v;
-    double                     peak = 0, exact_impulse = 0;
+    double                     exact_impulse;
     nsm::TimeVerification      result{};
   };
 } // namespace
@@ -66,8 +59,8 @@ TEST(TimeVerification, ExactUniformModeComesBackWithItsEnergyContactAndImpulse)
       const unsigned int cells = 1000 << i;
       const ExactMode    mode(cells, period, std::lround(period * cells));
       // The mesh holds the tent exactly (x* = 3/4 is a node): its energy is.
-      EXPECT_NEAR(mode.integrator.energy(mode.u, mode.v) / ExactMode::energy(period), 1.0, 1e-10);
-      EXPECT_NEAR(mode.peak / g0, 1.5, 1e-12);
+      EXPECT_NEAR(mode.integrator.energy(mode.u, mode.v) / mode.exact.energy, 1.0, 1e-10);
+      EXPECT_NEAR(mode.exact.peak / g0, 1.5, 1e-12);
       const nsm::TimeVerification &r = mode.result;
       EXPECT_LT(r.periodicity_defect, 1.5 * independent[i]);
       EXPECT_GT(r.periodicity_defect, independent[i] / 1.5);
