@@ -188,7 +188,8 @@ namespace nsm
         fold,      ///< no convergence below Min step, or LOCA gave up
         tongue,    ///< energy above Energy max (climbing a resonance tongue)
         max_steps, ///< Max steps points in all
-        refused    ///< arclength reached a point that is not a contact motion
+        refused,   ///< arclength reached a point that is not a contact motion
+        jump       ///< an arclength step left the branch (shortened and retried)
       };
 
       /// Segments joined by leaps over folds and tongues, until the range,
@@ -264,6 +265,16 @@ namespace nsm
         return change <= 0.04 * size;
       }
 
+      /// An arclength step may also turn a fold, where the solution changes
+      /// little along the arc but the contact set does: one whose contact
+      /// fraction changed by more than Max contact change has jumped.
+      bool arc_stays_on_branch(const BackbonePoint &from, const BackbonePoint &to) const
+      {
+        return stays_on_branch(from, to) &&
+               std::abs(to.measures.contact_fraction - from.measures.contact_fraction) <=
+                 scene_.continuation.max_contact_change;
+      }
+
       /// Steps in Omega with a secant predictor; quarters the step on failure
       /// or on a jump to another branch. Steps stop exactly at the start of
       /// the range (coming from before it) and at its end.
@@ -311,15 +322,51 @@ namespace nsm
         return SegmentEnd::max_steps;
       }
 
-      /// LOCA pseudo-arclength from the segment's first point; a fold is
-      /// where Omega turns back.
+      /// The main branch rises with Omega; where arclength first turns back
+      /// (the segment's first fold) it has entered a resonance tongue. True
+      /// once the tongue is above Tongue energy ratio times the energy there.
+      bool climbed_tongue(const Backbone &backbone, const BackbonePoint &point) const
+      {
+        return first_fold_ && point.measures.energy > scene_.continuation.tongue_energy_ratio *
+                                                        backbone.points[*first_fold_].measures.energy;
+      }
+
+      /// LOCA pseudo-arclength from the segment's last point; a step that
+      /// jumps to another branch stops LOCA, which starts again from the last
+      /// point with a quarter of the step, down to Min step.
       SegmentEnd arclength(Backbone &backbone, unsigned int segment)
+      {
+        for (double step = std::min(scene_.continuation.initial_step, max_step());
+             step >= scene_.continuation.min_step;
+             step /= 4)
+          if (const SegmentEnd end = arclength_run(backbone, segment, step); end != SegmentEnd::jump)
+            return end;
+        return SegmentEnd::fold;
+      }
+
+      /// An arclength step went past the end of the range: the last point is
+      /// solved exactly there, from the guess interpolated between the
+      /// segment's last point and the step's.
+      void land_on_end(Backbone &backbone, unsigned int segment, const BackbonePoint &past)
+      {
+        const BackbonePoint &last = backbone.points.back();
+        const double         t    = (far_ - last.omega) / (past.omega - last.omega);
+        std::vector<double>  guess(last.x.size());
+        for (std::size_t i = 0; i < guess.size(); ++i)
+          guess[i] = (1 - t) * last.x[i] + t * past.x[i];
+        BackbonePoint point;
+        if (solve(far_, guess, segment, point) && arc_stays_on_branch(last, point))
+          backbone.points.push_back(std::move(point));
+      }
+
+      /// One LOCA run; a fold is where Omega turns back.
+      SegmentEnd arclength_run(Backbone &backbone, unsigned int segment, double initial_step)
       {
         const auto &c   = scene_.continuation;
         SegmentEnd  end = SegmentEnd::fold;
         // A copy: accepting steps grows backbone.points and moves its elements.
         const BackbonePoint start = backbone.points.back();
-        const bool finished = run_arclength(hb_, scene_, start, [&](const BackbonePoint &candidate) {
+        const bool finished = run_arclength(hb_, scene_, start, initial_step, [&](const BackbonePoint &candidate) {
           BackbonePoint point;
           if (!make_point(candidate.x, candidate.omega, candidate.residual, 0, segment, point))
             {
@@ -331,9 +378,20 @@ namespace nsm
               end = SegmentEnd::refused;
               return false;
             }
-          if (point.measures.energy > c.energy_max)
+          if (point.measures.energy > c.energy_max || climbed_tongue(backbone, point))
             {
               end = SegmentEnd::tongue;
+              return false;
+            }
+          if (!arc_stays_on_branch(backbone.points.back(), point))
+            {
+              end = SegmentEnd::jump;
+              return false;
+            }
+          if (beyond(point.omega, far_))
+            {
+              land_on_end(backbone, segment, point);
+              end = SegmentEnd::range;
               return false;
             }
           const auto &points = backbone.points;
@@ -381,7 +439,8 @@ namespace nsm
       bool leap(Backbone &backbone, unsigned int segment)
       {
         const auto         &c     = scene_.continuation;
-        const BackbonePoint front = backbone.points[first_fold_.value_or(backbone.points.size() - 1)];
+        const BackbonePoint front =
+          backbone.points[first_fold_.value_or(backbone.points.size() - 1)];
         std::size_t         first = backbone.points.size() - 1;
         while (first > 0 && backbone.points[first - 1].segment == front.segment)
           --first;

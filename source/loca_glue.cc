@@ -7,6 +7,7 @@
 #include <NOX.H>
 #include <LOCA_MultiContinuation_ExtendedVector.H>
 #include <NOX_LAPACK_Group.H>
+#include <Teuchos_oblackholestream.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -302,6 +303,7 @@ namespace nsm
   bool run_arclength(HarmonicBalance                                  &hb,
                      const Scene                                      &scene,
                      const BackbonePoint                              &start,
+                     const double                                      initial_step,
                      const std::function<bool(const BackbonePoint &)> &accept)
   {
     const auto &c         = scene.continuation;
@@ -322,12 +324,17 @@ namespace nsm
     stepper.set("Enable Arc Length Scaling", false);
     auto &step = params->sublist("LOCA").sublist("Step Size");
     step.set("Method", "Adaptive");
-    step.set("Initial Step Size", direction * c.initial_step);
+    step.set("Aggressiveness", 1.0);
+    step.set("Initial Step Size", direction * initial_step);
     step.set("Min Step Size", c.min_step);
     step.set("Max Step Size", c.max_step);
     set_newton_parameters(params->sublist("NOX"), scene.harmonic_balance);
     params->sublist("NOX").sublist("Printing").set("Output Information", NOX::Utils::Error);
     params->sublist("LOCA").sublist("Utilities").set("Output Information", NOX::Utils::Error);
+    // LOCA always writes a failed step (Min step reached) to its error stream;
+    // the run handles it as a fold and says so in its summary.
+    const Teuchos::RCP<std::ostream> discard = Teuchos::rcp(new Teuchos::oblackholestream);
+    params->sublist("NOX").sublist("Printing").set("Error Stream", discard);
 
     auto data     = LOCA::createGlobalData(params);
     bool finished = true;

@@ -471,6 +471,18 @@ namespace nsm
                       "A point is labelled a tongue point if the energy of one harmonic k >= 3 "
                       "stands above the geometric mean of harmonics k - 2 and k + 2 by more than "
                       "this share of the total energy; otherwise it is on the main branch.");
+    prm.declare_entry("Tongue energy ratio",
+                      text(d.tongue_energy_ratio),
+                      Patterns::Double(1, 1e6),
+                      "Arclength follows a resonance tongue until its energy reaches this many "
+                      "times the energy of the last main-branch point before it (the tongue's "
+                      "foot), then leaps from the foot to the main branch beyond the tongue.");
+    prm.declare_entry("Max contact change",
+                      text(d.max_contact_change),
+                      Patterns::Double(1e-6, 1),
+                      "Largest change of the contact fraction from one point of a segment to "
+                      "the next; a larger one is a jump to another branch, and the step is "
+                      "shortened.");
     prm.leave_subsection();
   }
 
@@ -500,6 +512,8 @@ namespace nsm
     max_steps      = get_unsigned(prm, "Max steps");
     grazing_offset = prm.get_double("Grazing offset");
     tongue_share   = prm.get_double("Tongue share");
+    tongue_energy_ratio = prm.get_double("Tongue energy ratio");
+    max_contact_change  = prm.get_double("Max contact change");
     prm.leave_subsection();
   }
 

@@ -134,12 +134,14 @@ namespace nsm
     std::unique_ptr<Impl> impl_;
   };
 
-  /// Pseudo-arclength from a converged start point with LOCA::Stepper.
-  /// `accept` is called for every converged step and returns false to stop.
+  /// Pseudo-arclength from a converged start point with LOCA::Stepper, first
+  /// step of length initial_step. `accept` is called for every converged
+  /// step and returns false to stop.
   /// Returns true if LOCA finished its run (it reached Omega min or max, or
   /// accept stopped it), false if it failed to converge a step.
   bool run_arclength(HarmonicBalance                                &hb,
                      const Scene                                    &scene,
                      const BackbonePoint                            &start,
+                     double                                          initial_step,
                      const std::function<bool(const BackbonePoint &)> &accept);
 } // namespace nsm

@@ -167,6 +167,8 @@ namespace nsm
       unsigned int       max_steps      = 2000;
       double             grazing_offset = 1e-5;
       double             tongue_share   = 0.02;
+      double             tongue_energy_ratio = 2.0;
+      double             max_contact_change  = 0.01;
 
       static void declare(dealii::ParameterHandler &prm);
       void        parse(dealii::ParameterHandler &prm);

@@ -200,6 +200,48 @@ TEST(Backbone, ArclengthGoesRoundAFoldAtAnInternalResonance)
   EXPECT_TRUE(turned);
 }
 
+TEST(Backbone, ArclengthCrossesTheTonguesToTheEndOfTheRange)
+{
+  // Seed bar to W = 2: 21 resonance tongues on the way (before the jump guard
+  // and the tongue cap, arclength was lost at W = 1.9287 in the first one).
+  auto scene = seed_scene(nsm::ForceSign::physical, 1.5, 2.0);
+  scene.continuation.method = nsm::ContinuationMethod::arclength;
+  HbModel    model(scene);
+  const auto backbone = model.backbone();
+  ASSERT_GT(backbone.points.size(), 10u);
+  EXPECT_EQ(backbone.points.back().omega, 2.0);
+  EXPECT_GT(backbone.leaps, 0u);
+  const auto &c = scene.continuation;
+  for (std::size_t i = 1; i < backbone.points.size(); ++i)
+    {
+      const auto &a = backbone.points[i - 1], &b = backbone.points[i];
+      EXPECT_LE(b.omega, c.omega_max);
+      if (a.segment != b.segment)
+        continue;
+      // No jump to another branch within a segment.
+      EXPECT_LE(std::abs(b.measures.contact_fraction - a.measures.contact_fraction), c.max_contact_change)
+        << "W = " << b.omega;
+    }
+  // Each segment climbs a tongue to at most Tongue energy ratio times the
+  // energy where it first turned back.
+  for (std::size_t first = 0; first < backbone.points.size();)
+    {
+      std::size_t end = first;
+      while (end < backbone.points.size() && backbone.points[end].segment == backbone.points[first].segment)
+        ++end;
+      for (std::size_t i = first + 1; i + 1 < end; ++i)
+        if ((backbone.points[i].omega - backbone.points[i - 1].omega) *
+              (backbone.points[i + 1].omega - backbone.points[i].omega) < 0)
+          {
+            for (std::size_t j = i; j < end; ++j)
+              EXPECT_LE(backbone.points[j].measures.energy,
+                        c.tongue_energy_ratio * backbone.points[i].measures.energy);
+            break;
+          }
+      first = end;
+    }
+}
+
 TEST(Backbone, SampledApproachesExactIntegrationAsSamplesGrow)
 {
   auto scene = uniform_scene(10);
