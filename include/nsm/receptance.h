@@ -7,6 +7,7 @@
 
 #include <deal.II/lac/vector.h>
 
+#include <limits>
 #include <vector>
 
 namespace nsm
@@ -40,6 +41,11 @@ namespace nsm
 
 
   private:
+    /// A truncated modal basis (Receptance/Modes): the modes left out as a
+    /// static and a first-order dynamic correction.
+    void truncated_basis_remainder();
+    /// A full basis: the modes far above omega_max summed once as a series.
+    void split_far_modes(double omega_max);
     /// gamma = h_N and h^T M h from one sparse solve.
     ReceptanceValue direct_value(double omega) const;
 
@@ -47,7 +53,10 @@ namespace nsm
     ReceptanceMethod      method_;
     std::vector<double>   poles_;
     ModalData             modal_;
-    double                static_remainder_  = 0; ///< gamma(0) minus the truncated sum
-    double                dynamic_remainder_ = 0; ///< gamma'(0) minus its truncated sum
+    /// Taylor coefficients in w^2 of the modes not summed per frequency.
+    std::vector<double> remainder_;
+    unsigned int        summed_modes_ = 0;
+    /// w^2 up to which remainder_ holds; beyond, every mode is summed.
+    double series_limit_ = std::numeric_limits<double>::infinity();
   };
 } // namespace nsm

@@ -131,6 +131,28 @@ TEST(Receptance, TruncatedModalBasisWithStaticCorrectionConverges)
     }
 }
 
+TEST(Receptance, FarModesAsASeriesChangeNothingInTheBand)
+{
+  // The paper's mesh (FE_Q(1), 4000 cells) and band (M = 40, W <= 2.2): the
+  // modes above 4 x 88 summed once as a series in w^2 / w_j^2 give the sum
+  // over all 4000 modes (a receptance set up for a band that holds them all)
+  // to the rounding of the sum, at every k W of the band.
+  const Model           model("1.5 - x", 1, 4000);
+  const double          band = 40 * 2.2;
+  const nsm::Receptance split(model.discretisation, {nsm::ReceptanceMethod::modal, 0}, band);
+  const nsm::Receptance full(model.discretisation, {nsm::ReceptanceMethod::modal, 0}, 1e6);
+  for (const double omega : {1.92, 1.95, 2.2})
+    for (unsigned int k = 0; k <= 40; ++k)
+      {
+        const auto a = split(k * omega), b = full(k * omega);
+        EXPECT_NEAR(a.gamma, b.gamma, 1e-13 * std::max(1.0, std::abs(b.gamma))) << k * omega;
+        EXPECT_NEAR(a.dgamma_domega2, b.dgamma_domega2, 1e-13 * std::max(1.0, std::abs(b.dgamma_domega2)))
+          << k * omega;
+      }
+  // Beyond the band every mode is summed again.
+  EXPECT_EQ(split(100.0).gamma, full(100.0).gamma);
+}
+
 TEST(Receptance, PolesCountedFromTheSpectrum)
 {
   const Model model("1.5 - x", 4, 40);
