@@ -41,7 +41,7 @@ namespace
     const double other = tracing - cost.receptance_seconds - cost.residual_seconds -
                          cost.jacobian_seconds - cost.linear_solve_seconds;
     const auto &newton = backbone.newton_cost;
-    std::printf("| %s | %s | %zu | %u | %zu | %u | %zu | %.3f | %.3f | %.3f | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.2f | %.3f (%.1f it) | %lu solves, %.2f s |\n",
+    std::printf("| %s | %s | %zu | %u | %zu | %u | %zu | %.3f | %.3f | %.3f | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.1f %% | %.2f | %.2f | %.4f | %.3f (%.1f it) | %lu solves, %.2f s |\n",
                 name, method == nsm::ContinuationMethod::sequential ? "sequential" : "arclength",
                 backbone.points.size(), backbone.main_points(), backbone.tongues.size(),
                 backbone.leaps, backbone.folds.size(), setup, tracing, total,
@@ -49,6 +49,7 @@ namespace
                 100 * cost.jacobian_seconds / tracing, 100 * cost.linear_solve_seconds / tracing,
                 100 * other / tracing,
                 1e3 * tracing / backbone.points.size(),
+                backbone.main_points() ? 1e3 * tracing / backbone.main_points() : 0.0, backbone.points.back().omega,
                 newton.converged_solves ? 1e3 * newton.converged_seconds / newton.converged_solves : 0.0,
                 newton.converged_solves ? double(newton.converged_iterations) / newton.converged_solves : 0.0,
                 newton.failed_solves, newton.failed_seconds);
@@ -57,8 +58,8 @@ namespace
 
 int main()
 {
-  std::printf("| mesh | method | points | main points | tongues | leaps | folds | set-up [s] | backbone [s] | total [s] | receptance | residual | Jacobian (+dR/dW) | linear solves | NOX/LOCA, predictors, measures | ms per point (all) | ms per converged Newton solve | failed solves (folds, leaps) |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| mesh | method | points | main points | tongues | leaps | folds | set-up [s] | backbone [s] | total [s] | receptance | residual | Jacobian (+dR/dW) | linear solves | NOX/LOCA, predictors, measures | ms per point (all) | ms per main point | last Omega | ms per converged Newton solve | failed solves (folds, leaps) |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const auto method : {nsm::ContinuationMethod::sequential, nsm::ContinuationMethod::arclength})
     {
       run("FE_Q(1), 4000 cells", 1, 4000, method);
