@@ -306,14 +306,18 @@ TEST(Backbone, StartsWithin1e4OfGrazingAndEndsExactlyAtOmegaMax)
 
 TEST(Backbone, NarrowRangeJustAboveGrazingGetsPointsUpToItsEnd)
 {
-  // Omega max = w1 + 5e-4 on the seed bar (w1 from method.md).
-  auto scene = seed_scene(nsm::ForceSign::physical, 1.5, w1_seed + 5e-4);
-  HbModel    model(scene);
-  const auto backbone = model.backbone();
-  ASSERT_GE(backbone.points.size(), 3u);
-  EXPECT_EQ(backbone.points.back().omega, scene.continuation.omega_max);
-  for (const auto &p : backbone.points)
-    EXPECT_GT(p.omega, w1_seed - 1e-6);
+  // Omega max = w1 + 5e-4 on the seed bar (w1 from method.md), both methods.
+  for (const auto method : {nsm::ContinuationMethod::sequential, nsm::ContinuationMethod::arclength})
+    {
+      auto scene                = seed_scene(nsm::ForceSign::physical, 1.5, w1_seed + 5e-4);
+      scene.continuation.method = method;
+      HbModel    model(scene);
+      const auto backbone = model.backbone();
+      ASSERT_GE(backbone.points.size(), 3u);
+      EXPECT_EQ(backbone.points.back().omega, scene.continuation.omega_max);
+      for (const auto &p : backbone.points)
+        EXPECT_GT(p.omega, w1_seed - 1e-6);
+    }
 }
 
 TEST(Backbone, RangeAboveGrazingIsReachedFromGrazing)
