@@ -1,3 +1,4 @@
+#include <nsm/near_modes.h>
 #include <nsm/receptance.h>
 
 #include <deal.II/lac/sparse_direct.h>
@@ -29,15 +30,19 @@ namespace nsm
   {
     if (method_ == ReceptanceMethod::modal)
       {
-        modal_ = compute_spectrum(discretisation,
-                                  EndCondition::clamped_free,
-                                  params.modes,
-                                  /*with_contact_residues=*/true);
-        summed_modes_ = modal_.eigenvalues.size();
-        if (modal_.eigenvalues.size() < discretisation.free_dofs(false).size())
-          truncated_basis_remainder();
+        const BandedPencil pencil(discretisation, EndCondition::clamped_free);
+        const bool         full_basis = params.modes == 0 || params.modes >= unsigned(pencil.n);
+        // The split needs a band (omega_max > 0) with modes beyond it.
+        if (full_basis && omega_max > 0 &&
+            count_eigenvalues_below(pencil, far_ratio * omega_max * omega_max) < pencil.n)
+          split_far_modes(pencil, omega_max);
         else
-          split_far_modes(omega_max);
+          {
+            modal_ = compute_spectrum(discretisation, EndCondition::clamped_free, params.modes,
+                                      /*with_contact_residues=*/true);
+            if (!full_basis)
+              truncated_basis_remainder();
+          }
       }
     // The poles counted for the phase angle are those of the gamma evaluated:
     // a truncated modal basis has none beyond its last mode.
@@ -65,49 +70,36 @@ namespace nsm
       }
   }
 
-  void Receptance::split_far_modes(const double omega_max)
+  void Receptance::split_far_modes(const BandedPencil &pencil, const double omega_max)
   {
     // The modes with w_j >= 4 omega_max are summed once as the power series
     // sum_m w^2m sum_j r_j / w_j^(2m + 2) in w^2 / w_j^2 <= 1/16, with enough
     // terms to reach the machine precision relative to their static share. On
-    // the paper's mesh (4000 modes, M = 40, W <= 2.2) about 150 modes are left
-    // to sum per frequency.
-    const double       ratio = 16;
-    const unsigned int terms = std::ceil(std::log(std::numeric_limits<double>::epsilon()) / std::log(1 / ratio));
-    const std::vector<double> &l = modal_.eigenvalues;
-    series_limit_                = omega_max * omega_max;
-    const unsigned int near =
-      std::lower_bound(l.begin(), l.end(), ratio * series_limit_) - l.begin();
-    remainder_.assign(terms, 0.0);
-    for (unsigned int j = near; j < l.size(); ++j)
-      {
-        double power = modal_.contact_residues[j] / l[j];
-        for (double &coefficient : remainder_)
-          {
-            coefficient += power;
-            power /= l[j];
-          }
-      }
-    summed_modes_ = near;
+    // the paper's mesh (4000 modes, M = 40, W <= 2.2) about 110 modes are left
+    // to sum per frequency, and only those are computed.
+    const unsigned int terms =
+      std::ceil(std::log(std::numeric_limits<double>::epsilon()) / std::log(1 / far_ratio));
+    series_limit_      = omega_max * omega_max;
+    const double upper = far_ratio * series_limit_;
+    modal_             = modes_below(pencil, upper);
+    remainder_         = far_mode_series(pencil, modal_, upper, series_limit_, terms);
   }
 
   ReceptanceValue Receptance::operator()(const double omega) const
   {
     const double sigma = omega * omega;
-    if (method_ == ReceptanceMethod::modal)
+    // Beyond the band of the far-mode series only a direct solve holds
+    // every mode.
+    if (method_ == ReceptanceMethod::modal && sigma <= series_limit_)
       {
-        // Beyond the band of the series every mode is summed.
-        const bool         series = sigma <= series_limit_;
-        const unsigned int summed = series ? summed_modes_ : modal_.eigenvalues.size();
-        ReceptanceValue    value{0, 0};
-        if (series)
-          for (unsigned int m = remainder_.size(); m-- > 0;)
-            {
-              value.gamma = value.gamma * sigma + remainder_[m];
-              if (m > 0)
-                value.dgamma_domega2 = value.dgamma_domega2 * sigma + m * remainder_[m];
-            }
-        for (unsigned int j = 0; j < summed; ++j)
+        ReceptanceValue value{0, 0};
+        for (unsigned int m = remainder_.size(); m-- > 0;)
+          {
+            value.gamma = value.gamma * sigma + remainder_[m];
+            if (m > 0)
+              value.dgamma_domega2 = value.dgamma_domega2 * sigma + m * remainder_[m];
+          }
+        for (unsigned int j = 0; j < modal_.eigenvalues.size(); ++j)
           {
             const double distance = modal_.eigenvalues[j] - sigma;
             if (distance == 0)

@@ -26,65 +26,6 @@ namespace nsm
 {
   namespace
   {
-    /// K and M restricted to a set of DoFs, in LAPACK symmetric band storage.
-    struct BandedPencil
-    {
-      int                 n = 0;
-      int                 bandwidth = 0;
-      std::vector<double> k; // (bandwidth + 1) x n, upper
-      std::vector<double> m;
-      std::vector<unsigned int> dofs;
-      int                 contact_row = -1;
-
-      double &entry(std::vector<double> &ab, int i, int j) // i <= j
-      {
-        return ab[(bandwidth + i - j) + j * (bandwidth + 1)];
-      }
-      double at(const std::vector<double> &ab, int i, int j) const
-      {
-        if (i > j)
-          std::swap(i, j);
-        if (j - i > bandwidth)
-          return 0.0;
-        return ab[(bandwidth + i - j) + j * (bandwidth + 1)];
-      }
-    };
-
-    BandedPencil make_pencil(const Discretisation &d, const EndCondition ends)
-    {
-      BandedPencil p;
-      p.dofs = d.free_dofs(ends == EndCondition::clamped_clamped);
-      p.n    = p.dofs.size();
-      std::vector<int> row_of(d.n_dofs(), -1);
-      for (int i = 0; i < p.n; ++i)
-        row_of[p.dofs[i]] = i;
-      if (ends == EndCondition::clamped_free)
-        p.contact_row = row_of[d.contact_dof()];
-
-      for (int i = 0; i < p.n; ++i)
-        for (auto it = d.stiffness().begin(p.dofs[i]);
-             it != d.stiffness().end(p.dofs[i]);
-             ++it)
-          if (row_of[it->column()] >= 0)
-            p.bandwidth = std::max(p.bandwidth, std::abs(row_of[it->column()] - i));
-
-      p.k.assign((p.bandwidth + 1) * p.n, 0.0);
-      p.m.assign((p.bandwidth + 1) * p.n, 0.0);
-      for (int i = 0; i < p.n; ++i)
-        for (auto it = d.stiffness().begin(p.dofs[i]);
-             it != d.stiffness().end(p.dofs[i]);
-             ++it)
-          {
-            const int j = row_of[it->column()];
-            if (j >= i)
-              {
-                p.entry(p.k, i, j) = it->value();
-                p.entry(p.m, i, j) = d.mass().el(p.dofs[i], it->column());
-              }
-          }
-      return p;
-    }
-
     /// Which matrix LAPACK factors by Cholesky. dsbgvx reduces the pencil
     /// to standard form with that factor, so an eigenvalue's absolute error
     /// is about eps times the largest eigenvalue of the reduced problem:
@@ -237,7 +178,7 @@ namespace nsm
                              unsigned int          count,
                              const bool            with_contact_residues)
   {
-    const BandedPencil pencil = make_pencil(discretisation, ends);
+    const BandedPencil pencil(discretisation, ends);
     if (count == 0 || count > static_cast<unsigned int>(pencil.n))
       count = pencil.n;
     ModalData data;
@@ -248,7 +189,7 @@ namespace nsm
         const std::vector<double> lambda =
           count == static_cast<unsigned int>(pencil.n) ? data.eigenvalues :
                                                          lowest_eigenvalues(pencil, pencil.n);
-        const BandedPencil clamped = make_pencil(discretisation, EndCondition::clamped_clamped);
+        const BandedPencil clamped(discretisation, EndCondition::clamped_clamped);
         data.contact_residues = contact_residues(lambda,
                                                  lowest_eigenvalues(clamped, clamped.n),
                                                  static_receptance(pencil),
@@ -261,7 +202,7 @@ namespace nsm
                                         const EndCondition    ends,
                                         const double          omega_max)
   {
-    return banded_eigenvalues(make_pencil(discretisation, ends),
+    return banded_eigenvalues(BandedPencil(discretisation, ends),
                               Factored::stiffness,
                               0,
                               0,

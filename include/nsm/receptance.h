@@ -45,7 +45,7 @@ namespace nsm
     /// static and a first-order dynamic correction.
     void truncated_basis_remainder();
     /// A full basis: the modes far above omega_max summed once as a series.
-    void split_far_modes(double omega_max);
+    void split_far_modes(const BandedPencil &pencil, double omega_max);
     /// gamma = h_N and h^T M h from one sparse solve.
     ReceptanceValue direct_value(double omega) const;
 
@@ -55,8 +55,10 @@ namespace nsm
     ModalData             modal_;
     /// Taylor coefficients in w^2 of the modes not summed per frequency.
     std::vector<double> remainder_;
-    unsigned int        summed_modes_ = 0;
-    /// w^2 up to which remainder_ holds; beyond, every mode is summed.
+    /// The far modes' series is summed for w^2 <= series_limit_, where they
+    /// lie beyond far_ratio * series_limit_; beyond, gamma is a direct solve.
+    static constexpr double far_ratio = 16;
+    /// w^2 up to which remainder_ holds.
     double series_limit_ = std::numeric_limits<double>::infinity();
   };
 } // namespace nsm

@@ -3,18 +3,13 @@
 // Cuthill-McKee ordering).
 #pragma once
 
+#include <nsm/banded_pencil.h>
 #include <nsm/discretisation.h>
 
 #include <vector>
 
 namespace nsm
 {
-  enum class EndCondition
-  {
-    clamped_free,
-    clamped_clamped
-  };
-
   struct ModalData
   {
     /// Eigenvalues w_j^2, ascending.

@@ -1,0 +1,326 @@
+#include <nsm/near_modes.h>
+#include <nsm/scene.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <string>
+
+namespace nsm
+{
+  namespace
+  {
+    constexpr double eps = std::numeric_limits<double>::epsilon();
+
+    /// LU factors with partial pivoting of K - sigma M, for a real or complex
+    /// shift, in LAPACK's general band layout (U gains b superdiagonals from
+    /// the row swaps). Written out rather than LAPACK's dgbtrf, whose calls per
+    /// column cost more than the arithmetic at bandwidth p = 1.
+    template <typename Scalar>
+    class ShiftedFactor
+    {
+    public:
+      explicit ShiftedFactor(const BandedPencil &p)
+        : p_(p)
+        , n_(p.n)
+        , b_(p.bandwidth)
+        , lu_(std::size_t(3 * p.bandwidth + 1) * p.n)
+        , pivots_(p.n)
+        , inverse_pivots_(p.n)
+      {}
+      /// Factors K - sigma M, reusing the storage (a fresh 100 kB block per
+      /// shift would cost more in page faults than the arithmetic). A pivot
+      /// that is exactly zero (sigma an eigenvalue to working precision) is
+      /// replaced by one at the rounding of the matrix, as LAPACK's dstein
+      /// does for inverse iteration.
+      void factor(const Scalar sigma)
+      {
+        std::fill(lu_.begin(), lu_.end(), Scalar(0));
+        scale_ = 0;
+        for (int j = 0; j < n_; ++j)
+          for (int i = std::max(0, j - b_); i <= j; ++i)
+            {
+              const std::size_t entry = (b_ + i - j) + std::size_t(j) * (b_ + 1);
+              at(i, j) = at(j, i) = p_.k[entry] - sigma * p_.m[entry];
+              scale_ = std::max(scale_, size(at(i, j)));
+            }
+        for (int j = 0; j < n_; ++j)
+          eliminate(j);
+        for (int j = 0; j < n_; ++j)
+          inverse_pivots_[j] = Scalar(1) / at(j, j);
+      }
+      /// x <- (K - sigma M)^{-1} x.
+      void solve(std::vector<Scalar> &x) const
+      {
+        for (int j = 0; j < n_; ++j)
+          {
+            std::swap(x[j], x[pivots_[j]]);
+            for (int i = j + 1; i <= std::min(n_ - 1, j + b_); ++i)
+              x[i] -= at(i, j) * x[j];
+          }
+        for (int j = n_ - 1; j >= 0; --j)
+          {
+            x[j] *= inverse_pivots_[j];
+            for (int i = std::max(0, j - 2 * b_); i < j; ++i)
+              x[i] -= at(i, j) * x[j];
+          }
+      }
+
+    private:
+      // Entry (i, j) sits at row 2b + i - j of column j, ld = 3b + 1.
+      Scalar       &at(const int i, const int j) { return lu_[3 * std::size_t(b_) * j + 2 * b_ + i]; }
+      const Scalar &at(const int i, const int j) const { return lu_[3 * std::size_t(b_) * j + 2 * b_ + i]; }
+      /// The pivot's size as LAPACK measures it (|Re| + |Im|: no hypot).
+      static double size(const double v) { return std::abs(v); }
+      static double size(const std::complex<double> v) { return std::abs(v.real()) + std::abs(v.imag()); }
+      void eliminate(const int j)
+      {
+        const int last = std::min(n_ - 1, j + b_), right = std::min(n_ - 1, j + 2 * b_);
+        int       pivot = j;
+        for (int i = j + 1; i <= last; ++i)
+          if (size(at(i, j)) > size(at(pivot, j)))
+            pivot = i;
+        pivots_[j] = pivot;
+        if (at(pivot, j) == Scalar(0))
+          at(pivot, j) = eps * scale_;
+        if (pivot != j)
+          for (int k = j; k <= right; ++k)
+            std::swap(at(j, k), at(pivot, k));
+        for (int i = j + 1; i <= last; ++i)
+          at(i, j) /= at(j, j);
+        for (int k = j + 1; k <= right; ++k)
+          for (int i = j + 1; i <= last; ++i)
+            at(i, k) -= at(i, j) * at(j, k);
+      }
+
+      const BandedPencil &p_;
+      int                 n_, b_;
+      std::vector<Scalar> lu_;
+      std::vector<int>    pivots_;
+      std::vector<Scalar> inverse_pivots_; ///< solve() multiplies: no division chain
+      double              scale_ = 0; ///< largest |entry| of K - sigma M
+    };
+
+    std::vector<double> mass_times(const BandedPencil &p, const std::vector<double> &x)
+    {
+      std::vector<double> y(p.n, 0.0);
+      const int           b = p.bandwidth;
+      for (int j = 0; j < p.n; ++j)
+        for (int i = std::max(0, j - b); i <= j; ++i)
+          {
+            const double m = p.m[(b + i - j) + std::size_t(j) * (b + 1)];
+            y[i] += m * x[j];
+            if (i != j)
+              y[j] += m * x[i];
+          }
+      return y;
+    }
+
+    double mass_norm_squared(const BandedPencil &p, const std::vector<double> &x)
+    {
+      const std::vector<double> mx = mass_times(p, x);
+      return std::inner_product(x.begin(), x.end(), mx.begin(), 0.0);
+    }
+
+    /// Sturm counts known so far: shift -> number of eigenvalues below it.
+    using Counts = std::map<double, int>;
+
+    /// The narrowest [lo, hi] the counts give with below(lo) < j <= below(hi).
+    std::pair<double, double> bracket(const Counts &counts, const int j)
+    {
+      auto hi = std::find_if(counts.begin(), counts.end(), [j](const auto &c) { return c.second >= j; });
+      return {std::prev(hi)->first, hi->first};
+    }
+
+    /// Narrows the bracket of lambda_j until it holds lambda_j alone,
+    /// trying the guesses first, then bisecting.
+    void isolate(const BandedPencil &p, Counts &counts, const int j, const std::vector<double> &guesses)
+    {
+      auto next_guess = guesses.begin();
+      for (;;)
+        {
+          const auto [lo, hi] = bracket(counts, j);
+          if (counts.at(lo) == j - 1 && counts.at(hi) == j)
+            return;
+          if (hi - lo <= 4 * eps * hi)
+            throw NumericalError("two clamped-free eigenvalues agree to rounding near w^2 = " +
+                                 std::to_string(hi) + ": the modal receptance cannot tell them apart");
+          next_guess = std::find_if(next_guess, guesses.end(), [lo = lo, hi = hi](const double g) {
+            return lo < g && g < hi;
+          });
+          const double sigma = next_guess != guesses.end() ? *next_guess++ : 0.5 * (lo + hi);
+          counts[sigma]      = count_eigenvalues_below(p, sigma);
+        }
+    }
+
+    /// phi_j(L)^2 of the mass-normalised mode, by inverse iteration with the
+    /// factor at a shift within rounding of lambda_j, from a start vector with
+    /// no special direction: each step divides another mode's share by
+    /// |lambda_k - lambda_j| / |lambda_j - shift|, which tells apart nearly equal
+    /// eigenvalues (a mode confined to a small cell) that 1/gamma cannot.
+    double residue(const BandedPencil &p, const ShiftedFactor<double> &factor)
+    {
+      std::vector<double> x(p.n);
+      for (int i = 0; i < p.n; ++i)
+        x[i] = 1 + 0.5 * std::sin(1.7 * i + 0.3);
+      for (int step = 0; step < 2; ++step)
+        {
+          x = mass_times(p, x);
+          factor.solve(x);
+        }
+      return x[p.contact_row] * x[p.contact_row] / mass_norm_squared(p, x);
+    }
+
+    /// lambda_j and its residue, from its isolating bracket: Newton's method on
+    /// 1/gamma, sigma + gamma / gamma', gamma = h_L and gamma' = h^T M h for
+    /// h = (K - sigma M)^{-1} e_L, which converges quadratically to the pole;
+    /// where a step leaves the bracket or is not half the step before last (a
+    /// mode nearly absent from gamma), a Sturm count at sigma narrows the
+    /// bracket and its midpoint is tried, as in Numerical Recipes' rtsafe. A
+    /// step below 1e-8 sigma is the last: the error it leaves, about
+    /// step^2 / (lambda_{j+1} - lambda_j), is at the rounding of lambda_j.
+    std::pair<double, double> pole(const BandedPencil &p, Counts &counts, const int j, const double guess)
+    {
+      auto [lo, hi]   = bracket(counts, j);
+      double sigma    = guess > 0 ? std::clamp(guess, lo, hi) : 0.5 * (lo + hi);
+      double previous = hi - lo, older = hi - lo;
+      ShiftedFactor<double> factor(p);
+      for (int iteration = 0; iteration < 200; ++iteration)
+        {
+          factor.factor(sigma);
+          std::vector<double> h(p.n, 0.0);
+          h[p.contact_row] = 1.0;
+          factor.solve(h);
+          const double step = h[p.contact_row] / mass_norm_squared(p, h);
+          double       next = sigma + step;
+          if (lo < next && next < hi && std::abs(step) <= 1e-8 * sigma)
+            {
+              factor.factor(next);
+              return {next, residue(p, factor)};
+            }
+          if (!(lo < next && next < hi) || std::abs(step) > 0.5 * older)
+            {
+              counts[sigma] = count_eigenvalues_below(p, sigma);
+              (counts[sigma] >= j ? hi : lo) = sigma;
+              if (hi - lo <= 4 * eps * hi)
+                return {0.5 * (lo + hi), residue(p, factor)};
+              next = 0.5 * (lo + hi);
+            }
+          older    = previous;
+          previous = std::abs(next - sigma);
+          sigma    = next;
+        }
+      throw NumericalError("no convergence to clamped-free eigenvalue " + std::to_string(j));
+    }
+
+    /// The frequencies found so far are nearly evenly spaced (a bar): the
+    /// next one extrapolated, and shifts half a spacing either side of it.
+    std::vector<double> guesses(const std::vector<double> &lambda)
+    {
+      if (lambda.empty())
+        return {};
+      const double w       = std::sqrt(lambda.back());
+      const double spacing = w - (lambda.size() > 1 ? std::sqrt(lambda[lambda.size() - 2]) : 0.0);
+      return {std::pow(w + spacing, 2), std::pow(w + 1.5 * spacing, 2), std::pow(w + 0.5 * spacing, 2)};
+    }
+  } // namespace
+
+  int count_eigenvalues_below(const BandedPencil &p, const double sigma)
+  {
+    // K - sigma M = L D L^T without pivoting, row by row in the band. Row i
+    // needs the rows i - b .. i - 1 only: L(i, k), k in [i - b, i), and d(i)
+    // are held in rings of a power of two >= b + 1 rows.
+    const int b = p.bandwidth, ld = b + 1;
+    int       ring = 1;
+    while (ring < ld)
+      ring *= 2;
+    const int           mask = ring - 1;
+    std::vector<double> l(std::size_t(ring) * std::max(b, 1), 0.0), d(ring);
+    auto L = [&](const int i, const int k) -> double & { return l[(i & mask) * b + (k - i + b)]; };
+    int negative = 0;
+    for (int i = 0; i < p.n; ++i)
+      {
+        const int first = std::max(0, i - b);
+        for (int j = first; j <= i; ++j)
+          {
+            const std::size_t entry = (b + j - i) + std::size_t(i) * ld;
+            double            s     = p.k[entry] - sigma * p.m[entry];
+            for (int k = std::max(first, j - b); k < j; ++k)
+              s -= L(i, k) * d[k & mask] * L(j, k);
+            if (j < i)
+              L(i, j) = s / d[j & mask];
+            else
+              {
+                // A zero pivot (sigma an eigenvalue of a leading block) is
+                // replaced by one at the rounding of the diagonal, as in
+                // LAPACK's dlaebz.
+                if (s == 0)
+                  s = eps * (std::abs(p.k[entry]) + std::abs(sigma * p.m[entry]));
+                d[i & mask] = s;
+                negative += s < 0;
+              }
+          }
+      }
+    return negative;
+  }
+
+  ModalData modes_below(const BandedPencil &p, const double upper)
+  {
+    Counts counts{{0.0, 0}, {upper, count_eigenvalues_below(p, upper)}};
+    ModalData near;
+    for (int j = 1; j <= counts.at(upper); ++j)
+      {
+        const std::vector<double> trials = guesses(near.eigenvalues);
+        isolate(p, counts, j, trials);
+        const auto [lambda, residue] = pole(p, counts, j, trials.empty() ? 0.0 : trials.front());
+        near.eigenvalues.push_back(lambda);
+        near.contact_residues.push_back(residue);
+      }
+    return near;
+  }
+
+  std::vector<double> far_mode_series(const BandedPencil &p,
+                                      const ModalData    &near,
+                                      const double        upper,
+                                      const double        limit,
+                                      const unsigned int  terms)
+  {
+    // F = gamma - sum_near r_j / (lambda_j - s) is analytic for |s| < upper.
+    // Its Taylor coefficients are the trapezoidal sums over `points` points
+    // of a circle of radius R: rounding delta in F costs delta (limit / R)^m
+    // in the series on |s| <= limit, and the aliased terms (R / upper)^points,
+    // which enough points bring below eps. R lies mid-gap between near poles,
+    // about sqrt(limit upper), so that F is not the difference of large
+    // near-pole values.
+    const std::vector<double> &lambda = near.eigenvalues;
+    const auto   above  = std::upper_bound(lambda.begin(), lambda.end(), std::sqrt(limit * upper));
+    const double radius = 0.5 * ((above == lambda.begin() ? 0.0 : *std::prev(above)) +
+                                 (above == lambda.end() ? upper : *above));
+    const int points = 2 * int(std::ceil(0.5 * std::max<double>(terms, std::log(eps) / std::log(radius / upper))));
+    std::vector<std::complex<double>> sums(terms, 0.0);
+    ShiftedFactor<std::complex<double>> factor(p);
+    for (int q = 0; q <= points / 2; ++q)
+      {
+        const std::complex<double>        s = std::polar(radius, 2 * M_PI * q / points);
+        std::vector<std::complex<double>> h(p.n, 0.0);
+        h[p.contact_row] = 1.0;
+        factor.factor(s); // off the real axis but at q = 0, mid-gap there: regular
+        factor.solve(h);
+        std::complex<double> f = h[p.contact_row];
+        for (std::size_t j = 0; j < lambda.size(); ++j)
+          f -= near.contact_residues[j] / (lambda[j] - s);
+        // The points q and points - q are conjugate, as are their values.
+        const double weight = (q == 0 || q == points / 2) ? 1.0 : 2.0;
+        std::complex<double> power = 1.0;
+        for (unsigned int m = 0; m < terms; ++m, power /= s)
+          sums[m] += weight * std::real(f * power);
+      }
+    std::vector<double> coefficients(terms);
+    for (unsigned int m = 0; m < terms; ++m)
+      coefficients[m] = sums[m].real() / points;
+    return coefficients;
+  }
+} // namespace nsm
