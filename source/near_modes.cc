@@ -1,11 +1,11 @@
 #include <nsm/near_modes.h>
 #include <nsm/scene.h>
+#include <nsm/sturm_sequence.h>
 
 #include <algorithm>
 #include <cmath>
 #include <complex>
 #include <limits>
-#include <map>
 #include <numeric>
 #include <string>
 
@@ -125,37 +125,6 @@ namespace nsm
       return std::inner_product(x.begin(), x.end(), mx.begin(), 0.0);
     }
 
-    /// Sturm counts known so far: shift -> number of eigenvalues below it.
-    using Counts = std::map<double, int>;
-
-    /// The narrowest [lo, hi] the counts give with below(lo) < j <= below(hi).
-    std::pair<double, double> bracket(const Counts &counts, const int j)
-    {
-      auto hi = std::find_if(counts.begin(), counts.end(), [j](const auto &c) { return c.second >= j; });
-      return {std::prev(hi)->first, hi->first};
-    }
-
-    /// Narrows the bracket of lambda_j until it holds lambda_j alone,
-    /// trying the guesses first, then bisecting.
-    void isolate(const BandedPencil &p, Counts &counts, const int j, const std::vector<double> &guesses)
-    {
-      auto next_guess = guesses.begin();
-      for (;;)
-        {
-          const auto [lo, hi] = bracket(counts, j);
-          if (counts.at(lo) == j - 1 && counts.at(hi) == j)
-            return;
-          if (hi - lo <= 4 * eps * hi)
-            throw NumericalError("two clamped-free eigenvalues agree to rounding near w^2 = " +
-                                 std::to_string(hi) + ": the modal receptance cannot tell them apart");
-          next_guess = std::find_if(next_guess, guesses.end(), [lo = lo, hi = hi](const double g) {
-            return lo < g && g < hi;
-          });
-          const double sigma = next_guess != guesses.end() ? *next_guess++ : 0.5 * (lo + hi);
-          counts[sigma]      = count_eigenvalues_below(p, sigma);
-        }
-    }
-
     /// phi_j(L)^2 of the mass-normalised mode, by inverse iteration with the
     /// factor at a shift within rounding of lambda_j, from a start vector with
     /// no special direction: each step divides another mode's share by
@@ -182,9 +151,9 @@ namespace nsm
     /// bracket and its midpoint is tried, as in Numerical Recipes' rtsafe. A
     /// step below 1e-8 sigma is the last: the error it leaves, about
     /// step^2 / (lambda_{j+1} - lambda_j), is at the rounding of lambda_j.
-    std::pair<double, double> pole(const BandedPencil &p, Counts &counts, const int j, const double guess)
+    std::pair<double, double> pole(const BandedPencil &p, SturmBrackets &sturm, const int j, const double guess)
     {
-      auto [lo, hi]   = bracket(counts, j);
+      auto [lo, hi]   = sturm.bracket(j);
       double sigma    = guess > 0 ? std::clamp(guess, lo, hi) : 0.5 * (lo + hi);
       double previous = hi - lo, older = hi - lo;
       ShiftedFactor<double> factor(p);
@@ -203,8 +172,7 @@ namespace nsm
             }
           if (!(lo < next && next < hi) || std::abs(step) > 0.5 * older)
             {
-              counts[sigma] = count_eigenvalues_below(p, sigma);
-              (counts[sigma] >= j ? hi : lo) = sigma;
+              (sturm.below(sigma) >= j ? hi : lo) = sigma;
               if (hi - lo <= 4 * eps * hi)
                 return {0.5 * (lo + hi), residue(p, factor)};
               next = 0.5 * (lo + hi);
@@ -228,54 +196,15 @@ namespace nsm
     }
   } // namespace
 
-  int count_eigenvalues_below(const BandedPencil &p, const double sigma)
-  {
-    // K - sigma M = L D L^T without pivoting, row by row in the band. Row i
-    // needs the rows i - b .. i - 1 only: L(i, k), k in [i - b, i), and d(i)
-    // are held in rings of a power of two >= b + 1 rows.
-    const int b = p.bandwidth, ld = b + 1;
-    int       ring = 1;
-    while (ring < ld)
-      ring *= 2;
-    const int           mask = ring - 1;
-    std::vector<double> l(std::size_t(ring) * std::max(b, 1), 0.0), d(ring);
-    auto L = [&](const int i, const int k) -> double & { return l[(i & mask) * b + (k - i + b)]; };
-    int negative = 0;
-    for (int i = 0; i < p.n; ++i)
-      {
-        const int first = std::max(0, i - b);
-        for (int j = first; j <= i; ++j)
-          {
-            const std::size_t entry = (b + j - i) + std::size_t(i) * ld;
-            double            s     = p.k[entry] - sigma * p.m[entry];
-            for (int k = std::max(first, j - b); k < j; ++k)
-              s -= L(i, k) * d[k & mask] * L(j, k);
-            if (j < i)
-              L(i, j) = s / d[j & mask];
-            else
-              {
-                // A zero pivot (sigma an eigenvalue of a leading block) is
-                // replaced by one at the rounding of the diagonal, as in
-                // LAPACK's dlaebz.
-                if (s == 0)
-                  s = eps * (std::abs(p.k[entry]) + std::abs(sigma * p.m[entry]));
-                d[i & mask] = s;
-                negative += s < 0;
-              }
-          }
-      }
-    return negative;
-  }
-
   ModalData modes_below(const BandedPencil &p, const double upper)
   {
-    Counts counts{{0.0, 0}, {upper, count_eigenvalues_below(p, upper)}};
-    ModalData near;
-    for (int j = 1; j <= counts.at(upper); ++j)
+    SturmBrackets sturm(p, upper);
+    ModalData     near;
+    for (int j = 1; j <= sturm.total(); ++j)
       {
         const std::vector<double> trials = guesses(near.eigenvalues);
-        isolate(p, counts, j, trials);
-        const auto [lambda, residue] = pole(p, counts, j, trials.empty() ? 0.0 : trials.front());
+        sturm.isolate(j, trials);
+        const auto [lambda, residue] = pole(p, sturm, j, trials.empty() ? 0.0 : trials.front());
         near.eigenvalues.push_back(lambda);
         near.contact_residues.push_back(residue);
       }

@@ -1,5 +1,6 @@
 #include <nsm/near_modes.h>
 #include <nsm/receptance.h>
+#include <nsm/sturm_sequence.h>
 
 #include <deal.II/lac/sparse_direct.h>
 

@@ -1,4 +1,5 @@
 #include <nsm/spectrum.h>
+#include <nsm/sturm_sequence.h>
 
 #include <algorithm>
 #include <cmath>
@@ -92,8 +93,27 @@ namespace nsm
     /// lambda are equal, the mass form above. Bisection (ranges 'I') finds a
     /// few eigenvalues cheaply, QR (all of them) many: each form is asked
     /// only for its own share.
+    /// The lowest `count` eigenvalues by bisection of Sturm counts of
+    /// K - sigma M to their rounding: about 60 counts of O(n p^2) each per
+    /// eigenvalue against the O(n^2 p) of LAPACK's band reduction, so cheaper
+    /// for count < n / (50 p). No Cholesky factor of M enters: the low modes
+    /// keep their accuracy on meshes with tiny cells.
+    std::vector<double> bisected_eigenvalues(const BandedPencil &p, const int count)
+    {
+      double upper = 1;
+      while (count_eigenvalues_below(p, upper) < count)
+        upper *= 16;
+      SturmBrackets       sturm(p, upper);
+      std::vector<double> lambda;
+      for (int j = 1; j <= count; ++j)
+        lambda.push_back(sturm.bisect(j));
+      return lambda;
+    }
+
     std::vector<double> lowest_eigenvalues(const BandedPencil &p, const int count)
     {
+      if (50 * count * std::max(p.bandwidth, 1) <= p.n)
+        return bisected_eigenvalues(p, count);
       if (count < p.n)
         {
           std::vector<double> low = banded_eigenvalues(p, Factored::stiffness, 1, count, 0.0);

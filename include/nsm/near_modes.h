@@ -11,10 +11,6 @@
 
 namespace nsm
 {
-  /// The number of eigenvalues below sigma: the negative pivots of
-  /// K - sigma M = L D L^T (Sylvester's law of inertia), O(n p^2).
-  int count_eigenvalues_below(const BandedPencil &pencil, double sigma);
-
   /// Every eigenvalue lambda_j < upper of the clamped-free pencil, ascending,
   /// with its residue phi_j(L)^2. Each lambda_j is bracketed alone by Sturm
   /// counts (the inertia of K - sigma M) and found by Newton's method on
