@@ -53,6 +53,19 @@ namespace
     return list;
   }
 
+  /// A mesh built: the discretisation keeps a reference to its bar.
+  struct Built
+  {
+    explicit Built(const Mesh &mesh)
+      : bar(mesh.scene.bar)
+      , d(bar, mesh.scene.discretisation)
+    {
+      mesh.refine(d);
+    }
+    nsm::BarModel       bar;
+    nsm::Discretisation d;
+  };
+
   // The paper's band, M = 40 harmonics of Omega <= 2.2; the modes below
   // 16 times its square are the near ones.
   constexpr double band  = 40 * 2.2;
@@ -67,9 +80,8 @@ TEST(NearModes, EigenvaluesAreThoseOfTheAssembledPencil)
   // eps lambda_max / lambda_1 (1e-8 on the paper's mesh).
   for (const Mesh &mesh : meshes())
     {
-      const nsm::BarModel bar(mesh.scene.bar);
-      nsm::Discretisation d(bar, mesh.scene.discretisation);
-      mesh.refine(d);
+      const Built         built(mesh);
+      const auto         &d = built.d;
       const nsm::BandedPencil p(d, nsm::EndCondition::clamped_free);
       const nsm::ModalData    near = nsm::modes_below(p, upper);
       ASSERT_EQ(int(near.eigenvalues.size()), extended::count_below(p, upper)) << mesh.name;
@@ -87,9 +99,8 @@ TEST(NearModes, ResiduesAgreeWithTheProductFormula)
   // two methods agree to 7e-11 there, 5e-12 elsewhere.
   for (const Mesh &mesh : meshes())
     {
-      const nsm::BarModel bar(mesh.scene.bar);
-      nsm::Discretisation d(bar, mesh.scene.discretisation);
-      mesh.refine(d);
+      const Built         built(mesh);
+      const auto         &d = built.d;
       const nsm::ModalData near = nsm::modes_below(nsm::BandedPencil(d, nsm::EndCondition::clamped_free), upper);
       const nsm::ModalData full = nsm::compute_spectrum(d, nsm::EndCondition::clamped_free, 0, true);
       for (std::size_t j = 0; j < near.eigenvalues.size(); ++j)
@@ -105,9 +116,8 @@ TEST(NearModes, FarSeriesIsTheSumOverTheFarModes)
   // gamma(0) from the near sum's terms. Measured: at most 9e-14 gamma(0).
   for (const Mesh &mesh : meshes())
     {
-      const nsm::BarModel bar(mesh.scene.bar);
-      nsm::Discretisation d(bar, mesh.scene.discretisation);
-      mesh.refine(d);
+      const Built         built(mesh);
+      const auto         &d = built.d;
       const nsm::BandedPencil   p(d, nsm::EndCondition::clamped_free);
       const nsm::ModalData      near   = nsm::modes_below(p, upper);
       const nsm::ModalData      full   = nsm::compute_spectrum(d, nsm::EndCondition::clamped_free, 0, true);
