@@ -143,45 +143,51 @@ namespace nsm
       return x[p.contact_row] * x[p.contact_row] / mass_norm_squared(p, x);
     }
 
-    /// lambda_j and its residue, from its isolating bracket: Newton's method on
-    /// 1/gamma, sigma + gamma / gamma', gamma = h_L and gamma' = h^T M h for
-    /// h = (K - sigma M)^{-1} e_L, which converges quadratically to the pole;
-    /// where a step leaves the bracket or is not half the step before last (a
-    /// mode nearly absent from gamma), a Sturm count at sigma narrows the
-    /// bracket and its midpoint is tried, as in Numerical Recipes' rtsafe. A
-    /// step below 1e-8 sigma is the last: the error it leaves, about
-    /// step^2 / (lambda_{j+1} - lambda_j), is at the rounding of lambda_j.
-    std::pair<double, double> pole(const BandedPencil &p, SturmBrackets &sturm, const int j, const double guess)
+    /// lambda_j from its isolating bracket: Newton's method on 1/g,
+    /// sigma + g / g', g = h_r and g' = h^T M h for h = (K - sigma M)^{-1} e_r
+    /// (on the contact row, g = gamma), whose simple zeros are the eigenvalues
+    /// where phi_j(r) != 0, with quadratic convergence; where a step leaves the
+    /// bracket or is not half the step before last (a mode nearly absent from
+    /// row r), a Sturm count at sigma narrows the bracket and its midpoint is
+    /// tried, as in Numerical Recipes' rtsafe. A step below 1e-8 sigma is the
+    /// last: the error it leaves, about step^2 / (lambda_{j+1} - lambda_j), is
+    /// at the rounding of lambda_j. `factor` is left at a shift within
+    /// rounding of lambda_j.
+    double eigenvalue(const BandedPencil   &p,
+                      SturmBrackets        &sturm,
+                      const int             j,
+                      const double          guess,
+                      const int             row,
+                      ShiftedFactor<double> &factor)
     {
       auto [lo, hi]   = sturm.bracket(j);
       double sigma    = guess > 0 ? std::clamp(guess, lo, hi) : 0.5 * (lo + hi);
       double previous = hi - lo, older = hi - lo;
-      ShiftedFactor<double> factor(p);
       for (int iteration = 0; iteration < 200; ++iteration)
         {
           factor.factor(sigma);
           std::vector<double> h(p.n, 0.0);
-          h[p.contact_row] = 1.0;
+          h[row] = 1.0;
           factor.solve(h);
-          const double step = h[p.contact_row] / mass_norm_squared(p, h);
+          const double step = h[row] / mass_norm_squared(p, h);
           double       next = sigma + step;
           if (lo < next && next < hi && std::abs(step) <= 1e-8 * sigma)
             {
               factor.factor(next);
-              return {next, residue(p, factor)};
+              return next;
             }
           if (!(lo < next && next < hi) || std::abs(step) > 0.5 * older)
             {
               (sturm.below(sigma) >= j ? hi : lo) = sigma;
               if (hi - lo <= 4 * eps * hi)
-                return {0.5 * (lo + hi), residue(p, factor)};
+                return 0.5 * (lo + hi);
               next = 0.5 * (lo + hi);
             }
           older    = previous;
           previous = std::abs(next - sigma);
           sigma    = next;
         }
-      throw NumericalError("no convergence to clamped-free eigenvalue " + std::to_string(j));
+      throw NumericalError("no convergence to eigenvalue " + std::to_string(j));
     }
 
     /// The frequencies found so far are nearly evenly spaced (a bar): the
@@ -198,17 +204,35 @@ namespace nsm
 
   ModalData modes_below(const BandedPencil &p, const double upper)
   {
-    SturmBrackets sturm(p, upper);
-    ModalData     near;
+    SturmBrackets         sturm(p, upper);
+    ShiftedFactor<double> factor(p);
+    ModalData             near;
     for (int j = 1; j <= sturm.total(); ++j)
       {
         const std::vector<double> trials = guesses(near.eigenvalues);
         sturm.isolate(j, trials);
-        const auto [lambda, residue] = pole(p, sturm, j, trials.empty() ? 0.0 : trials.front());
-        near.eigenvalues.push_back(lambda);
-        near.contact_residues.push_back(residue);
+        near.eigenvalues.push_back(
+          eigenvalue(p, sturm, j, trials.empty() ? 0.0 : trials.front(), p.contact_row, factor));
+        near.contact_residues.push_back(residue(p, factor));
       }
     return near;
+  }
+
+  std::vector<double> lowest_eigenvalues(const BandedPencil &p, const int count)
+  {
+    double upper = 1;
+    while (count_eigenvalues_below(p, upper) < count)
+      upper *= 16;
+    SturmBrackets         sturm(p, upper);
+    ShiftedFactor<double> factor(p);
+    std::vector<double>   lambda;
+    for (int j = 1; j <= count; ++j)
+      {
+        const std::vector<double> trials = guesses(lambda);
+        sturm.isolate(j, trials);
+        lambda.push_back(eigenvalue(p, sturm, j, trials.empty() ? 0.0 : trials.front(), p.n - 1, factor));
+      }
+    return lambda;
   }
 
   std::vector<double> far_mode_series(const BandedPencil &p,

@@ -1,5 +1,4 @@
 #include <nsm/spectrum.h>
-#include <nsm/sturm_sequence.h>
 
 #include <algorithm>
 #include <cmath>
@@ -87,33 +86,18 @@ namespace nsm
       return w;
     }
 
-    /// The lowest `count` eigenvalues, each from the form that is accurate
-    /// for it: the stiffness form below sqrt(lambda_1 lambda_max), where the
-    /// two forms' relative errors eps lambda / lambda_1 and eps lambda_max /
-    /// lambda are equal, the mass form above. Bisection (ranges 'I') finds a
-    /// few eigenvalues cheaply, QR (all of them) many: each form is asked
-    /// only for its own share.
-    /// The lowest `count` eigenvalues by bisection of Sturm counts of
-    /// K - sigma M to their rounding: about 60 counts of O(n p^2) each per
-    /// eigenvalue against the O(n^2 p) of LAPACK's band reduction, so cheaper
-    /// for count < n / (50 p). No Cholesky factor of M enters: the low modes
-    /// keep their accuracy on meshes with tiny cells.
-    std::vector<double> bisected_eigenvalues(const BandedPencil &p, const int count)
+    /// The lowest `count` eigenvalues. Fewer than n / (10 p) by Sturm counts
+    /// and Newton (near_modes), cheaper than LAPACK's O(n^2 p) band reduction;
+    /// more from LAPACK, each from the form that is accurate for it: the
+    /// stiffness form below sqrt(lambda_1 lambda_max), where the two forms'
+    /// relative errors eps lambda / lambda_1 and eps lambda_max / lambda are
+    /// equal, the mass form above. Bisection (ranges 'I') finds a few
+    /// eigenvalues cheaply, QR (all of them) many: each form is asked only
+    /// for its own share.
+    std::vector<double> lowest_by_cost(const BandedPencil &p, const int count)
     {
-      double upper = 1;
-      while (count_eigenvalues_below(p, upper) < count)
-        upper *= 16;
-      SturmBrackets       sturm(p, upper);
-      std::vector<double> lambda;
-      for (int j = 1; j <= count; ++j)
-        lambda.push_back(sturm.bisect(j));
-      return lambda;
-    }
-
-    std::vector<double> lowest_eigenvalues(const BandedPencil &p, const int count)
-    {
-      if (50 * count * std::max(p.bandwidth, 1) <= p.n)
-        return bisected_eigenvalues(p, count);
+      if (10 * count * std::max(p.bandwidth, 1) <= p.n)
+        return lowest_eigenvalues(p, count);
       if (count < p.n)
         {
           std::vector<double> low = banded_eigenvalues(p, Factored::stiffness, 1, count, 0.0);
@@ -202,16 +186,16 @@ namespace nsm
     if (count == 0 || count > static_cast<unsigned int>(pencil.n))
       count = pencil.n;
     ModalData data;
-    data.eigenvalues = lowest_eigenvalues(pencil, count);
+    data.eigenvalues = lowest_by_cost(pencil, count);
     if (with_contact_residues)
       {
         // Residues need every pole and zero, whatever `count`.
         const std::vector<double> lambda =
           count == static_cast<unsigned int>(pencil.n) ? data.eigenvalues :
-                                                         lowest_eigenvalues(pencil, pencil.n);
+                                                         lowest_by_cost(pencil, pencil.n);
         const BandedPencil clamped(discretisation, EndCondition::clamped_clamped);
         data.contact_residues = contact_residues(lambda,
-                                                 lowest_eigenvalues(clamped, clamped.n),
+                                                 lowest_by_cost(clamped, clamped.n),
                                                  static_receptance(pencil),
                                                  count);
       }

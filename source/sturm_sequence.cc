@@ -86,18 +86,4 @@ namespace nsm
         below(next_guess != guesses.end() ? *next_guess++ : 0.5 * (lo + hi));
       }
   }
-
-  double SturmBrackets::bisect(const int j)
-  {
-    for (;;)
-      {
-        const auto [lo, hi] = bracket(j);
-        if (hi - lo <= 2 * eps * hi)
-          return 0.5 * (lo + hi);
-        // Over orders of magnitude (the first bracket is [0, upper]), the
-        // geometric mean, and below any positive count a shift far down,
-        // narrow faster than the midpoint.
-        below(hi < 4 * lo ? 0.5 * (lo + hi) : lo > 0 ? std::sqrt(lo * hi) : hi / 1024);
-      }
-  }
 } // namespace nsm

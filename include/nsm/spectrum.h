@@ -5,20 +5,12 @@
 
 #include <nsm/banded_pencil.h>
 #include <nsm/discretisation.h>
+#include <nsm/near_modes.h>
 
 #include <vector>
 
 namespace nsm
 {
-  struct ModalData
-  {
-    /// Eigenvalues w_j^2, ascending.
-    std::vector<double> eigenvalues;
-    /// phi_j(L)^2 of the mass-normalised modes (clamped-free only): the
-    /// residues of the receptance, gamma(w) = sum_j r_j / (w_j^2 - w^2).
-    std::vector<double> contact_residues;
-  };
-
   /// The lowest `count` eigenvalues (count = 0: all), from LAPACK dsbgvx in
   /// the form accurate for each (method.md), and with them, if asked (for
   /// the clamped-free bar), the residues phi_j(L)^2 from the clamped-free and

@@ -32,8 +32,6 @@ namespace nsm
     /// the guesses first, then bisecting. Throws NumericalError if two
     /// eigenvalues agree to rounding.
     void isolate(int j, const std::vector<double> &guesses);
-    /// lambda_j by bisection to the rounding of the counts.
-    double bisect(int j);
 
   private:
     const BandedPencil  &pencil_;

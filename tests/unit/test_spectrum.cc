@@ -157,10 +157,10 @@ TEST(Spectrum, StronglyGradedMeshesKeepTheBesselFrequencies)
 
 TEST(Spectrum, FewModesAreThoseOfTheAssembledPencil)
 {
-  // Ten modes of the paper's mesh come from bisection of Sturm counts (fewer
-  // than n / 50 asked). Against the same pencil's counts in long double, each
+  // Ten modes of the paper's mesh come from Sturm counts and Newton (fewer
+  // than n / 10 asked). Against the same pencil's counts in long double, each
   // is within 1e-11 (measured: 1e-11 on w1^2 for LAPACK's stiffness-factored
-  // form, 5e-12 for the bisection): the tolerance is that of
+  // form): the tolerance is that of
   // NearModes.EigenvaluesAreThoseOfTheAssembledPencil.
   const nsm::Scene          scene = testing_helpers::bar_scene("1.5 - x", 1, 4000);
   const nsm::BarModel       bar(scene.bar);
