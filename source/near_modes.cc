@@ -125,11 +125,12 @@ namespace nsm
       return std::inner_product(x.begin(), x.end(), mx.begin(), 0.0);
     }
 
-    /// phi_j(L)^2 of the mass-normalised mode, by inverse iteration with the
-    /// factor at a shift within rounding of lambda_j, from a start vector with
-    /// no special direction: each step divides another mode's share by
-    /// |lambda_k - lambda_j| / |lambda_j - shift|, which tells apart nearly equal
-    /// eigenvalues (a mode confined to a small cell) that 1/gamma cannot.
+    /// phi_j(L)^2 of the mass-normalised mode, by two steps of inverse
+    /// iteration with the factor at a shift near lambda_j, from a start vector
+    /// with no special direction: each step divides another mode's share by
+    /// |lambda_k - shift| / |lambda_j - shift| (at least 1e6), which tells
+    /// apart nearly equal eigenvalues (a mode confined to a small cell) that
+    /// 1/gamma cannot.
     double residue(const BandedPencil &p, const ShiftedFactor<double> &factor)
     {
       std::vector<double> x(p.n);
@@ -151,8 +152,9 @@ namespace nsm
     /// row r), a Sturm count at sigma narrows the bracket and its midpoint is
     /// tried, as in Numerical Recipes' rtsafe. A step below 1e-8 sigma is the
     /// last: the error it leaves, about step^2 / (lambda_{j+1} - lambda_j), is
-    /// at the rounding of lambda_j. `factor` is left at a shift within
-    /// rounding of lambda_j.
+    /// at the rounding of lambda_j. `factor` is left at a shift from which
+    /// inverse iteration divides every other mode's share by at least 1e6 per
+    /// step.
     double eigenvalue(const BandedPencil   &p,
                       SturmBrackets        &sturm,
                       const int             j,
@@ -173,7 +175,11 @@ namespace nsm
           double       next = sigma + step;
           if (lo < next && next < hi && std::abs(step) <= 1e-8 * sigma)
             {
-              factor.factor(next);
+              // The neighbours lie outside (lo, hi): inverse iteration at
+              // sigma divides their share by min(next - lo, hi - next) / |step|
+              // per step. Below 1e6, a factor at next.
+              if (std::abs(step) > 1e-6 * std::min(next - lo, hi - next))
+                factor.factor(next);
               return next;
             }
           if (!(lo < next && next < hi) || std::abs(step) > 0.5 * older)
