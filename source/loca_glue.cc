@@ -1,7 +1,6 @@
 // NOX and LOCA glue: the HB system as a LOCA::LAPACK interface, Newton at
 // fixed Omega, and LOCA's pseudo-arclength stepper with the analytic dR/dW.
 #include <nsm/continuation.h>
-#include <nsm/dense_lu.h>
 
 #include <LOCA.H>
 #include <LOCA_LAPACK.H>
@@ -106,8 +105,7 @@ namespace nsm
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
 
-    /// NOX's LAPACK group, with its Newton step (LU of J and solve) timed and
-    /// solved by dense_solve rather than the reference LAPACK's dgetrf.
+    /// NOX's LAPACK group, with its Newton step (LU of J and solve) timed.
     class TimedNewtonGroup : public NOX::LAPACK::Group
     {
     public:
@@ -127,15 +125,10 @@ namespace nsm
 
       NOX::Abstract::Group::ReturnType computeNewton(Teuchos::ParameterList &params) override
       {
-        if (isNewton() || !isF() || !isJacobian())
-          return NOX::LAPACK::Group::computeNewton(params);
-        const auto                 start = std::chrono::steady_clock::now();
-        NOX::LAPACK::Matrix<double> lu    = jacSolver.getMatrix();
-        newtonVector                      = fVector;
-        isValidNewton = dense_solve(lu.numRows(), &lu(0, 0), &newtonVector(0));
-        newtonVector.scale(-1.0);
+        const auto start  = std::chrono::steady_clock::now();
+        const auto status = NOX::LAPACK::Group::computeNewton(params);
         hb_.record_linear_solve(seconds_since(start));
-        return isValidNewton ? NOX::Abstract::Group::Ok : NOX::Abstract::Group::Failed;
+        return status;
       }
 
     private:
