@@ -1,5 +1,6 @@
 #include <nsm/near_modes.h>
 #include <nsm/scene.h>
+#include <nsm/shifted_factor.h>
 #include <nsm/sturm_sequence.h>
 
 #include <algorithm>
@@ -14,95 +15,6 @@ namespace nsm
   namespace
   {
     constexpr double eps = std::numeric_limits<double>::epsilon();
-
-    /// LU factors with partial pivoting of K - sigma M, for a real or complex
-    /// shift, in LAPACK's general band layout (U gains b superdiagonals from
-    /// the row swaps). Written out rather than LAPACK's dgbtrf, whose calls per
-    /// column cost more than the arithmetic at bandwidth p = 1.
-    template <typename Scalar>
-    class ShiftedFactor
-    {
-    public:
-      explicit ShiftedFactor(const BandedPencil &p)
-        : p_(p)
-        , n_(p.n)
-        , b_(p.bandwidth)
-        , lu_(std::size_t(3 * p.bandwidth + 1) * p.n)
-        , pivots_(p.n)
-        , inverse_pivots_(p.n)
-      {}
-      /// Factors K - sigma M, reusing the storage (a fresh 100 kB block per
-      /// shift would cost more in page faults than the arithmetic). A pivot
-      /// that is exactly zero (sigma an eigenvalue to working precision) is
-      /// replaced by one at the rounding of the matrix, as LAPACK's dstein
-      /// does for inverse iteration.
-      void factor(const Scalar sigma)
-      {
-        std::fill(lu_.begin(), lu_.end(), Scalar(0));
-        scale_ = 0;
-        for (int j = 0; j < n_; ++j)
-          for (int i = std::max(0, j - b_); i <= j; ++i)
-            {
-              const std::size_t entry = (b_ + i - j) + std::size_t(j) * (b_ + 1);
-              at(i, j) = at(j, i) = p_.k[entry] - sigma * p_.m[entry];
-              scale_ = std::max(scale_, size(at(i, j)));
-            }
-        for (int j = 0; j < n_; ++j)
-          eliminate(j);
-        for (int j = 0; j < n_; ++j)
-          inverse_pivots_[j] = Scalar(1) / at(j, j);
-      }
-      /// x <- (K - sigma M)^{-1} x.
-      void solve(std::vector<Scalar> &x) const
-      {
-        for (int j = 0; j < n_; ++j)
-          {
-            std::swap(x[j], x[pivots_[j]]);
-            for (int i = j + 1; i <= std::min(n_ - 1, j + b_); ++i)
-              x[i] -= at(i, j) * x[j];
-          }
-        for (int j = n_ - 1; j >= 0; --j)
-          {
-            x[j] *= inverse_pivots_[j];
-            for (int i = std::max(0, j - 2 * b_); i < j; ++i)
-              x[i] -= at(i, j) * x[j];
-          }
-      }
-
-    private:
-      // Entry (i, j) sits at row 2b + i - j of column j, ld = 3b + 1.
-      Scalar       &at(const int i, const int j) { return lu_[3 * std::size_t(b_) * j + 2 * b_ + i]; }
-      const Scalar &at(const int i, const int j) const { return lu_[3 * std::size_t(b_) * j + 2 * b_ + i]; }
-      /// The pivot's size as LAPACK measures it (|Re| + |Im|: no hypot).
-      static double size(const double v) { return std::abs(v); }
-      static double size(const std::complex<double> v) { return std::abs(v.real()) + std::abs(v.imag()); }
-      void eliminate(const int j)
-      {
-        const int last = std::min(n_ - 1, j + b_), right = std::min(n_ - 1, j + 2 * b_);
-        int       pivot = j;
-        for (int i = j + 1; i <= last; ++i)
-          if (size(at(i, j)) > size(at(pivot, j)))
-            pivot = i;
-        pivots_[j] = pivot;
-        if (at(pivot, j) == Scalar(0))
-          at(pivot, j) = eps * scale_;
-        if (pivot != j)
-          for (int k = j; k <= right; ++k)
-            std::swap(at(j, k), at(pivot, k));
-        for (int i = j + 1; i <= last; ++i)
-          at(i, j) /= at(j, j);
-        for (int k = j + 1; k <= right; ++k)
-          for (int i = j + 1; i <= last; ++i)
-            at(i, k) -= at(i, j) * at(j, k);
-      }
-
-      const BandedPencil &p_;
-      int                 n_, b_;
-      std::vector<Scalar> lu_;
-      std::vector<int>    pivots_;
-      std::vector<Scalar> inverse_pivots_; ///< solve() multiplies: no division chain
-      double              scale_ = 0; ///< largest |entry| of K - sigma M
-    };
 
     std::vector<double> mass_times(const BandedPencil &p, const std::vector<double> &x)
     {

@@ -1,8 +1,7 @@
 #include <nsm/near_modes.h>
 #include <nsm/receptance.h>
+#include <nsm/shifted_factor.h>
 #include <nsm/sturm_sequence.h>
-
-#include <deal.II/lac/sparse_direct.h>
 
 #include <algorithm>
 #include <cmath>
@@ -124,23 +123,19 @@ namespace nsm
 
   dealii::Vector<double> Receptance::field(const double omega) const
   {
-    dealii::SparseMatrix<double> shifted(
-      discretisation_.stiffness().get_sparsity_pattern());
-    shifted.copy_from(discretisation_.stiffness());
-    shifted.add(-omega * omega, discretisation_.mass());
-
-    dealii::SparseDirectUMFPACK solver;
-    try
-      {
-        solver.factorize(shifted);
-      }
-    catch (const dealii::SparseDirectUMFPACK::ExcUMFPACKError &)
-      {
-        throw NumericalError(pole_message(omega));
-      }
+    // The clamped DoF's row of K - w^2 M is its diagonal alone: h = 0 there,
+    // and the free DoFs' band holds the rest.
+    const BandedPencil            pencil(discretisation_, EndCondition::clamped_free);
+    ShiftedFactor<double>         factor(pencil);
+    factor.factor(omega * omega);
+    if (factor.singular())
+      throw NumericalError(pole_message(omega));
+    std::vector<double> x(pencil.n, 0.0);
+    x[pencil.contact_row] = 1.0;
+    factor.solve(x);
     dealii::Vector<double> h(discretisation_.n_dofs());
-    h[discretisation_.contact_dof()] = 1.0;
-    solver.solve(h);
+    for (int i = 0; i < pencil.n; ++i)
+      h[pencil.dofs[i]] = x[i];
     for (const double v : h)
       if (!std::isfinite(v))
         throw NumericalError(std::isfinite(omega * omega * discretisation_.mass().linfty_norm()) ?

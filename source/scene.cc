@@ -355,7 +355,7 @@ namespace nsm
     prm.declare_entry("Method",
                       name_of(d.method, receptance_methods),
                       selection(receptance_methods),
-                      "direct: one sparse LU (UMFPACK) per frequency; modal: eigen-decomposition "
+                      "direct: one band LU of K - w^2 M per frequency; modal: the modes below the band "
                       "once, then the modal sum.");
     prm.declare_entry("Modes",
                       text(d.modes),

@@ -29,7 +29,7 @@ namespace nsm
 
     ReceptanceValue operator()(double omega) const;
 
-    /// h(w) = (K - w^2 M)^{-1} e_N on the whole mesh (UMFPACK).
+    /// h(w) = (K - w^2 M)^{-1} e_N on the whole mesh (band LU, ShiftedFactor).
     dealii::Vector<double> field(double omega) const;
 
     /// Number of poles of this gamma strictly below omega (for the modal
