@@ -40,6 +40,6 @@ namespace nsm
       std::swap(i, j);
     if (j - i > bandwidth)
       return 0.0;
-    return ab[(bandwidth + i - j) + j * (bandwidth + 1)];
+    return entry(ab, i, j);
   }
 } // namespace nsm

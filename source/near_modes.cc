@@ -23,7 +23,7 @@ namespace nsm
       for (int j = 0; j < p.n; ++j)
         for (int i = std::max(0, j - b); i <= j; ++i)
           {
-            const double m = p.m[(b + i - j) + std::size_t(j) * (b + 1)];
+            const double m = p.entry(p.m, i, j);
             y[i] += m * x[j];
             if (i != j)
               y[j] += m * x[i];
@@ -171,7 +171,7 @@ namespace nsm
     const double radius = 0.5 * ((above == lambda.begin() ? 0.0 : *std::prev(above)) +
                                  (above == lambda.end() ? upper : *above));
     const int points = 2 * int(std::ceil(0.5 * std::max<double>(terms, std::log(eps) / std::log(radius / upper))));
-    std::vector<std::complex<double>> sums(terms, 0.0);
+    std::vector<double>                 sums(terms, 0.0);
     ShiftedFactor<std::complex<double>> factor(p);
     for (int q = 0; q <= points / 2; ++q)
       {
@@ -189,9 +189,8 @@ namespace nsm
         for (unsigned int m = 0; m < terms; ++m, power /= s)
           sums[m] += weight * std::real(f * power);
       }
-    std::vector<double> coefficients(terms);
-    for (unsigned int m = 0; m < terms; ++m)
-      coefficients[m] = sums[m].real() / points;
-    return coefficients;
+    for (double &c : sums)
+      c /= points;
+    return sums;
   }
 } // namespace nsm

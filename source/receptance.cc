@@ -27,15 +27,15 @@ namespace nsm
                          const double             omega_max)
     : discretisation_(discretisation)
     , method_(params.method)
+    , pencil_(discretisation, EndCondition::clamped_free)
   {
     if (method_ == ReceptanceMethod::modal)
       {
-        const BandedPencil pencil(discretisation, EndCondition::clamped_free);
-        const bool         full_basis = params.modes == 0 || params.modes >= unsigned(pencil.n);
+        const bool full_basis = params.modes == 0 || params.modes >= unsigned(pencil_.n);
         // The split needs a band (omega_max > 0) with modes beyond it.
         if (full_basis && omega_max > 0 &&
-            count_eigenvalues_below(pencil, far_ratio * omega_max * omega_max) < pencil.n)
-          split_far_modes(pencil, omega_max);
+            count_eigenvalues_below(pencil_, far_ratio * omega_max * omega_max) < pencil_.n)
+          split_far_modes(omega_max);
         else
           {
             modal_ = compute_spectrum(discretisation, EndCondition::clamped_free, params.modes,
@@ -53,7 +53,7 @@ namespace nsm
             poles_.push_back(l);
       }
     else
-      poles_ = eigenvalues_below(discretisation, EndCondition::clamped_free, omega_max);
+      poles_ = eigenvalues_below(pencil_, omega_max);
   }
 
   void Receptance::truncated_basis_remainder()
@@ -70,7 +70,7 @@ namespace nsm
       }
   }
 
-  void Receptance::split_far_modes(const BandedPencil &pencil, const double omega_max)
+  void Receptance::split_far_modes(const double omega_max)
   {
     // The modes with w_j >= 4 omega_max are summed once as the power series
     // sum_m w^2m sum_j r_j / w_j^(2m + 2) in w^2 / w_j^2 <= 1/16, with enough
@@ -81,8 +81,8 @@ namespace nsm
       std::ceil(std::log(std::numeric_limits<double>::epsilon()) / std::log(1 / far_ratio));
     series_limit_      = omega_max * omega_max;
     const double upper = far_ratio * series_limit_;
-    modal_             = modes_below(pencil, upper);
-    remainder_         = far_mode_series(pencil, modal_, upper, series_limit_, terms);
+    modal_             = modes_below(pencil_, upper);
+    remainder_         = far_mode_series(pencil_, modal_, upper, series_limit_, terms);
   }
 
   ReceptanceValue Receptance::operator()(const double omega) const
@@ -125,17 +125,16 @@ namespace nsm
   {
     // The clamped DoF's row of K - w^2 M is its diagonal alone: h = 0 there,
     // and the free DoFs' band holds the rest.
-    const BandedPencil            pencil(discretisation_, EndCondition::clamped_free);
-    ShiftedFactor<double>         factor(pencil);
+    ShiftedFactor<double> factor(pencil_);
     factor.factor(omega * omega);
     if (factor.singular())
       throw NumericalError(pole_message(omega));
-    std::vector<double> x(pencil.n, 0.0);
-    x[pencil.contact_row] = 1.0;
+    std::vector<double> x(pencil_.n, 0.0);
+    x[pencil_.contact_row] = 1.0;
     factor.solve(x);
     dealii::Vector<double> h(discretisation_.n_dofs());
-    for (int i = 0; i < pencil.n; ++i)
-      h[pencil.dofs[i]] = x[i];
+    for (int i = 0; i < pencil_.n; ++i)
+      h[pencil_.dofs[i]] = x[i];
     for (const double v : h)
       if (!std::isfinite(v))
         throw NumericalError(std::isfinite(omega * omega * discretisation_.mass().linfty_norm()) ?

@@ -32,7 +32,7 @@ namespace nsm
     for (int j = 0; j < n_; ++j)
       for (int i = std::max(0, j - b_); i <= j; ++i)
         {
-          const std::size_t entry = (b_ + i - j) + std::size_t(j) * (b_ + 1);
+          const std::size_t entry = p_.index(i, j);
           at(i, j) = at(j, i) = p_.k[entry] - sigma * p_.m[entry];
           scale_              = std::max(scale_, size(at(i, j)));
         }

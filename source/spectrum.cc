@@ -202,11 +202,9 @@ namespace nsm
     return data;
   }
 
-  std::vector<double> eigenvalues_below(const Discretisation &discretisation,
-                                        const EndCondition    ends,
-                                        const double          omega_max)
+  std::vector<double> eigenvalues_below(const BandedPencil &pencil, const double omega_max)
   {
-    return banded_eigenvalues(BandedPencil(discretisation, ends),
+    return banded_eigenvalues(pencil,
                               Factored::stiffness,
                               0,
                               0,

@@ -19,9 +19,9 @@ namespace nsm
     // K - sigma M = L D L^T without pivoting, row by row in the band. Row i
     // needs the rows i - b .. i - 1 only: L(i, k), k in [i - b, i), and d(i)
     // are held in rings of a power of two >= b + 1 rows.
-    const int b = p.bandwidth, ld = b + 1;
+    const int b = p.bandwidth;
     int       ring = 1;
-    while (ring < ld)
+    while (ring < b + 1)
       ring *= 2;
     const int           mask = ring - 1;
     std::vector<double> l(std::size_t(ring) * std::max(b, 1), 0.0), d(ring);
@@ -32,7 +32,7 @@ namespace nsm
         const int first = std::max(0, i - b);
         for (int j = first; j <= i; ++j)
           {
-            const std::size_t entry = (b + j - i) + std::size_t(i) * ld;
+            const std::size_t entry = p.index(j, i);
             double            s     = p.k[entry] - sigma * p.m[entry];
             for (int k = std::max(first, j - b); k < j; ++k)
               s -= L(i, k) * d[k & mask] * L(j, k);

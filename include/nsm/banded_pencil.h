@@ -29,11 +29,14 @@ namespace nsm
     /// The contact DoF's row (clamped-free only; -1 otherwise).
     int contact_row = -1;
 
-    /// Entry (i, j) of a band matrix, i <= j.
+    /// Entry (i, j) of a band matrix, i <= j <= i + bandwidth.
     double &entry(std::vector<double> &ab, int i, int j)
     {
-      return ab[(bandwidth + i - j) + j * (bandwidth + 1)];
+      return ab[index(i, j)];
     }
+    double entry(const std::vector<double> &ab, int i, int j) const { return ab[index(i, j)]; }
+    /// Where entry (i, j), i <= j, sits in upper band storage.
+    std::size_t index(int i, int j) const { return (bandwidth + i - j) + std::size_t(j) * (bandwidth + 1); }
     /// Entry (i, j), any order; 0 outside the band.
     double at(const std::vector<double> &ab, int i, int j) const;
   };

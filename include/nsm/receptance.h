@@ -45,12 +45,15 @@ namespace nsm
     /// static and a first-order dynamic correction.
     void truncated_basis_remainder();
     /// A full basis: the modes far above omega_max summed once as a series.
-    void split_far_modes(const BandedPencil &pencil, double omega_max);
+    void split_far_modes(double omega_max);
     /// gamma = h_N and h^T M h from one sparse solve.
     ReceptanceValue direct_value(double omega) const;
 
     const Discretisation &discretisation_;
     ReceptanceMethod      method_;
+    /// K and M on the free DoFs, read once: the eigensolvers' and every
+    /// direct solve's (a receptance is a snapshot of its discretisation).
+    BandedPencil          pencil_;
     std::vector<double>   poles_;
     ModalData             modal_;
     /// Taylor coefficients in w^2 of the modes not summed per frequency.

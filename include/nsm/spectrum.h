@@ -21,7 +21,5 @@ namespace nsm
                              bool                  with_contact_residues);
 
   /// Eigenvalues w_j^2 <= omega_max^2 (unrefined, from the stiffness-factored form, accurate for the low modes: used to count poles).
-  std::vector<double> eigenvalues_below(const Discretisation &discretisation,
-                                        EndCondition          ends,
-                                        double                omega_max);
+  std::vector<double> eigenvalues_below(const BandedPencil &pencil, double omega_max);
 } // namespace nsm
