@@ -57,7 +57,7 @@ namespace nsm
     /// Swaps two directories in one step; the fallback (a file system
     /// without RENAME_EXCHANGE) leaves a moment with no target at all, never
     /// one with a mixture.
-    void exchange(const fs::path &a, const fs::path &b)
+    void swap_directories(const fs::path &a, const fs::path &b)
     {
       if (renameat2(AT_FDCWD, a.c_str(), AT_FDCWD, b.c_str(), RENAME_EXCHANGE) == 0)
         return;
@@ -114,7 +114,7 @@ namespace nsm
     try
       {
         if (fs::exists(target_))
-          exchange(staging_, target_);
+          swap_directories(staging_, target_);
         else
           fs::rename(staging_, target_);
       }
