@@ -4,7 +4,8 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
-packages=(cmake g++ make libdeal.ii-dev libgtest-dev python3-matplotlib python3-vtk9 python3-numpy valgrind)
+packages=(cmake g++ make libdeal.ii-dev openmpi-bin libgtest-dev python3-matplotlib python3-vtk9 python3-numpy
+          python3-scipy valgrind)
 missing=()
 for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" \

@@ -2,8 +2,9 @@
 """Plots of an nsm-bar output directory (run by nsm-bar when Output/Plots = true).
 
 usage: plot_results.py DIRECTORY --gap G0
-Writes backbone.png (from backbone.csv, tongues.csv, resonances.csv, fields.csv) and, per
-field k, field_k_spacetime.png and field_k_tip.png; prints "wrote PATH" per file.
+Writes backbone.png (from backbone.csv, tongues.csv, resonances.csv, fields.csv), per
+field k, field_k_spacetime.png and field_k_tip.png, and for a study study.png (from
+study.csv); prints "wrote PATH" per file.
 """
 import argparse
 import csv
@@ -147,6 +148,71 @@ def field_plots(directory, gap):
             save(figure, grid_path.replace(".csv", ".png"))
 
 
+STUDY_ERRORS = (("spectrum_error", "eigenfrequencies"), ("receptance_error", "receptance"),
+                ("energy_error_max", "main-branch energy (max)"))
+
+
+def natural(key):
+    """Sort key: numbers as numbers, then text."""
+    return [(0, float(v), "") if re.fullmatch(r"[-+0-9.eE]+", v) else (1, 0.0, v) for v in key]
+
+
+def pareto(times, errors):
+    """The points no other point beats in both time and error, by time."""
+    front, best = [], float("inf")
+    for t, e in sorted(zip(times, errors)):
+        if e < best:
+            front.append((t, e))
+            best = e
+    return front
+
+
+def study_plot(directory):
+    with open(os.path.join(directory, "study.csv"), newline="") as f:
+        rows = [r for r in csv.DictReader(f) if r["status"] == "ok"]
+    if not rows:
+        return
+    swept = list(rows[0])[:list(rows[0]).index("status")]
+    # One line per combination of the varying parameters but the mesh size.
+    varying = [c for c in swept if c != "cells" and len({r[c] for r in rows}) > 1]
+    measures = [(c, name) for c, name in STUDY_ERRORS if any(r[c] for r in rows)]
+    if not measures:
+        return
+    figure, axes = plt.subplots(len(measures), 2, figsize=(12, 4.2 * len(measures)), squeeze=False)
+    for (column, name), (by_dofs, by_time) in zip(measures, axes):
+        valid = [r for r in rows if r[column] and float(r[column]) > 0]
+        groups = {}
+        for r in valid:
+            groups.setdefault(tuple(r[c] for c in varying), []).append(r)
+        colours = plt.cm.viridis([i / max(1, len(groups) - 1) for i in range(len(groups))])
+        styles = {}
+        for (key, group), colour in zip(sorted(groups.items(), key=lambda g: natural(g[0])), colours):
+            group.sort(key=lambda r: int(r["dofs"]))
+            label = ", ".join(f"{c} {v}" for c, v in zip(varying, key)) or "study"
+            # The parameters after the first (e.g. the refinement) set marker and line style.
+            index = styles.setdefault(key[1:], len(styles))
+            marker, dashes = "os^vdp"[index % 6], ["-", "--", ":", "-."][index % 4]
+            errors = [float(r[column]) for r in group]
+            by_dofs.loglog([int(r["dofs"]) for r in group], errors, marker, ls=dashes, ms=3, color=colour,
+                           label=label)
+            by_time.loglog([float(r["wall_total_median"]) for r in group], errors, marker, ms=3,
+                           color=colour)
+        front = pareto([float(r["wall_total_median"]) for r in valid], [float(r[column]) for r in valid])
+        by_time.step([t for t, _ in front], [e for _, e in front], "k-", where="post", lw=1,
+                     label="Pareto front")
+        by_time.plot([t for t, _ in front], [e for _, e in front], "ks", mfc="none", ms=7)
+        by_dofs.set_xlabel("DoFs")
+        by_time.set_xlabel("wall time per run [s] (median)")
+        for a in (by_dofs, by_time):
+            a.set_ylabel("relative error: " + name)
+            a.grid(True, which="both", alpha=0.3)
+        by_time.legend(fontsize=7)
+        by_dofs.legend(fontsize=6, ncol=1 + len(groups) // 12, loc="upper left", bbox_to_anchor=(2.25, 1))
+    figure.suptitle("Accuracy against cost, " + ", ".join(sorted({r["reference"] for r in rows})) +
+                    " reference")
+    save(figure, os.path.join(directory, "study.png"))
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("directory")
@@ -155,6 +221,8 @@ def main():
     if os.path.exists(os.path.join(arguments.directory, "backbone.csv")):
         backbone_plot(arguments.directory)
     field_plots(arguments.directory, arguments.gap)
+    if os.path.exists(os.path.join(arguments.directory, "study.csv")):
+        study_plot(arguments.directory)
 
 
 if __name__ == "__main__":

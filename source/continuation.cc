@@ -515,12 +515,14 @@ namespace nsm
   BackbonePoint solve_on_branch(HarmonicBalance &hb,
                                 const Scene     &scene,
                                 const Backbone  &backbone,
-                                const double     omega)
+                                const double     omega,
+                                const bool       main_only)
   {
     const auto &p = backbone.points;
     for (std::size_t i = 0; i + 1 < p.size(); ++i)
       if (p[i].segment == p[i + 1].segment &&
-          (p[i].omega - omega) * (p[i + 1].omega - omega) <= 0)
+          (p[i].omega - omega) * (p[i + 1].omega - omega) <= 0 &&
+          (!main_only || (p[i].branch == Branch::main && p[i + 1].branch == Branch::main)))
         {
           const double        t = (omega - p[i].omega) / (p[i + 1].omega - p[i].omega);
           std::vector<double> guess(p[i].x.size());

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <sstream>
 
 namespace nsm
 {
@@ -32,6 +33,36 @@ namespace nsm
           out << '\n';
         }
     });
+  }
+
+  CsvTable read_csv(const std::string &path)
+  {
+    CsvTable      table{std::filesystem::path(path).filename(), {}, {}};
+    std::ifstream in(path);
+    const auto    split = [](const std::string &line) {
+      std::vector<std::string> cells;
+      std::stringstream        s(line);
+      for (std::string cell; std::getline(s, cell, ',');)
+        cells.push_back(cell);
+      if (!line.empty() && line.back() == ',')
+        cells.emplace_back();
+      return cells;
+    };
+    std::string line;
+    if (!std::getline(in, line))
+      return table;
+    table.columns = split(line);
+    while (std::getline(in, line))
+      {
+        std::vector<CsvCell> row;
+        for (std::string &cell : split(line))
+          row.emplace_back(std::move(cell));
+        if (row.size() != table.columns.size())
+          throw InputError(path + ": a row has " + std::to_string(row.size()) + " cells, the header " +
+                           std::to_string(table.columns.size()));
+        table.rows.push_back(std::move(row));
+      }
+    return table;
   }
 
   std::string write_atomically(const std::string                         &path,

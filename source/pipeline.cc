@@ -53,25 +53,6 @@ namespace nsm
       return s.str();
     }
 
-    /// Largest frequency at which the scene evaluates the receptance: the
-    /// poles below it are counted, and give the internal resonances.
-    double receptance_band(const Scene &scene)
-    {
-      double w = 0;
-      for (const double f : scene.output.receptance_frequencies)
-        w = std::max(w, f);
-      if (scene.output.backbone)
-        w = std::max(w, scene.harmonic_balance.harmonics * scene.continuation.omega_max);
-      return w;
-    }
-
-    /// The band over which adaptive refinement resolves the receptance.
-    double refinement_band(const Scene &scene)
-    {
-      return scene.discretisation.adaptive_band_max > 0 ? scene.discretisation.adaptive_band_max :
-                                                           receptance_band(scene);
-    }
-
     CsvTable spectrum_table(const Discretisation &d, const unsigned int modes)
     {
       const ModalData free =
@@ -189,7 +170,6 @@ namespace nsm
         table.rows.push_back({r.omega, double(r.mode), double(r.harmonic)});
       return table;
     }
-    /// Runs the shipped plotting script on the files just written.
     /// Runs a program with these arguments, without a shell (no character of
     /// an argument is interpreted), its output to `log`; returns whether it
     /// exited with status 0.
@@ -213,25 +193,6 @@ namespace nsm
              WEXITSTATUS(status) == 0;
     }
 
-    std::vector<std::string> make_plots(const Scene &scene, const std::string &directory)
-    {
-      std::ostringstream gap;
-      gap.precision(17);
-      gap << scene.contact.gap;
-      const std::string log_path = directory + "/plots.log";
-      const bool ok = run_program({NSM_PYTHON, NSM_PLOT_SCRIPT, directory, "--gap", gap.str()}, log_path);
-      std::vector<std::string> files;
-      std::string              last;
-      std::ifstream            log(log_path);
-      for (std::string line; std::getline(log, line); last = line)
-        if (line.rfind("wrote ", 0) == 0)
-          files.push_back(line.substr(6));
-      // The log goes with the failed run's staging directory: its last line is kept.
-      if (!ok)
-        throw NumericalError("the plotting script failed: " + last);
-      files.push_back(log_path);
-      return files;
-    }
   } // namespace
 
   RunReport run_scene(const Scene &scene)
@@ -262,7 +223,7 @@ namespace nsm
       timed(report, "adaptive refinement", [&] {
         Progress progress("adaptive refinement", scene.output.progress_every);
         for (std::string &note :
-             refine_adaptively(*discretisation, scene.discretisation, refinement_band(scene), &progress))
+             refine_adaptively(*discretisation, scene.discretisation, scene.refinement_band(), &progress))
           report.notes.push_back(std::move(note));
       });
     report.notes.push_back(describe(*discretisation));
@@ -274,7 +235,7 @@ namespace nsm
     std::unique_ptr<Receptance> receptance;
     if (needs_receptance || needs_backbone)
       timed(report, "receptance set-up", [&] {
-        receptance = std::make_unique<Receptance>(*discretisation, scene.receptance, receptance_band(scene));
+        receptance = std::make_unique<Receptance>(*discretisation, scene.receptance, scene.receptance_band());
       });
     if (needs_receptance)
       timed(report, "receptance", [&] { tables.push_back(receptance_table(*receptance, scene)); });
@@ -356,6 +317,26 @@ namespace nsm
       });
     report.files = output.commit(report.files);
     return report;
+  }
+
+  std::vector<std::string> make_plots(const Scene &scene, const std::string &directory)
+  {
+    std::ostringstream gap;
+    gap.precision(17);
+    gap << scene.contact.gap;
+    const std::string log_path = directory + "/plots.log";
+    const bool ok = run_program({NSM_PYTHON, NSM_PLOT_SCRIPT, directory, "--gap", gap.str()}, log_path);
+    std::vector<std::string> files;
+    std::string              last;
+    std::ifstream            log(log_path);
+    for (std::string line; std::getline(log, line); last = line)
+      if (line.rfind("wrote ", 0) == 0)
+        files.push_back(line.substr(6));
+    // The log goes with the failed run's staging directory: its last line is kept.
+    if (!ok)
+      throw NumericalError("the plotting script failed: " + last);
+    files.push_back(log_path);
+    return files;
   }
 
   void print_report(const RunReport &report, std::ostream &out)

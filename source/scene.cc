@@ -4,6 +4,7 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -625,6 +626,7 @@ namespace nsm
     HarmonicBalance::declare(prm);
     Continuation::declare(prm);
     Output::declare(prm);
+    StudyParameters::declare(prm);
   }
 
   void Scene::check_consistency() const
@@ -633,9 +635,9 @@ namespace nsm
             "Output/VTK",
             "false unless fields are requested (Output/Fields at or Output/Fields every)",
             "true");
-    require(!output.plots || output.fields() || output.backbone,
+    require(!output.plots || output.fields() || output.backbone || study.enabled(),
             "Output/Plots",
-            "false unless Output/Backbone = true or fields are requested",
+            "false unless Output/Backbone = true, fields are requested or the scene is a study",
             "true");
     require(!output.fields() || contact.enabled,
             "Output/Fields at",
@@ -649,6 +651,12 @@ namespace nsm
             "Output/Backbone",
             "false when Contact/Enabled = false (no contact, no nonsmooth mode)",
             "true");
+    for (const double w : study.backbone_omega_values)
+      require(contact.enabled && w >= continuation.omega_min && w <= continuation.omega_max,
+              "Study/Backbone omegas",
+              "frequencies in [Omega min, Omega max] = [" + format_value(continuation.omega_min) +
+                ", " + format_value(continuation.omega_max) + "], with Contact/Enabled = true",
+              format_value(w));
     for (const double w : output.fields_at)
       require(w >= continuation.omega_min && w <= continuation.omega_max,
               "Output/Fields at",
@@ -671,6 +679,11 @@ namespace nsm
     ParameterHandler prm;
     declare(prm);
     read_scene_file(path, prm);
+    return from_parameters(prm, path);
+  }
+
+  Scene Scene::from_parameters(ParameterHandler &prm, const std::string &origin)
+  {
     Scene scene;
     try
       {
@@ -681,13 +694,29 @@ namespace nsm
         scene.harmonic_balance.parse(prm);
         scene.continuation.parse(prm);
         scene.output.parse(prm);
+        scene.study.parse(prm);
         scene.check_consistency();
       }
     catch (const InputError &e)
       {
-        throw InputError("scene '" + path + "': " + e.what());
+        throw InputError("scene '" + origin + "': " + e.what());
       }
     return scene;
+  }
+
+  double Scene::receptance_band() const
+  {
+    double w = 0;
+    for (const double f : output.receptance_frequencies)
+      w = std::max(w, f);
+    if (output.backbone)
+      w = std::max(w, harmonic_balance.harmonics * continuation.omega_max);
+    return w;
+  }
+
+  double Scene::refinement_band() const
+  {
+    return discretisation.adaptive_band_max > 0 ? discretisation.adaptive_band_max : receptance_band();
   }
 
   unsigned int Scene::field_time_samples() const

@@ -202,4 +202,20 @@ namespace nsm
         in_sections(prm, entry, [&] { prm.set(entry.name, value); });
       }
   }
+
+  void require_allowed(const dealii::ParameterHandler &prm,
+                       const std::string              &entry_path,
+                       const std::string              &value,
+                       const std::string              &parameter)
+  {
+    for (const Entry &entry : declared_entries(prm))
+      if (entry.path() == entry_path)
+        {
+          if (!dealii::Patterns::pattern_factory(entry.pattern)->match(value))
+            throw InputError("parameter '" + parameter + "': value '" + value + "' of " + entry_path +
+                             " is out of range: allowed " + allowed_values(entry.pattern));
+          return;
+        }
+    throw InputError("parameter '" + parameter + "': no scene parameter " + entry_path);
+  }
 } // namespace nsm

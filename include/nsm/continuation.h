@@ -103,11 +103,13 @@ namespace nsm
 
   /// The solution at exactly `omega` on the computed branch: Newton from the
   /// interpolation of the two backbone points of one segment that bracket
-  /// it. Throws NumericalError if no segment brackets omega or Newton fails.
+  /// it, both labelled main if `main_only`. Throws NumericalError if no such
+  /// pair brackets omega or Newton fails.
   BackbonePoint solve_on_branch(HarmonicBalance &hb,
                                 const Scene     &scene,
                                 const Backbone  &backbone,
-                                double           omega);
+                                double           omega,
+                                bool             main_only = false);
 
   /// Outcome of one Newton solve at fixed Omega (NOX).
   struct NewtonResult

@@ -26,6 +26,11 @@ namespace nsm
   /// never written). Returns the path written.
   std::string write_csv(const std::string &directory, const CsvTable &table);
 
+  /// Reads a CSV file that write_csv wrote, every cell as text; a missing
+  /// file gives a table without columns. Throws InputError if a row's
+  /// length differs from the header's.
+  CsvTable read_csv(const std::string &path);
+
   /// Writes `path` through `write` into path.partial, renamed to path once
   /// complete, so no half-written file remains. Returns the path.
   std::string write_atomically(const std::string                         &path,

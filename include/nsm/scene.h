@@ -2,6 +2,8 @@
 // and validated before any work is done.
 #pragma once
 
+#include <nsm/study_parameters.h>
+
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -198,8 +200,15 @@ namespace nsm
       void        parse(dealii::ParameterHandler &prm);
     } output;
 
+    StudyParameters study;
+
     /// Reads and validates a scene file; throws InputError.
     static Scene from_file(const std::string &path);
+
+    /// Parses and validates a scene from `prm`, which holds a scene file read
+    /// by read_scene_file (perhaps with values changed since); `origin` names
+    /// it in messages. Throws InputError.
+    static Scene from_parameters(dealii::ParameterHandler &prm, const std::string &origin);
 
     /// Declares every parameter with its default, bounds and documentation.
     static void declare(dealii::ParameterHandler &prm);
@@ -209,6 +218,13 @@ namespace nsm
 
     /// Time samples per period of the fields (CSV, snapshots, plots).
     unsigned int field_time_samples() const;
+
+    /// Largest frequency at which the run evaluates the receptance: the
+    /// poles below it are counted, and give the internal resonances.
+    double receptance_band() const;
+
+    /// The band over which adaptive refinement resolves the receptance.
+    double refinement_band() const;
 
   private:
     /// Checks between subsections.

@@ -22,4 +22,12 @@ namespace nsm
   /// A deal.II pattern description in words:
   /// "[Double 0...1 (inclusive)]" -> "a number in [0, 1]".
   std::string allowed_values(const std::string &pattern_description);
+
+  /// Checks `value` against the declared pattern of the entry at
+  /// `entry_path` ("Discretisation/Degree"); throws InputError naming
+  /// `parameter`, the parameter that gave the value, and the allowed values.
+  void require_allowed(const dealii::ParameterHandler &prm,
+                       const std::string              &entry_path,
+                       const std::string              &value,
+                       const std::string              &parameter);
 } // namespace nsm

@@ -111,6 +111,15 @@ def earlier_run(executable):
     return setup
 
 
+def earlier_study(executable):
+    """Output/Directory holds the study of another base scene."""
+    def setup(_):
+        with open("first.prm", "w") as f:
+            f.write(SMALL + section("Study", Spectrum_modes=2) + output(Directory="out"))
+        subprocess.run([executable, "first.prm"], capture_output=True, check=True)
+    return setup
+
+
 def snapshot(directory):
     files = {}
     for path in listing(directory):
@@ -318,6 +327,28 @@ def rows(executable):
              check=progress_printed, leaves={"out"}),
         dict(name="short_run_silent", scene=BACKBONE + output(Directory="out", Backbone="true"),
              code=0, check=silent_when_short, leaves={"out"}),
+        # 13. studies: swept values checked against their parameter's range,
+        # every combination checked, before any file is written
+        dict(name="study_degree_range", scene=section("Study", Degrees="1, 25",
+                                                      Spectrum_modes=2) + output(Directory="out"),
+             code=2, words=["Study/Degrees", "Discretisation/Degree", "[1, 20]"]),
+        dict(name="study_selection", scene=section("Study", Refinements="none, fancy",
+                                                   Spectrum_modes=2) + output(Directory="out"),
+             code=2, words=["Study/Refinements", "one of none, graded, adaptive"]),
+        dict(name="study_measures_nothing", scene=section("Study", Degrees="1, 2") +
+             output(Directory="out"), code=2, words=["Study/Spectrum modes"]),
+        dict(name="study_combination", scene=section("Discretisation", Refinement="graded") +
+             "subsection Discretisation\n subsection Graded\n  set Layers = 40\n end\nend\n" +
+             section("Study", Cells="4000, 10", Spectrum_modes=2) + output(Directory="out"),
+             code=2, words=["study row 2", "Discretisation/Graded/Layers"]),
+        dict(name="study_omega_range", scene=section("Study", Backbone_omegas="1.95, 3") +
+             output(Directory="out"), code=2, words=["Study/Backbone omegas", "[Omega min, Omega max]"]),
+        dict(name="study_foreign_directory", scene=section("Study", Spectrum_modes=2) +
+             output(Directory="mine"), setup=foreign_directory, code=2,
+             words=["Output/Directory", "study.scene"]),
+        dict(name="study_other_scene", scene=SMALL + section("Study", Spectrum_modes=3) +
+             output(Directory="out"), setup=earlier_study(executable), code=2,
+             words=["Output/Directory", "study.scene"], leaves={"out"}),
         # 12. the declared parameters are a valid scene
         dict(name="print_parameters", scene=None, code=0, check=print_parameters_round_trip,
              setup=lambda row: row.update(scene_file="all.prm") or

@@ -1,0 +1,43 @@
+// The Study subsection of a scene: which discretisation parameters a study
+// sweeps, and what it measures in each run.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace dealii
+{
+  class ParameterHandler;
+} // namespace dealii
+
+namespace nsm
+{
+  struct StudyParameters
+  {
+    /// One swept parameter: where it lives in the scene, and its values as
+    /// text (each already checked against that parameter's own pattern).
+    struct Sweep
+    {
+      std::string              subsection; ///< "Discretisation", "Harmonic balance/..."
+      std::string              name;       ///< the scene parameter it sets
+      std::string              study_entry; ///< the Study entry that lists the values
+      std::string              column;     ///< its column in study.csv
+      std::vector<std::string> values;     ///< empty: the base scene's value only
+    };
+
+    std::vector<Sweep>  sweeps;
+    unsigned int        spectrum_modes = 0; ///< errors of the first n clamped-free frequencies
+    std::string         receptance_frequencies; ///< as written, for the runs' scenes
+    std::vector<double> receptance_frequency_values;
+    std::string         backbone_omegas; ///< as written
+    std::vector<double> backbone_omega_values;
+    unsigned int        repeats = 1;
+
+    /// A scene is a study when it measures something.
+    bool enabled() const;
+
+    static void declare(dealii::ParameterHandler &prm);
+    void        parse(dealii::ParameterHandler &prm);
+  };
+} // namespace nsm

@@ -1,0 +1,272 @@
+#include <nsm/output.h>
+#include <nsm/progress.h>
+#include <nsm/scene_file.h>
+#include <nsm/study.h>
+#include <nsm/study_row.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace nsm
+{
+  namespace
+  {
+    namespace fs = std::filesystem;
+
+    /// Calls `action` with `prm` inside subsection "A/B".
+    template <typename Action>
+    auto in_subsection(dealii::ParameterHandler &prm, const std::string &subsection, const Action &action)
+    {
+      std::stringstream parts(subsection);
+      unsigned int      depth = 0;
+      for (std::string part; std::getline(parts, part, '/'); ++depth)
+        prm.enter_subsection(part);
+      const auto result = action();
+      for (; depth > 0; --depth)
+        prm.leave_subsection();
+      return result;
+    }
+
+    void set_entry(dealii::ParameterHandler &prm, const std::string &subsection, const std::string &name,
+                   const std::string &value)
+    {
+      in_subsection(prm, subsection, [&] {
+        prm.set(name, value);
+        return 0;
+      });
+    }
+
+    /// A row's outputs are the study's measures: the receptance band and
+    /// the backbone follow from them, and no file output is asked for.
+    void set_row_outputs(dealii::ParameterHandler &prm, const StudyParameters &study)
+    {
+      set_entry(prm, "Output", "Receptance frequencies", study.receptance_frequencies);
+      set_entry(prm, "Output", "Backbone", study.backbone_omega_values.empty() ? "false" : "true");
+      set_entry(prm, "Output", "Spectrum modes", "0");
+      set_entry(prm, "Output", "Fields at", "");
+      set_entry(prm, "Output", "Fields every", "0");
+      set_entry(prm, "Output", "VTK", "false");
+      set_entry(prm, "Output", "Plots", "false");
+      set_entry(prm, "Output", "Verify in time", "false");
+    }
+
+    dealii::ParameterHandler &read(dealii::ParameterHandler &prm, const std::string &path)
+    {
+      Scene::declare(prm);
+      read_scene_file(path, prm);
+      return prm;
+    }
+
+    /// The base scene as text, without what a rerun may change: the swept
+    /// lists, the repeats, where the output goes and how it is shown.
+    std::string fingerprint(const std::string &path, const Scene &base)
+    {
+      dealii::ParameterHandler prm;
+      read(prm, path);
+      for (const StudyParameters::Sweep &s : base.study.sweeps)
+        set_entry(prm, "Study", s.study_entry, "");
+      set_entry(prm, "Study", "Repeats", "1");
+      set_entry(prm, "Output", "Directory", "-");
+      set_entry(prm, "Output", "Progress every", "0");
+      set_entry(prm, "Output", "Plots", "false");
+      std::ostringstream text;
+      prm.print_parameters(text, dealii::ParameterHandler::ShortPRM);
+      return text.str();
+    }
+
+    std::string file_text(const std::string &path)
+    {
+      std::ifstream      in(path);
+      std::ostringstream text;
+      text << in.rdbuf();
+      return text.str();
+    }
+
+    /// Checks that Output/Directory is new, empty, or holds this base
+    /// scene's study; returns the rows it already holds, by key.
+    std::map<std::vector<std::string>, std::vector<CsvCell>>
+    earlier_rows(const std::string &directory, const std::string &scene_text,
+                 const std::vector<std::string> &columns, const std::size_t key_size)
+    {
+      std::map<std::vector<std::string>, std::vector<CsvCell>> rows;
+      const std::string recorded = directory + "/study.scene";
+      std::error_code   error;
+      if (!fs::exists(directory, error) || fs::is_empty(directory, error))
+        return rows;
+      if (!fs::is_regular_file(recorded) || file_text(recorded) != scene_text)
+        throw InputError("parameter 'Output/Directory' = " + directory +
+                         " is not allowed: it holds files but not a study of this scene "
+                         "(study.scene differs); allowed: a new or empty directory, or this study's");
+      const CsvTable table = read_csv(directory + "/study.csv");
+      if (!table.columns.empty() && table.columns != columns)
+        throw InputError("parameter 'Output/Directory' = " + directory +
+                         ": its study.csv has other columns; allowed: a new or empty directory");
+      for (const auto &row : table.rows)
+        {
+          std::vector<std::string> key;
+          for (std::size_t c = 0; c < key_size; ++c)
+            key.push_back(std::get<std::string>(row[c]));
+          rows[key] = row;
+        }
+      return rows;
+    }
+
+    /// One round's rows travel to rank 0 as text: index, then the cells.
+    std::string pack_row(const std::size_t index, const std::vector<std::string> &cells)
+    {
+      std::string packed = std::to_string(index);
+      for (const std::string &c : cells)
+        packed += '\x1f' + c;
+      return packed;
+    }
+
+    std::vector<std::string> unpack_row(const std::string &packed)
+    {
+      std::vector<std::string> cells;
+      std::stringstream        in(packed);
+      for (std::string cell; std::getline(in, cell, '\x1f');)
+        cells.push_back(cell);
+      if (!packed.empty() && packed.back() == '\x1f')
+        cells.emplace_back();
+      return cells;
+    }
+
+    std::string seconds(const double s)
+    {
+      std::ostringstream out;
+      out.precision(3);
+      out << s << " s";
+      return out.str();
+    }
+  } // namespace
+
+  std::vector<StudyCombination> study_combinations(const std::string &path, const Scene &base)
+  {
+    dealii::ParameterHandler prm;
+    read(prm, path);
+    set_row_outputs(prm, base.study);
+    std::vector<std::vector<std::string>> values;
+    for (const StudyParameters::Sweep &s : base.study.sweeps)
+      values.push_back(s.values.empty() ?
+                         std::vector<std::string>{in_subsection(prm, s.subsection, [&] { return prm.get(s.name); })} :
+                         s.values);
+    std::vector<StudyCombination> combinations;
+    std::vector<std::size_t>      digit(values.size(), 0);
+    for (bool more = true; more;)
+      {
+        StudyCombination c;
+        for (std::size_t i = 0; i < values.size(); ++i)
+          {
+            set_entry(prm, base.study.sweeps[i].subsection, base.study.sweeps[i].name, values[i][digit[i]]);
+            c.key.push_back(values[i][digit[i]]);
+          }
+        c.scene = Scene::from_parameters(prm, path + ", study row " + std::to_string(combinations.size() + 1));
+        combinations.push_back(std::move(c));
+        // The last sweep varies fastest.
+        more = false;
+        for (std::size_t i = values.size(); i-- > 0 && !more;)
+          if (++digit[i] < values[i].size())
+            more = true;
+          else
+            digit[i] = 0;
+      }
+    return combinations;
+  }
+
+  RunReport run_study(const std::string &path, const Scene &base)
+  {
+    const MPI_Comm     comm  = MPI_COMM_WORLD;
+    const unsigned int ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
+    const bool         root  = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+    const auto         start = std::chrono::steady_clock::now();
+
+    const std::vector<StudyCombination> combinations = study_combinations(path, base);
+    CsvTable                            table{"study.csv", {}, {}};
+    for (const StudyParameters::Sweep &s : base.study.sweeps)
+      table.columns.push_back(s.column);
+    const std::size_t key_size = table.columns.size();
+    for (const std::string &c : study_row_columns())
+      table.columns.push_back(c);
+
+    const std::string directory  = base.output.directory;
+    const std::string scene_text = fingerprint(path, base);
+    auto              rows       = earlier_rows(directory, scene_text, table.columns, key_size);
+    std::vector<std::size_t> missing;
+    for (std::size_t i = 0; i < combinations.size(); ++i)
+      if (rows.count(combinations[i].key) == 0)
+        missing.push_back(i);
+    const std::size_t resumed = combinations.size() - missing.size();
+
+    // Every rank has checked the same input; only rank 0 writes.
+    if (root)
+      {
+        std::error_code error;
+        fs::create_directories(directory, error);
+        if (error)
+          throw InputError("parameter 'Output/Directory' = " + directory + " cannot be created: " +
+                           error.message() + "; allowed: a new or empty directory, or this study's");
+        write_atomically(directory + "/study.scene", [&](std::ostream &out) { out << scene_text; });
+      }
+    unsigned int failed = 0;
+    Progress     progress("study", base.output.progress_every);
+    for (std::size_t round = 0; round < missing.size(); round += ranks)
+      {
+        const std::size_t mine = round + dealii::Utilities::MPI::this_mpi_process(comm);
+        std::string       packed;
+        if (mine < missing.size())
+          {
+            const StudyCombination  &c     = combinations[missing[mine]];
+            std::vector<std::string> cells = c.key;
+            for (std::string &cell : measure_study_row(c.scene))
+              cells.push_back(std::move(cell));
+            packed = pack_row(missing[mine], cells);
+          }
+        const std::vector<std::string> gathered = dealii::Utilities::MPI::gather(comm, packed, 0);
+        if (!root)
+          continue;
+        for (const std::string &p : gathered)
+          if (!p.empty())
+            {
+              std::vector<std::string> cells = unpack_row(p);
+              cells.erase(cells.begin());
+              failed += cells[key_size] != "ok";
+              std::vector<std::string> key(cells.begin(), cells.begin() + key_size);
+              rows[key] = std::vector<CsvCell>(cells.begin(), cells.end());
+            }
+        table.rows.clear();
+        for (const StudyCombination &c : combinations)
+          if (rows.count(c.key) != 0)
+            table.rows.push_back(rows[c.key]);
+        write_csv(directory, table);
+        const std::size_t done    = std::min(missing.size(), round + ranks);
+        const double      elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        progress.update([&] {
+          return std::to_string(resumed + done) + " of " + std::to_string(combinations.size()) + " rows (" +
+                 std::to_string(resumed) + " from an earlier run), " + seconds(elapsed) + " elapsed, about " +
+                 seconds(elapsed / done * (missing.size() - done)) + " left";
+        });
+      }
+
+    RunReport report;
+    report.stages.push_back(
+      {"study", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 0.0});
+    if (!root)
+      return report;
+    std::ostringstream note;
+    note << "study: " << combinations.size() << " rows, " << missing.size() << " run now on " << ranks
+         << (ranks == 1 ? " rank, " : " ranks, ") << resumed << " from an earlier run, " << failed
+         << " failed";
+    report.notes.push_back(note.str());
+    report.files = {directory + "/study.csv", directory + "/study.scene"};
+    if (base.output.plots)
+      for (std::string &f : make_plots(base, directory))
+        report.files.push_back(std::move(f));
+    return report;
+  }
+} // namespace nsm

@@ -1,0 +1,110 @@
+#include <nsm/scene.h>
+#include <nsm/scene_file.h>
+#include <nsm/study_parameters.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <sstream>
+
+namespace nsm
+{
+  namespace
+  {
+    /// The parameters a study can sweep: scene subsection, scene name,
+    /// the Study entry that lists its values, and its study.csv column.
+    struct Sweepable
+    {
+      const char *subsection, *name, *study_entry, *column;
+    };
+
+    const Sweepable sweepable[] = {
+      {"Discretisation", "Degree", "Degrees", "degree"},
+      {"Discretisation", "Cells", "Cells", "cells"},
+      {"Discretisation", "Refinement", "Refinements", "refinement"},
+      {"Discretisation/Graded", "Layers", "Graded layers", "graded_layers"},
+      {"Discretisation/Graded", "Ratio", "Graded ratios", "graded_ratio"},
+      {"Receptance", "Method", "Receptance methods", "receptance_method"},
+      {"Harmonic balance", "Harmonics", "Harmonics", "harmonics"},
+      {"Harmonic balance", "Integration", "Integrations", "integration"},
+      {"Harmonic balance", "Time samples", "Time samples", "time_samples"}};
+
+    std::vector<std::string> split_list(const std::string &text)
+    {
+      std::vector<std::string> items;
+      std::stringstream        in(text);
+      for (std::string item; std::getline(in, item, ',');)
+        {
+          const auto first = item.find_first_not_of(" \t");
+          if (first != std::string::npos)
+            items.push_back(item.substr(first, item.find_last_not_of(" \t") - first + 1));
+        }
+      return items;
+    }
+  } // namespace
+
+  bool StudyParameters::enabled() const
+  {
+    return spectrum_modes > 0 || !receptance_frequency_values.empty() || !backbone_omega_values.empty();
+  }
+
+  void StudyParameters::declare(dealii::ParameterHandler &prm)
+  {
+    namespace Patterns = dealii::Patterns;
+    prm.enter_subsection("Study");
+    for (const Sweepable &s : sweepable)
+      prm.declare_entry(s.study_entry,
+                        "",
+                        Patterns::Anything(),
+                        std::string("Values of ") + s.subsection + "/" + s.name +
+                          " to sweep, comma-separated (each within that parameter's range); "
+                          "empty: the scene's own value. A study runs every combination.");
+    prm.declare_entry("Spectrum modes",
+                      "0",
+                      Patterns::Integer(0, 10000),
+                      "Measure the error of the first n clamped-free eigenfrequencies; 0 = not "
+                      "measured. A scene that measures anything is a study: it writes study.csv.");
+    prm.declare_entry("Receptance frequencies",
+                      "",
+                      Patterns::Anything(),
+                      "Measure the error of gamma at these frequencies (list or a:b:n ranges).");
+    prm.declare_entry("Backbone omegas",
+                      "",
+                      Patterns::Anything(),
+                      "Measure the main-branch energy at these Omega, within [Omega min, Omega max].");
+    prm.declare_entry("Repeats",
+                      "1",
+                      Patterns::Integer(1, 100),
+                      "Runs of each combination; study.csv gives min, median and max of the total time.");
+    prm.leave_subsection();
+  }
+
+  void StudyParameters::parse(dealii::ParameterHandler &prm)
+  {
+    prm.enter_subsection("Study");
+    sweeps.clear();
+    for (const Sweepable &s : sweepable)
+      {
+        const std::string parameter = std::string("Study/") + s.study_entry;
+        Sweep sweep{s.subsection, s.name, s.study_entry, s.column, split_list(prm.get(s.study_entry))};
+        for (const std::string &value : sweep.values)
+          require_allowed(prm, sweep.subsection + "/" + sweep.name, value, parameter);
+        sweeps.push_back(std::move(sweep));
+      }
+    spectrum_modes         = static_cast<unsigned int>(prm.get_integer("Spectrum modes"));
+    receptance_frequencies = prm.get("Receptance frequencies");
+    receptance_frequency_values =
+      parse_frequency_list(receptance_frequencies, "Study/Receptance frequencies");
+    backbone_omegas       = prm.get("Backbone omegas");
+    backbone_omega_values = parse_frequency_list(backbone_omegas, "Study/Backbone omegas");
+    repeats               = static_cast<unsigned int>(prm.get_integer("Repeats"));
+    prm.leave_subsection();
+
+    bool sweeps_something = false;
+    for (const Sweep &s : sweeps)
+      sweeps_something |= !s.values.empty();
+    if (sweeps_something && !enabled())
+      throw InputError("parameter 'Study/Spectrum modes' = 0 is out of range: a study that sweeps "
+                       "parameters measures something (Spectrum modes > 0, Receptance frequencies "
+                       "or Backbone omegas)");
+  }
+} // namespace nsm

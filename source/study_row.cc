@@ -1,0 +1,267 @@
+#include <nsm/adaptive_refinement.h>
+#include <nsm/bar_model.h>
+#include <nsm/continuation.h>
+#include <nsm/discretisation.h>
+#include <nsm/exact_references.h>
+#include <nsm/harmonic_balance.h>
+#include <nsm/receptance.h>
+#include <nsm/spectrum.h>
+#include <nsm/study_row.h>
+
+#include <deal.II/base/timer.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+namespace nsm
+{
+  namespace
+  {
+    /// The timed stages, in the order of their study.csv columns.
+    const std::vector<std::string> stages = {"mesh", "refinement", "spectrum", "receptance set-up",
+                                             "receptance", "harmonic balance", "energy solves"};
+
+    std::string column_name(std::string stage)
+    {
+      std::replace(stage.begin(), stage.end(), ' ', '_');
+      std::replace(stage.begin(), stage.end(), '-', '_');
+      return "wall_" + stage;
+    }
+
+    std::string text(const double value)
+    {
+      std::ostringstream s;
+      s.precision(std::numeric_limits<double>::max_digits10);
+      s << value;
+      return s.str();
+    }
+
+    std::string text(const std::optional<double> &value) { return value ? text(*value) : ""; }
+
+    /// What one run measured; empty optionals were not measured.
+    struct Measures
+    {
+      std::string           reference = "none";
+      unsigned int          dofs = 0, cells = 0, hb_unknowns = 0;
+      std::optional<double> spectrum_error, receptance_error, energy_error_max, energy_error_median;
+      unsigned int          energy_points = 0, main_points = 0;
+      unsigned long         newton_iterations = 0, failed_solves = 0;
+    };
+
+    /// max_j |w_h,j - w_j| / w_j over the first `count` clamped-free modes.
+    double spectrum_error(const Discretisation &d, const ExactBar &exact, const unsigned int count)
+    {
+      const ModalData           h = compute_spectrum(d, EndCondition::clamped_free, count, false);
+      const std::vector<double> w = exact.clamped_free_frequencies(h.eigenvalues.size());
+      double                    error = 0;
+      for (std::size_t j = 0; j < w.size(); ++j)
+        error = std::max(error, std::abs(std::sqrt(h.eigenvalues[j]) - w[j]) / w[j]);
+      return error;
+    }
+
+    /// max |gamma_h - gamma| / max |gamma| over the frequencies.
+    double receptance_error(const Receptance &r, const ExactBar &exact, const std::vector<double> &omegas)
+    {
+      double error = 0, scale = 0;
+      for (const double w : omegas)
+        {
+          const double g = exact.receptance(w);
+          error          = std::max(error, std::abs(r(w).gamma - g));
+          scale          = std::max(scale, std::abs(g));
+        }
+      return error / scale;
+    }
+
+    /// Energy errors at the study's Omega values on the main branch, where
+    /// the exact mode is known; the solves run either way, for their cost.
+    void energy_errors(HarmonicBalance &hb, const Scene &scene, const Backbone &backbone,
+                       const std::optional<ExactBar> &exact, Measures &m)
+    {
+      std::vector<double> errors;
+      for (const double omega : scene.study.backbone_omega_values)
+        try
+          {
+            const BackbonePoint p = solve_on_branch(hb, scene, backbone, omega, true);
+            ++m.energy_points;
+            const bool reference = exact && scene.contact.sign == ForceSign::physical &&
+                                   scene.continuation.mode == 1;
+            if (const auto e = reference ? exact->first_mode_energy(omega, scene.contact.gap) : std::nullopt)
+              errors.push_back(std::abs(p.measures.energy - *e) / *e);
+          }
+        catch (const NumericalError &)
+          {
+            // Not on a main-branch segment: counted by energy_points.
+          }
+      if (errors.empty())
+        return;
+      std::sort(errors.begin(), errors.end());
+      m.energy_error_max    = errors.back();
+      m.energy_error_median = errors[errors.size() / 2];
+    }
+
+    Measures run_once(const Scene &scene, dealii::TimerOutput &timer)
+    {
+      using Scope = dealii::TimerOutput::Scope;
+      Measures                        m;
+      const BarModel                  bar(scene.bar);
+      const std::optional<ExactBar>   exact = ExactBar::of(bar);
+      std::unique_ptr<Discretisation> d;
+      if (exact)
+        m.reference = exact->name();
+      {
+        Scope scope(timer, "mesh");
+        d = std::make_unique<Discretisation>(bar, scene.discretisation);
+      }
+      if (scene.discretisation.refinement == Refinement::adaptive)
+        {
+          Scope scope(timer, "refinement");
+          refine_adaptively(*d, scene.discretisation, scene.refinement_band());
+        }
+      m.dofs  = d->n_dofs();
+      m.cells = d->n_cells();
+      const StudyParameters &study = scene.study;
+      if (study.spectrum_modes > 0 && exact)
+        {
+          Scope scope(timer, "spectrum");
+          m.spectrum_error = spectrum_error(*d, *exact, study.spectrum_modes);
+        }
+      if (study.receptance_frequency_values.empty() && study.backbone_omega_values.empty())
+        return m;
+      std::unique_ptr<Receptance> receptance;
+      {
+        Scope scope(timer, "receptance set-up");
+        receptance = std::make_unique<Receptance>(*d, scene.receptance, scene.receptance_band());
+      }
+      if (!study.receptance_frequency_values.empty() && exact)
+        {
+          Scope scope(timer, "receptance");
+          m.receptance_error = receptance_error(*receptance, *exact, study.receptance_frequency_values);
+        }
+      if (study.backbone_omega_values.empty())
+        return m;
+      HarmonicBalance hb(scene, *receptance);
+      Backbone        backbone;
+      {
+        Scope scope(timer, "harmonic balance");
+        backbone = compute_backbone(hb, scene, internal_resonances(*receptance, scene));
+      }
+      m.hb_unknowns       = hb.n_unknowns();
+      m.main_points       = backbone.main_points();
+      m.newton_iterations = backbone.newton_cost.converged_iterations + backbone.newton_cost.failed_iterations;
+      m.failed_solves     = backbone.newton_cost.failed_solves;
+      Scope scope(timer, "energy solves");
+      energy_errors(hb, scene, backbone, exact, m);
+      return m;
+    }
+
+    /// A line "Name:   value kB" of /proc/self/status, in MiB.
+    double status_mib(const std::string &name)
+    {
+      std::ifstream status("/proc/self/status");
+      for (std::string line; std::getline(status, line);)
+        if (line.rfind(name + ":", 0) == 0)
+          return std::stod(line.substr(name.size() + 1)) / 1024;
+      return 0;
+    }
+
+    /// Resets the peak resident set size to the current one (Linux: "5" to
+    /// clear_refs) and returns it, so that the row's own peak is the
+    /// difference.
+    double reset_peak_memory()
+    {
+      std::ofstream("/proc/self/clear_refs") << "5";
+      return status_mib("VmRSS");
+    }
+
+    double median(std::vector<double> v)
+    {
+      std::sort(v.begin(), v.end());
+      return v[v.size() / 2];
+    }
+  } // namespace
+
+  std::vector<std::string> study_row_columns()
+  {
+    std::vector<std::string> columns = {"status", "reference", "dofs", "final_cells", "hb_unknowns",
+                                        "time_samples_used", "spectrum_error", "receptance_error",
+                                        "energy_error_max", "energy_error_median", "energy_points",
+                                        "main_points", "newton_iterations", "failed_solves",
+                                        "peak_memory_mib", "wall_total_min", "wall_total_median",
+                                        "wall_total_max", "cpu_total_median"};
+    for (const std::string &stage : stages)
+      columns.push_back(column_name(stage));
+    return columns;
+  }
+
+  std::vector<std::string> measure_study_row(const Scene &scene)
+  {
+    using Timer = dealii::TimerOutput;
+    std::ostringstream                 quiet;
+    Measures                           m;
+    std::string                        status = "ok";
+    std::vector<double>                totals, cpu;
+    std::vector<std::vector<double>>   stage_walls(stages.size());
+    const double resident = reset_peak_memory();
+    for (unsigned int r = 0; r < scene.study.repeats && status == "ok"; ++r)
+      {
+        Timer timer(quiet, Timer::never, Timer::cpu_and_wall_times);
+        try
+          {
+            m = run_once(scene, timer);
+          }
+        catch (const NumericalError &e)
+          {
+            status = std::string("failed: ") + e.what();
+          }
+        catch (const char *message) // NOX throws these
+          {
+            status = std::string("failed: ") + message;
+          }
+        const auto walls = timer.get_summary_data(Timer::total_wall_time);
+        const auto cpus  = timer.get_summary_data(Timer::total_cpu_time);
+        double     total = 0, total_cpu = 0;
+        for (std::size_t s = 0; s < stages.size(); ++s)
+          {
+            const auto it = walls.find(stages[s]);
+            stage_walls[s].push_back(it == walls.end() ? 0.0 : it->second);
+            total += stage_walls[s].back();
+          }
+        for (const auto &entry : cpus)
+          total_cpu += entry.second;
+        totals.push_back(total);
+        cpu.push_back(total_cpu);
+      }
+    if (status != "ok")
+      m = Measures();
+    std::replace(status.begin(), status.end(), ',', ';'); // one CSV cell
+    std::replace(status.begin(), status.end(), '\n', ' ');
+
+    std::vector<std::string> row = {status,
+                                    m.reference,
+                                    std::to_string(m.dofs),
+                                    std::to_string(m.cells),
+                                    std::to_string(m.hb_unknowns),
+                                    std::to_string(scene.time_samples()),
+                                    text(m.spectrum_error),
+                                    text(m.receptance_error),
+                                    text(m.energy_error_max),
+                                    text(m.energy_error_median),
+                                    std::to_string(m.energy_points),
+                                    std::to_string(m.main_points),
+                                    std::to_string(m.newton_iterations),
+                                    std::to_string(m.failed_solves),
+                                    text(status_mib("VmHWM") - resident),
+                                    text(*std::min_element(totals.begin(), totals.end())),
+                                    text(median(totals)),
+                                    text(*std::max_element(totals.begin(), totals.end())),
+                                    text(median(cpu))};
+    for (const std::vector<double> &walls : stage_walls)
+      row.push_back(text(median(walls)));
+    return row;
+  }
+} // namespace nsm

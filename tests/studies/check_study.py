@@ -1,0 +1,145 @@
+#!/usr/bin/env python3
+"""Study runs (issue 8), checked from their study.csv.
+
+usage: check_study.py NSM_BAR STUDIES_DIR {rates|ranks|resume}
+  rates   space.prm: the eigenfrequency error falls like h^(2p) (rate within
+          10 % of 2p) and exponentially in p, against the exact Bessel roots;
+  ranks   ranks.prm serially and on 2 MPI ranks: identical rows, costs aside;
+  resume  resume.prm stopped by SIGTERM after its first rows, then rerun: the
+          rerun computes only the missing rows, keeps the earlier ones byte
+          for byte, and ends with the rows of an uninterrupted run.
+"""
+import csv
+import math
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+from scipy.optimize import brentq
+from scipy.special import j0, j1, y0, y1
+
+EPS = np.finfo(float).eps
+
+
+def run(command, cwd):
+    result = subprocess.run(command, cwd=cwd, capture_output=True, text=True, timeout=900)
+    assert result.returncode == 0, f"{command}: exit {result.returncode}\n{result.stderr}"
+    return result
+
+
+def fresh(name, studies, scene):
+    directory = os.path.abspath(os.path.join("study", name))
+    shutil.rmtree(directory, ignore_errors=True)
+    os.makedirs(directory)
+    shutil.copy(os.path.join(studies, scene), directory)
+    return directory
+
+
+def read(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def reproducible(row):
+    """A row without its costs (wall and CPU times, memory)."""
+    return {k: v for k, v in row.items() if not k.startswith(("wall_", "cpu_", "peak_"))}
+
+
+def bessel_roots(count):
+    """Clamped-free frequencies of A = 1.5 - x (E = rho = L = 1), by scipy."""
+    f = lambda w: j0(1.5 * w) * y1(0.5 * w) - y0(1.5 * w) * j1(0.5 * w)
+    grid = np.arange(0.01, 60, 0.01)
+    roots = [brentq(f, a, b, xtol=1e-15) for a, b in zip(grid[:-1], grid[1:])
+             if np.sign(f(a)) != np.sign(f(b))]
+    return roots[:count]
+
+
+def rates(executable, studies):
+    directory = fresh("rates", studies, "space.prm")
+    run([executable, "space.prm"], directory)
+    rows = read(os.path.join(directory, "out", "study.csv"))
+    assert all(r["status"] == "ok" and r["reference"] == "linear taper (Bessel)" for r in rows)
+    w_last = bessel_roots(5)[-1]
+    error = {(int(r["degree"]), int(r["cells"])): float(r["spectrum_error"]) for r in rows}
+
+    def above_floor(p, cells, e):
+        # The round-off floor of the eigenvalues, eps p^2 L / h (method.md),
+        # with a margin of 100.
+        return e > 100 * EPS * p * p * cells
+
+    checked = 0
+    for (p, cells), e in sorted(error.items()):
+        fine = error.get((p, 2 * cells))
+        # Asymptotic once the highest mode has w h / p <= 1/2.
+        if fine is None or w_last / cells / p > 0.5 or not above_floor(p, 2 * cells, fine):
+            continue
+        rate = math.log2(e / fine)
+        print(f"p = {p}, cells {cells} -> {2 * cells}: rate {rate:.3f} (2p = {2 * p})")
+        assert abs(rate - 2 * p) <= 0.1 * 2 * p, f"p = {p}, cells {cells}: rate {rate}"
+        checked += 1
+    assert checked >= 8, f"only {checked} rates in the asymptotic range"
+
+    # Exponential in p at 8 cells: a factor 10 at least per degree down to
+    # the floor (an algebraic rate in p would slow down as p grows).
+    steps = 0
+    for p in range(1, 8):
+        e, next_e = error[(p, 8)], error[(p + 1, 8)]
+        if not above_floor(p + 1, 8, next_e):
+            break
+        print(f"cells 8, p = {p} -> {p + 1}: error ratio {next_e / e:.3g}")
+        assert next_e / e <= 0.1, f"p = {p} -> {p + 1}: ratio {next_e / e}"
+        steps += 1
+    assert steps >= 4, f"only {steps} degrees above the round-off floor"
+
+
+def ranks(executable, studies):
+    serial = fresh("ranks_serial", studies, "ranks.prm")
+    run([executable, "ranks.prm"], serial)
+    parallel = fresh("ranks_mpi", studies, "ranks.prm")
+    result = run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2", executable,
+                  "ranks.prm"], parallel)
+    assert "on 2 ranks" in result.stdout, result.stdout
+    a = read(os.path.join(serial, "out", "study.csv"))
+    b = read(os.path.join(parallel, "out", "study.csv"))
+    assert len(a) == 8 and [reproducible(r) for r in a] == [reproducible(r) for r in b]
+    assert all(r["status"] == "ok" and r["energy_error_max"] != "" for r in a), a
+    print(f"{len(a)} rows identical, costs aside")
+
+
+def resume(executable, studies):
+    whole = fresh("resume_whole", studies, "resume.prm")
+    run([executable, "resume.prm"], whole)
+    expected = read(os.path.join(whole, "out", "study.csv"))
+
+    directory = fresh("resume_stopped", studies, "resume.prm")
+    study = os.path.join(directory, "out", "study.csv")
+    process = subprocess.Popen([executable, "resume.prm"], cwd=directory,
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    while process.poll() is None and not os.path.exists(study):
+        time.sleep(0.005)
+    process.send_signal(signal.SIGTERM)
+    process.wait()
+    assert process.returncode == -signal.SIGTERM, "the study ended before SIGTERM"
+    stopped = read(study)  # complete CSV: read_csv would fail on a half row
+    with open(study) as f:
+        text = f.read()
+    assert text.endswith("\n") and 1 <= len(stopped) < len(expected), len(stopped)
+
+    result = run([executable, "resume.prm"], directory)
+    done = len(stopped)
+    note = f"{len(expected)} rows, {len(expected) - done} run now on 1 rank, {done} from an earlier run"
+    assert note in result.stdout, result.stdout
+    final = read(study)
+    assert final[:done] == stopped, "rows of the stopped run were recomputed"
+    assert [reproducible(r) for r in final] == [reproducible(r) for r in expected]
+    print(f"stopped after {done} of {len(expected)} rows; the rerun ran the others")
+
+
+if __name__ == "__main__":
+    executable, studies, mode = os.path.abspath(sys.argv[1]), sys.argv[2], sys.argv[3]
+    {"rates": rates, "ranks": ranks, "resume": resume}[mode](executable, studies)
+    print(f"study {mode}: ok")
