@@ -177,3 +177,27 @@ TEST(Spectrum, FewModesAreThoseOfTheAssembledPencil)
         }
     }
 }
+
+TEST(Spectrum, PolesBelowABandAreThoseOfTheAssembledPencil)
+{
+  // The direct receptance's poles below the harmonic-balance band of the
+  // paper's scene (40 x 2.2): on FE_Q(4) x 500, 28 poles, fewer than
+  // n / (10 p), from Sturm counts and Newton; on FE_Q(4) x 20, from LAPACK.
+  // Each is bracketed within 1e-11 by the same pencil's long-double counts,
+  // and none is missing or extra.
+  const double band = 88;
+  for (const unsigned int cells : {500u, 20u})
+    {
+      const nsm::Scene          scene = testing_helpers::bar_scene("1.5 - x", 4, cells);
+      const nsm::BarModel       bar(scene.bar);
+      const nsm::Discretisation d(bar, scene.discretisation);
+      const nsm::BandedPencil   p(d, nsm::EndCondition::clamped_free);
+      const std::vector<double> lambda = nsm::eigenvalues_below(p, band);
+      ASSERT_EQ(int(lambda.size()), extended::count_below(p, band * band)) << cells << " cells";
+      for (std::size_t j = 0; j < lambda.size(); ++j)
+        {
+          EXPECT_EQ(extended::count_below(p, lambda[j] * (1 - 1e-11L)), int(j)) << "mode " << j + 1;
+          EXPECT_EQ(extended::count_below(p, lambda[j] * (1 + 1e-11L)), int(j + 1)) << "mode " << j + 1;
+        }
+    }
+}
