@@ -47,6 +47,12 @@ MUTATIONS = [
      "    : gap_(gap)", "    : gap_(2 * gap)"),
     ("verification loses the contact DoF's mass", "source/time_verification.cc",
      "removed * std::abs(e->value()) / coupling", "0 * removed * std::abs(e->value()) / coupling"),
+    ("exact taper reference with the end force's sign flipped", "source/exact_references.cc",
+     "const double f   = -sign * young_ * section_L_ * k;",
+     "const double f   = sign * young_ * section_L_ * k;"),
+    ("study deals each round's row to every rank", "source/study.cc",
+     "const std::size_t mine = round + dealii::Utilities::MPI::this_mpi_process(comm);",
+     "const std::size_t mine = round;"),
 ]
 
 
