@@ -8,6 +8,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <chrono>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -185,13 +186,14 @@ namespace nsm
     const unsigned int ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
     const bool         root  = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
     const auto         start = std::chrono::steady_clock::now();
+    const clock_t      cpu_start = std::clock();
 
     const std::vector<StudyCombination> combinations = study_combinations(path, base);
     CsvTable                            table{"study.csv", {}, {}};
     for (const StudyParameters::Sweep &s : base.study.sweeps)
       table.columns.push_back(s.column);
     const std::size_t key_size = table.columns.size();
-    for (const std::string &c : study_row_columns())
+    for (const std::string &c : study_row_columns(base.study))
       table.columns.push_back(c);
 
     const std::string directory  = base.output.directory;
@@ -254,8 +256,9 @@ namespace nsm
       }
 
     RunReport report;
-    report.stages.push_back(
-      {"study", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 0.0});
+    report.stages.push_back({"study",
+                             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                             double(std::clock() - cpu_start) / CLOCKS_PER_SEC});
     if (!root)
       return report;
     std::ostringstream note;

@@ -50,6 +50,7 @@ namespace nsm
       unsigned int          dofs = 0, cells = 0, hb_unknowns = 0;
       std::optional<double> spectrum_error, receptance_error, energy_error_max, energy_error_median;
       unsigned int          energy_points = 0, main_points = 0;
+      std::vector<std::optional<double>> energies; ///< at each Backbone omega on the main branch
       unsigned long         newton_iterations = 0, failed_solves = 0;
     };
 
@@ -83,11 +84,14 @@ namespace nsm
                        const std::optional<ExactBar> &exact, Measures &m)
     {
       std::vector<double> errors;
-      for (const double omega : scene.study.backbone_omega_values)
+      m.energies.assign(scene.study.backbone_omega_values.size(), std::nullopt);
+      for (std::size_t i = 0; i < m.energies.size(); ++i)
         try
           {
-            const BackbonePoint p = solve_on_branch(hb, scene, backbone, omega, true);
+            const double        omega = scene.study.backbone_omega_values[i];
+            const BackbonePoint p     = solve_on_branch(hb, scene, backbone, omega, true);
             ++m.energy_points;
+            m.energies[i] = p.measures.energy;
             const bool reference = exact && scene.contact.sign == ForceSign::physical &&
                                    scene.continuation.mode == 1;
             if (const auto e = reference ? exact->first_mode_energy(omega, scene.contact.gap) : std::nullopt)
@@ -185,7 +189,7 @@ namespace nsm
     }
   } // namespace
 
-  std::vector<std::string> study_row_columns()
+  std::vector<std::string> study_row_columns(const StudyParameters &study)
   {
     std::vector<std::string> columns = {"status", "reference", "dofs", "final_cells", "hb_unknowns",
                                         "time_samples_used", "spectrum_error", "receptance_error",
@@ -195,6 +199,13 @@ namespace nsm
                                         "wall_total_max", "cpu_total_median"};
     for (const std::string &stage : stages)
       columns.push_back(column_name(stage));
+    for (const double omega : study.backbone_omega_values)
+      {
+        std::ostringstream name;
+        name.precision(12);
+        name << "energy_at_" << omega;
+        columns.push_back(name.str());
+      }
     return columns;
   }
 
@@ -262,6 +273,9 @@ namespace nsm
                                     text(median(cpu))};
     for (const std::vector<double> &walls : stage_walls)
       row.push_back(text(median(walls)));
+    m.energies.resize(scene.study.backbone_omega_values.size());
+    for (const std::optional<double> &e : m.energies)
+      row.push_back(text(e));
     return row;
   }
 } // namespace nsm

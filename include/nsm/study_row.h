@@ -10,11 +10,12 @@
 
 namespace nsm
 {
-  /// study.csv columns after the swept parameters'. peak_memory_mib is the
-  /// row's peak resident memory above the process's at its start. Columns whose name
-  /// starts with "wall_", "cpu_" or "peak_" are costs that vary between
-  /// runs; every other column is reproducible.
-  std::vector<std::string> study_row_columns();
+  /// study.csv columns after the swept parameters', the last ones the
+  /// main-branch energy at each of `study`'s Backbone omegas. peak_memory_mib
+  /// is the row's peak resident memory above the process's at its start.
+  /// Columns whose name starts with "wall_", "cpu_" or "peak_" are costs that
+  /// vary between runs; every other column is reproducible.
+  std::vector<std::string> study_row_columns(const StudyParameters &study);
 
   /// Runs `scene` (a study's combination) Study/Repeats times and returns
   /// the cells of study_row_columns(), as text. A numerical failure is
