@@ -7,10 +7,12 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -136,6 +138,54 @@ namespace nsm
       if (!packed.empty() && packed.back() == '\x1f')
         cells.emplace_back();
       return cells;
+    }
+
+    /// The run summary's answer to "what does accuracy cost": per measured
+    /// error, the rows that no other row beats in both error and median
+    /// time (the Pareto front), fastest first.
+    std::vector<std::string> pareto_notes(const CsvTable &table, const std::size_t key_size)
+    {
+      const auto column = [&](const std::string &name) {
+        return std::find(table.columns.begin(), table.columns.end(), name) - table.columns.begin();
+      };
+      const auto cell = [](const std::vector<CsvCell> &row, const std::size_t c) {
+        return std::get<std::string>(row[c]);
+      };
+      // A row is named by the swept parameters whose values differ between rows.
+      std::vector<std::size_t> varying;
+      for (std::size_t c = 0; c < key_size; ++c)
+        for (const auto &row : table.rows)
+          if (cell(row, c) != cell(table.rows.front(), c))
+            {
+              varying.push_back(c);
+              break;
+            }
+      const std::size_t        time = column("wall_total_median");
+      std::vector<std::string> notes;
+      for (const char *error : {"spectrum_error", "receptance_error", "energy_error_max"})
+        {
+          std::vector<std::pair<double, const std::vector<CsvCell> *>> rows;
+          for (const auto &row : table.rows)
+            if (!cell(row, column(error)).empty())
+              rows.emplace_back(std::stod(cell(row, time)), &row);
+          std::sort(rows.begin(), rows.end(),
+                    [](const auto &a, const auto &b) { return a.first < b.first; });
+          double best = std::numeric_limits<double>::infinity();
+          for (const auto &[seconds_taken, row] : rows)
+            if (const double e = std::stod(cell(*row, column(error))); e < best)
+              {
+                best = e;
+                std::ostringstream note;
+                note.precision(3);
+                note << "  " << error << " " << e << " in " << seconds_taken << " s:";
+                for (const std::size_t c : varying)
+                  note << " " << table.columns[c] << " " << cell(*row, c);
+                notes.push_back(note.str());
+              }
+        }
+      if (!notes.empty())
+        notes.insert(notes.begin(), "the fastest row to each error (median time):");
+      return notes;
     }
 
     std::string seconds(const double s)
@@ -266,6 +316,11 @@ namespace nsm
          << (ranks == 1 ? " rank, " : " ranks, ") << resumed << " from an earlier run, " << failed
          << " failed";
     report.notes.push_back(note.str());
+    table.rows.clear();
+    for (const StudyCombination &c : combinations)
+      table.rows.push_back(rows[c.key]);
+    for (std::string &line : pareto_notes(table, key_size))
+      report.notes.push_back(std::move(line));
     report.files = {directory + "/study.csv", directory + "/study.scene"};
     if (base.output.plots)
       for (std::string &f : make_plots(base, directory))

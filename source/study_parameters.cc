@@ -23,6 +23,7 @@ namespace nsm
       {"Discretisation", "Refinement", "Refinements", "refinement"},
       {"Discretisation/Graded", "Layers", "Graded layers", "graded_layers"},
       {"Discretisation/Graded", "Ratio", "Graded ratios", "graded_ratio"},
+      {"Discretisation/Adaptive", "Tolerance", "Adaptive tolerances", "adaptive_tolerance"},
       {"Receptance", "Method", "Receptance methods", "receptance_method"},
       {"Harmonic balance", "Harmonics", "Harmonics", "harmonics"},
       {"Harmonic balance", "Integration", "Integrations", "integration"},
