@@ -1,0 +1,12 @@
+// Solves a small dense system by LU with partial pivoting, unblocked and
+// vectorised: for the harmonic balance's Jacobian (M + 1 or 2M + 1 unknowns)
+// the reference LAPACK's blocked dgetrf spends more in its BLAS calls than in
+// arithmetic.
+#pragma once
+
+namespace nsm
+{
+  /// x <- A^{-1} x, A n x n column-major (overwritten by its LU factors).
+  /// False if a pivot is exactly zero (A singular).
+  bool dense_solve(int n, double *a, double *x);
+} // namespace nsm
