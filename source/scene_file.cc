@@ -8,6 +8,7 @@
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -203,19 +204,20 @@ namespace nsm
       }
   }
 
-  void require_allowed(const dealii::ParameterHandler &prm,
-                       const std::string              &entry_path,
-                       const std::string              &value,
-                       const std::string              &parameter)
+  void require_allowed(const dealii::ParameterHandler &prm, const std::vector<AllowedCheck> &checks)
   {
-    for (const Entry &entry : declared_entries(prm))
-      if (entry.path() == entry_path)
-        {
-          if (!dealii::Patterns::pattern_factory(entry.pattern)->match(value))
-            throw InputError("parameter '" + parameter + "': value '" + value + "' of " + entry_path +
-                             " is out of range: allowed " + allowed_values(entry.pattern));
-          return;
-        }
-    throw InputError("parameter '" + parameter + "': no scene parameter " + entry_path);
+    if (checks.empty())
+      return;
+    const std::vector<Entry> entries = declared_entries(prm);
+    for (const AllowedCheck &check : checks)
+      {
+        const auto entry = std::find_if(entries.begin(), entries.end(),
+                                        [&](const Entry &e) { return e.path() == check.entry_path; });
+        if (entry == entries.end())
+          throw InputError("parameter '" + check.parameter + "': no scene parameter " + check.entry_path);
+        if (!dealii::Patterns::pattern_factory(entry->pattern)->match(check.value))
+          throw InputError("parameter '" + check.parameter + "': value '" + check.value + "' of " +
+                           check.entry_path + " is out of range: allowed " + allowed_values(entry->pattern));
+      }
   }
 } // namespace nsm

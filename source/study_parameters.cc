@@ -83,14 +83,15 @@ namespace nsm
   {
     prm.enter_subsection("Study");
     sweeps.clear();
+    std::vector<AllowedCheck> checks;
     for (const Sweepable &s : sweepable)
       {
-        const std::string parameter = std::string("Study/") + s.study_entry;
         Sweep sweep{s.subsection, s.name, s.study_entry, s.column, split_list(prm.get(s.study_entry))};
         for (const std::string &value : sweep.values)
-          require_allowed(prm, sweep.subsection + "/" + sweep.name, value, parameter);
+          checks.push_back({sweep.subsection + "/" + sweep.name, value, std::string("Study/") + s.study_entry});
         sweeps.push_back(std::move(sweep));
       }
+    require_allowed(prm, checks);
     spectrum_modes         = static_cast<unsigned int>(prm.get_integer("Spectrum modes"));
     receptance_frequencies = prm.get("Receptance frequencies");
     receptance_frequency_values =

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace dealii
 {
@@ -23,11 +24,15 @@ namespace nsm
   /// "[Double 0...1 (inclusive)]" -> "a number in [0, 1]".
   std::string allowed_values(const std::string &pattern_description);
 
-  /// Checks `value` against the declared pattern of the entry at
-  /// `entry_path` ("Discretisation/Degree"); throws InputError naming
-  /// `parameter`, the parameter that gave the value, and the allowed values.
-  void require_allowed(const dealii::ParameterHandler &prm,
-                       const std::string              &entry_path,
-                       const std::string              &value,
-                       const std::string              &parameter);
+  /// A value to check against the declared pattern of the entry at
+  /// `entry_path` ("Discretisation/Degree"); `parameter` gave the value.
+  struct AllowedCheck
+  {
+    std::string entry_path, value, parameter;
+  };
+
+  /// Checks each value against its entry's declared pattern, the declared
+  /// entries read once for all of them (nothing is read for no check);
+  /// throws InputError naming the parameter, the entry and the allowed values.
+  void require_allowed(const dealii::ParameterHandler &prm, const std::vector<AllowedCheck> &checks);
 } // namespace nsm
