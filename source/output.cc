@@ -35,27 +35,29 @@ namespace nsm
     });
   }
 
+  std::vector<std::string> split_fields(const std::string &text, const char delimiter)
+  {
+    std::vector<std::string> fields;
+    std::stringstream        in(text);
+    for (std::string field; std::getline(in, field, delimiter);)
+      fields.push_back(field);
+    if (!text.empty() && text.back() == delimiter)
+      fields.emplace_back();
+    return fields;
+  }
+
   CsvTable read_csv(const std::string &path)
   {
     CsvTable      table{std::filesystem::path(path).filename(), {}, {}};
     std::ifstream in(path);
-    const auto    split = [](const std::string &line) {
-      std::vector<std::string> cells;
-      std::stringstream        s(line);
-      for (std::string cell; std::getline(s, cell, ',');)
-        cells.push_back(cell);
-      if (!line.empty() && line.back() == ',')
-        cells.emplace_back();
-      return cells;
-    };
-    std::string line;
+    std::string   line;
     if (!std::getline(in, line))
       return table;
-    table.columns = split(line);
+    table.columns = split_fields(line, ',');
     while (std::getline(in, line))
       {
         std::vector<CsvCell> row;
-        for (std::string &cell : split(line))
+        for (std::string &cell : split_fields(line, ','))
           row.emplace_back(std::move(cell));
         if (row.size() != table.columns.size())
           throw InputError(path + ": a row has " + std::to_string(row.size()) + " cells, the header " +

@@ -120,24 +120,14 @@ namespace nsm
       return rows;
     }
 
-    /// One round's rows travel to rank 0 as text: index, then the cells.
+    /// One round's rows travel to rank 0 as text: index, then the cells,
+    /// split again by split_fields.
     std::string pack_row(const std::size_t index, const std::vector<std::string> &cells)
     {
       std::string packed = std::to_string(index);
       for (const std::string &c : cells)
         packed += '\x1f' + c;
       return packed;
-    }
-
-    std::vector<std::string> unpack_row(const std::string &packed)
-    {
-      std::vector<std::string> cells;
-      std::stringstream        in(packed);
-      for (std::string cell; std::getline(in, cell, '\x1f');)
-        cells.push_back(cell);
-      if (!packed.empty() && packed.back() == '\x1f')
-        cells.emplace_back();
-      return cells;
     }
 
     /// The run summary's answer to "what does accuracy cost": per measured
@@ -254,6 +244,13 @@ namespace nsm
       if (rows.count(combinations[i].key) == 0)
         missing.push_back(i);
     const std::size_t resumed = combinations.size() - missing.size();
+    // study.csv holds the rows computed so far, in combination order.
+    const auto in_combination_order = [&] {
+      table.rows.clear();
+      for (const StudyCombination &c : combinations)
+        if (const auto row = rows.find(c.key); row != rows.end())
+          table.rows.push_back(row->second);
+    };
 
     // Every rank has checked the same input; only rank 0 writes.
     if (root)
@@ -285,16 +282,13 @@ namespace nsm
         for (const std::string &p : gathered)
           if (!p.empty())
             {
-              std::vector<std::string> cells = unpack_row(p);
+              std::vector<std::string> cells = split_fields(p, '\x1f');
               cells.erase(cells.begin());
               failed += cells[key_size] != "ok";
               std::vector<std::string> key(cells.begin(), cells.begin() + key_size);
               rows[key] = std::vector<CsvCell>(cells.begin(), cells.end());
             }
-        table.rows.clear();
-        for (const StudyCombination &c : combinations)
-          if (rows.count(c.key) != 0)
-            table.rows.push_back(rows[c.key]);
+        in_combination_order();
         write_csv(directory, table);
         const std::size_t done    = std::min(missing.size(), round + ranks);
         const double      elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -316,9 +310,7 @@ namespace nsm
          << (ranks == 1 ? " rank, " : " ranks, ") << resumed << " from an earlier run, " << failed
          << " failed";
     report.notes.push_back(note.str());
-    table.rows.clear();
-    for (const StudyCombination &c : combinations)
-      table.rows.push_back(rows[c.key]);
+    in_combination_order();
     for (std::string &line : pareto_notes(table, key_size))
       report.notes.push_back(std::move(line));
     report.files = {directory + "/study.csv", directory + "/study.scene"};

@@ -26,6 +26,10 @@ namespace nsm
   /// never written). Returns the path written.
   std::string write_csv(const std::string &directory, const CsvTable &table);
 
+  /// The fields of `text` between `delimiter`s, empty ones included ("a,,"
+  /// has three).
+  std::vector<std::string> split_fields(const std::string &text, char delimiter);
+
   /// Reads a CSV file that write_csv wrote, every cell as text; a missing
   /// file gives a table without columns. Throws InputError if a row's
   /// length differs from the header's.
