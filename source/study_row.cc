@@ -43,10 +43,36 @@ namespace nsm
 
     std::string text(const std::optional<double> &value) { return value ? text(*value) : ""; }
 
+    /// The exact values a row's measures compare with, computed once per row
+    /// and outside the timed stages, so that the costs are the run's alone.
+    struct Reference
+    {
+      std::string                        name = "none";
+      std::vector<double>                frequencies; ///< the first Spectrum modes clamped-free ones
+      std::vector<double>                gammas;      ///< at the Receptance frequencies
+      std::vector<std::optional<double>> energies;    ///< the mode's, at the Backbone omegas
+    };
+
+    Reference reference_of(const Scene &scene)
+    {
+      Reference                     r;
+      const std::optional<ExactBar> exact = ExactBar::of(BarModel(scene.bar));
+      if (!exact)
+        return r;
+      const StudyParameters &study = scene.study;
+      r.name                       = exact->name();
+      r.frequencies                = exact->clamped_free_frequencies(study.spectrum_modes);
+      for (const double w : study.receptance_frequency_values)
+        r.gammas.push_back(exact->receptance(w));
+      const bool mode = scene.contact.sign == ForceSign::physical && scene.continuation.mode == 1;
+      for (const double omega : study.backbone_omega_values)
+        r.energies.push_back(mode ? exact->first_mode_energy(omega, scene.contact.gap) : std::nullopt);
+      return r;
+    }
+
     /// What one run measured; empty optionals were not measured.
     struct Measures
     {
-      std::string           reference = "none";
       unsigned int          dofs = 0, cells = 0, hb_unknowns = 0;
       std::optional<double> spectrum_error, receptance_error, energy_error_max, energy_error_median;
       unsigned int          energy_points = 0, main_points = 0;
@@ -54,26 +80,25 @@ namespace nsm
       unsigned long         newton_iterations = 0, failed_solves = 0;
     };
 
-    /// max_j |w_h,j - w_j| / w_j over the first `count` clamped-free modes.
-    double spectrum_error(const Discretisation &d, const ExactBar &exact, const unsigned int count)
+    /// max_j |w_h,j - w_j| / w_j over the exact frequencies w (fewer if the
+    /// mesh has fewer modes).
+    double spectrum_error(const Discretisation &d, const std::vector<double> &w)
     {
-      const ModalData           h = compute_spectrum(d, EndCondition::clamped_free, count, false);
-      const std::vector<double> w = exact.clamped_free_frequencies(h.eigenvalues.size());
-      double                    error = 0;
-      for (std::size_t j = 0; j < w.size(); ++j)
+      const ModalData h     = compute_spectrum(d, EndCondition::clamped_free, w.size(), false);
+      double          error = 0;
+      for (std::size_t j = 0; j < h.eigenvalues.size(); ++j)
         error = std::max(error, std::abs(std::sqrt(h.eigenvalues[j]) - w[j]) / w[j]);
       return error;
     }
 
     /// max |gamma_h - gamma| / max |gamma| over the frequencies.
-    double receptance_error(const Receptance &r, const ExactBar &exact, const std::vector<double> &omegas)
+    double receptance_error(const Receptance &r, const std::vector<double> &omegas, const std::vector<double> &gammas)
     {
       double error = 0, scale = 0;
-      for (const double w : omegas)
+      for (std::size_t i = 0; i < omegas.size(); ++i)
         {
-          const double g = exact.receptance(w);
-          error          = std::max(error, std::abs(r(w).gamma - g));
-          scale          = std::max(scale, std::abs(g));
+          error = std::max(error, std::abs(r(omegas[i]).gamma - gammas[i]));
+          scale = std::max(scale, std::abs(gammas[i]));
         }
       return error / scale;
     }
@@ -81,7 +106,7 @@ namespace nsm
     /// Energy errors at the study's Omega values on the main branch, where
     /// the exact mode is known; the solves run either way, for their cost.
     void energy_errors(HarmonicBalance &hb, const Scene &scene, const Backbone &backbone,
-                       const std::optional<ExactBar> &exact, Measures &m)
+                       const Reference &reference, Measures &m)
     {
       std::vector<double> errors;
       m.energies.assign(scene.study.backbone_omega_values.size(), std::nullopt);
@@ -92,9 +117,7 @@ namespace nsm
             const BackbonePoint p     = solve_on_branch(hb, scene, backbone, omega, true);
             ++m.energy_points;
             m.energies[i] = p.measures.energy;
-            const bool reference = exact && scene.contact.sign == ForceSign::physical &&
-                                   scene.continuation.mode == 1;
-            if (const auto e = reference ? exact->first_mode_energy(omega, scene.contact.gap) : std::nullopt)
+            if (const std::optional<double> e = reference.name == "none" ? std::nullopt : reference.energies[i])
               errors.push_back(std::abs(p.measures.energy - *e) / *e);
           }
         catch (const NumericalError &)
@@ -108,15 +131,13 @@ namespace nsm
       m.energy_error_median = errors[errors.size() / 2];
     }
 
-    Measures run_once(const Scene &scene, dealii::TimerOutput &timer)
+    Measures run_once(const Scene &scene, const Reference &reference, dealii::TimerOutput &timer)
     {
       using Scope = dealii::TimerOutput::Scope;
       Measures                        m;
       const BarModel                  bar(scene.bar);
-      const std::optional<ExactBar>   exact = ExactBar::of(bar);
+      const bool                      exact = reference.name != "none";
       std::unique_ptr<Discretisation> d;
-      if (exact)
-        m.reference = exact->name();
       {
         Scope scope(timer, "mesh");
         d = std::make_unique<Discretisation>(bar, scene.discretisation);
@@ -132,7 +153,7 @@ namespace nsm
       if (study.spectrum_modes > 0 && exact)
         {
           Scope scope(timer, "spectrum");
-          m.spectrum_error = spectrum_error(*d, *exact, study.spectrum_modes);
+          m.spectrum_error = spectrum_error(*d, reference.frequencies);
         }
       if (study.receptance_frequency_values.empty() && study.backbone_omega_values.empty())
         return m;
@@ -144,7 +165,7 @@ namespace nsm
       if (!study.receptance_frequency_values.empty() && exact)
         {
           Scope scope(timer, "receptance");
-          m.receptance_error = receptance_error(*receptance, *exact, study.receptance_frequency_values);
+          m.receptance_error = receptance_error(*receptance, study.receptance_frequency_values, reference.gammas);
         }
       if (study.backbone_omega_values.empty())
         return m;
@@ -159,7 +180,7 @@ namespace nsm
       m.newton_iterations = backbone.newton_cost.converged_iterations + backbone.newton_cost.failed_iterations;
       m.failed_solves     = backbone.newton_cost.failed_solves;
       Scope scope(timer, "energy solves");
-      energy_errors(hb, scene, backbone, exact, m);
+      energy_errors(hb, scene, backbone, reference, m);
       return m;
     }
 
@@ -217,13 +238,14 @@ namespace nsm
     std::string                        status = "ok";
     std::vector<double>                totals, cpu;
     std::vector<std::vector<double>>   stage_walls(stages.size());
-    const double resident = reset_peak_memory();
+    const Reference reference = reference_of(scene);
+    const double    resident  = reset_peak_memory();
     for (unsigned int r = 0; r < scene.study.repeats && status == "ok"; ++r)
       {
         Timer timer(quiet, Timer::never, Timer::cpu_and_wall_times);
         try
           {
-            m = run_once(scene, timer);
+            m = run_once(scene, reference, timer);
           }
         catch (const NumericalError &e)
           {
@@ -253,7 +275,7 @@ namespace nsm
     std::replace(status.begin(), status.end(), '\n', ' ');
 
     std::vector<std::string> row = {status,
-                                    m.reference,
+                                    reference.name,
                                     std::to_string(m.dofs),
                                     std::to_string(m.cells),
                                     std::to_string(m.hb_unknowns),
