@@ -503,8 +503,7 @@ namespace nsm
     p.erase(std::remove_if(p.begin(), p.end(),
                            [&](const BackbonePoint &q) { return !in_omega_range(scene, q.omega); }),
             p.end());
-    for (BackbonePoint &point : p)
-      classify(hb, c.tongue_share, point);
+    label_branches(hb, c.tongue_share, branch_direction(scene), p);
     backbone.tongues = collect_tongues(p);
     return backbone;
   }

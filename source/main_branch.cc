@@ -1,6 +1,8 @@
 #include <nsm/main_branch.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace nsm
@@ -35,11 +37,11 @@ namespace nsm
   SpectralExcess spectral_excess(const std::vector<double> &energies)
   {
     const double   total = total_of(energies);
-    SpectralExcess worst{0, 0.0};
+    SpectralExcess worst{0, -std::numeric_limits<double>::infinity()};
     for (unsigned int k = 3; k < energies.size(); ++k)
       if (const double share = excess(energies, k, total); share > worst.share)
         worst = {k, share};
-    return worst;
+    return worst.harmonic == 0 ? SpectralExcess{0, 0.0} : worst;
   }
 
   InternalResonance resonance_of(const Receptance &receptance, const unsigned int k, const double omega)
@@ -53,14 +55,63 @@ namespace nsm
                            InternalResonance{std::sqrt(poles[j]) / k, j + 1, k};
   }
 
-  void classify(HarmonicBalance &hb, const double tongue_share, BackbonePoint &point)
+  std::vector<bool> above_envelope(const std::vector<BackbonePoint> &points,
+                                   const double                      direction,
+                                   const double                      share)
   {
-    hb.set_omega(point.omega);
-    const SpectralExcess excess = spectral_excess(hb.harmonic_energies(point.x));
-    const bool           tongue = excess.share > tongue_share;
-    point.branch                = tongue ? Branch::tongue : Branch::main;
-    point.resonance             = tongue ? resonance_of(hb.receptance(), excess.harmonic, point.omega) :
-                                           InternalResonance{0, 0, 0};
+    std::vector<std::size_t> order(points.size());
+    std::iota(order.begin(), order.end(), 0);
+    // From the far end back, so that the running minimum is the envelope;
+    // points at one Omega share it.
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return direction * points[a].omega > direction * points[b].omega;
+    });
+    std::vector<bool> above(points.size());
+    double            least = std::numeric_limits<double>::infinity();
+    for (std::size_t n = 0; n < order.size();)
+      {
+        std::size_t end = n;
+        while (end < order.size() && points[order[end]].omega == points[order[n]].omega)
+          least = std::min(least, points[order[end++]].measures.energy);
+        for (; n < end; ++n)
+          above[order[n]] = points[order[n]].measures.energy > (1 + share) * least;
+      }
+    return above;
+  }
+
+  void label_branches(HarmonicBalance            &hb,
+                      const double                tongue_share,
+                      const double                direction,
+                      std::vector<BackbonePoint> &points)
+  {
+    const std::vector<bool> above = above_envelope(points, direction, tongue_share);
+    for (std::size_t first = 0; first < points.size();)
+      {
+        std::size_t end = first;
+        while (end < points.size() && above[end])
+          ++end;
+        if (end == first)
+          {
+            points[first].branch    = Branch::main;
+            points[first].resonance = {0, 0, 0};
+            ++first;
+            continue;
+          }
+        const auto top = std::max_element(points.begin() + first, points.begin() + end,
+                                          [](const BackbonePoint &a, const BackbonePoint &b) {
+                                            return a.measures.energy < b.measures.energy;
+                                          });
+        hb.set_omega(top->omega);
+        // With fewer than 4 harmonics no harmonic can stand out: the tongue
+        // is then named after the fundamental.
+        const unsigned int      k = spectral_excess(hb.harmonic_energies(top->x)).harmonic;
+        const InternalResonance r = resonance_of(hb.receptance(), std::max(k, 1u), top->omega);
+        for (; first < end; ++first)
+          {
+            points[first].branch    = Branch::tongue;
+            points[first].resonance = r;
+          }
+      }
   }
 
   std::vector<Tongue> collect_tongues(const std::vector<BackbonePoint> &points)

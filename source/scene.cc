@@ -469,9 +469,9 @@ namespace nsm
     prm.declare_entry("Tongue share",
                       text(d.tongue_share),
                       Patterns::Double(1e-4, 1),
-                      "A point is labelled a tongue point if the energy of one harmonic k >= 3 "
-                      "stands above the geometric mean of harmonics k - 2 and k + 2 by more than "
-                      "this share of the total energy; otherwise it is on the main branch.");
+                      "A point is labelled a tongue point if its energy exceeds the least energy "
+                      "written at or beyond its Omega (in the direction of continuation) by more "
+                      "than this share; otherwise it is on the main branch.");
     prm.declare_entry("Tongue energy ratio",
                       text(d.tongue_energy_ratio),
                       Patterns::Double(1, 1e6),

@@ -1,8 +1,11 @@
-// Main branch or tongue, for every point. On the main branch the energy per
-// harmonic varies smoothly with k; near W = w_j / k harmonic k drives mode j
-// near its resonance and stands out of that envelope. A point where one
-// harmonic stands out by more than Tongue share of the energy is labelled a
-// tongue point of that resonance; every other point is on the main branch.
+// Main branch or tongue, for every point. The nonsmooth mode hardens: along
+// the direction of continuation its energy rises. A resonance tongue is an
+// excursion above it, which the branch climbs near W = w_j / k and comes down
+// from beyond. A point whose energy is more than Tongue share above the lowest
+// energy written at or beyond its Omega (the monotone lower envelope of the
+// backbone) is therefore a tongue point; every other point is on the main
+// branch. A tongue is named after the harmonic k >= 3 that stands out most
+// of the spectrum at its highest point, and the mode j nearest to k W.
 #pragma once
 
 #include <nsm/continuation.h>
@@ -14,7 +17,8 @@ namespace nsm
   /// the top), as a share of the total energy; 0 for k < 3.
   double harmonic_excess(const std::vector<double> &harmonic_energies, unsigned int k);
 
-  /// The harmonic k >= 3 that stands out most, and its excess.
+  /// The harmonic k >= 3 that stands out most, and its excess (negative if
+  /// none stands out); harmonic 0 if there are fewer than 4 harmonics.
   struct SpectralExcess
   {
     unsigned int harmonic;
@@ -27,8 +31,18 @@ namespace nsm
   /// whose frequency is nearest to k Omega.
   InternalResonance resonance_of(const Receptance &receptance, unsigned int k, double omega);
 
-  /// Sets the point's branch and resonance from its spectrum at its Omega.
-  void classify(HarmonicBalance &hb, double tongue_share, BackbonePoint &point);
+  /// Per point, in order: true if its energy exceeds (1 + share) times the
+  /// least energy of the points at or beyond its Omega in `direction`.
+  std::vector<bool> above_envelope(const std::vector<BackbonePoint> &points,
+                                   double                            direction,
+                                   double                            share);
+
+  /// Sets every point's branch, and the resonance of each run of tongue
+  /// points from the spectrum of its most energetic point.
+  void label_branches(HarmonicBalance            &hb,
+                      double                      tongue_share,
+                      double                      direction,
+                      std::vector<BackbonePoint> &points);
 
   /// The tongues of a labelled backbone: runs of tongue points of one
   /// resonance, with the Omega of the main points at their feet.

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <set>
 
 #include "hb_model.h"
 
@@ -79,46 +80,106 @@ TEST(MainBranch, HarmonicEnergiesAddUpToTheEnergy)
     }
 }
 
+namespace
+{
+  std::vector<nsm::BackbonePoint> points_at(const std::vector<std::pair<double, double>> &omega_energy)
+  {
+    std::vector<nsm::BackbonePoint> points;
+    for (const auto &[omega, energy] : omega_energy)
+      {
+        nsm::BackbonePoint p{};
+        p.omega           = omega;
+        p.measures.energy = energy;
+        points.push_back(p);
+      }
+    return points;
+  }
+} // namespace
+
+TEST(MainBranch, ATongueIsAnExcursionAboveTheMonotoneEnvelope)
+{
+  // A rising branch that climbs a tongue near W = 1.3 (a fold, then the far
+  // flank coming down) and goes on rising; written in continuation order.
+  const auto points = points_at({{1.0, 1.0},  {1.1, 1.1},  {1.2, 1.2},  {1.25, 1.5}, {1.3, 3.0},
+                                 {1.28, 2.9}, {1.29, 2.0}, {1.31, 1.4}, {1.35, 1.36}, {1.4, 1.4},
+                                 {1.5, 1.5}});
+  const std::vector<bool> expected = {false, false, false, true, true, true,
+                                      true,  true,  false, false, false};
+  EXPECT_EQ(nsm::above_envelope(points, 1.0, 0.02), expected);
+  // Within the share of the envelope is main: 1.4 at 1.31 is 2.9 % above
+  // the 1.36 at 1.35.
+  auto tolerant = expected;
+  tolerant[7]   = false;
+  EXPECT_EQ(nsm::above_envelope(points, 1.0, 0.03), tolerant);
+  // With eq. (5) the branch goes down in Omega: the same shape mirrored.
+  auto mirrored = points;
+  for (auto &p : mirrored)
+    p.omega = 3 - p.omega;
+  EXPECT_EQ(nsm::above_envelope(mirrored, -1.0, 0.02), expected);
+  // Against the direction, every point of the rising branch but the
+  // lowest ones stands above the envelope: the direction matters.
+  EXPECT_NE(nsm::above_envelope(points, -1.0, 0.02), expected);
+  // Points at one Omega (from two segments) share the envelope.
+  const auto twins = points_at({{1.0, 1.0}, {1.0, 2.0}, {1.1, 1.5}});
+  EXPECT_EQ(nsm::above_envelope(twins, 1.0, 0.02), (std::vector<bool>{false, true, false}));
+}
+
 TEST(MainBranch, UniformBarMainPointsAreCloseToTheExactEnergy)
 {
   // Uniform bar, M = 40, grazing to W = 2.08. Every point written is
-  // labelled; the main ones must be the accurate ones. Measured: 94.6 % of
-  // 56 main points within 5 % of the exact energy, median error 2.3 %; of
-  // all 730 points 16.6 %.
+  // labelled; the main ones must be the accurate ones. How close any HB
+  // solution at M = 40 gets to the exact energy is bounded independently of
+  // the continuation (study_uniform_main_branch, doc/studies.md): from the
+  // exact mode's force, the nearest converged solution has a median error of
+  // 4.8 % and half of them lie beyond 5 %, with the sign of an overestimate
+  // at 96 % of Omega. Measured here: main points median 4.9 %, smallest
+  // signed error -1.0 %, 44 of the 50 windows of 0.01 in [1.58, 2.08);
+  // tongue points median 41 %; all 730 points 17 % within 5 %.
   auto scene = testing_helpers::hb_scene("1", 40);
   scene.continuation.omega_max  = 2.08;
   scene.continuation.energy_max = 1;
   HbModel    model(scene);
   const auto backbone = model.backbone();
   const double g0 = scene.contact.gap;
-  std::vector<double> main_errors, all_errors;
+  std::vector<double> main_errors, tongue_errors;
+  std::set<int>       windows;
   for (const auto &p : backbone.points)
     {
       const double period = 2 * M_PI / p.omega;
-      const double error  = std::abs(p.measures.energy / (g0 * g0 / (2 * (period - 3) * (period - 3))) - 1);
-      all_errors.push_back(error);
+      const double error  = p.measures.energy / (g0 * g0 / (2 * (period - 3) * (period - 3))) - 1;
       if (p.branch == nsm::Branch::main)
-        main_errors.push_back(error);
+        {
+          main_errors.push_back(std::abs(error));
+          // The truncated HB overestimates; a main point well below the
+          // exact energy would be another branch.
+          EXPECT_GT(error, -0.05) << p.omega;
+          if (p.omega >= 1.58 && p.omega < 2.08)
+            windows.insert(static_cast<int>((p.omega - 1.58) / 0.01));
+        }
       else
         {
+          tongue_errors.push_back(std::abs(error));
           // A tongue point names a resonance of the map, harmonic k >= 3,
           // whose w_j (FE, exact to 1e-7 relative up to k W = 84) is the
-          // clamped-free mode nearest to k W.
+          // clamped-free mode nearest to k W at the tongue's top.
           EXPECT_GE(p.resonance.harmonic, 3u);
           EXPECT_NEAR(p.resonance.omega * p.resonance.harmonic / ((2 * p.resonance.mode - 1) * M_PI / 2),
                       1.0, 1e-7);
-          EXPECT_LE(std::abs(p.resonance.harmonic * p.omega - p.resonance.omega * p.resonance.harmonic),
-                    M_PI / 2 + 1e-9);
         }
     }
-  ASSERT_GE(main_errors.size(), 30u);
-  const auto within = [](const std::vector<double> &e) {
-    return double(std::count_if(e.begin(), e.end(), [](double v) { return v < 0.05; })) / e.size();
+  ASSERT_GE(main_errors.size(), 100u);
+  ASSERT_GE(tongue_errors.size(), 100u);
+  const auto median = [](std::vector<double> e) {
+    std::sort(e.begin(), e.end());
+    return e[e.size() / 2];
   };
-  std::sort(main_errors.begin(), main_errors.end());
-  EXPECT_GE(within(main_errors), 0.9);
-  EXPECT_LE(main_errors[main_errors.size() / 2], 0.025);
-  EXPECT_LT(within(all_errors), 0.5); // the labels matter: unlabelled, most points are off
+  // The HB's own median error (4.8 %), with a quarter of it for the path.
+  EXPECT_LE(median(main_errors), 0.06);
+  // The tongues are the inaccurate points, far beyond the HB's accuracy.
+  EXPECT_GE(median(tongue_errors), 0.2);
+  // The main branch spans the range: the nearest solutions leave 2 windows
+  // without a point within 5 %; the path may miss a few more.
+  EXPECT_GE(windows.size(), 40u);
   EXPECT_FALSE(backbone.tongues.empty());
   EXPECT_EQ(backbone.main_points(), main_errors.size());
 }
