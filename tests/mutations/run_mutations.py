@@ -53,6 +53,9 @@ MUTATIONS = [
     ("study deals each round's row to every rank", "source/study.cc",
      "const std::size_t mine = round + dealii::Utilities::MPI::this_mpi_process(comm);",
      "const std::size_t mine = round;"),
+    ("tongues sought below the envelope of the points before", "source/continuation.cc",
+     "label_branches(hb, c.tongue_share, branch_direction(scene), p);",
+     "label_branches(hb, c.tongue_share, -branch_direction(scene), p);"),
 ]
 
 
