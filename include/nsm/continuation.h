@@ -1,6 +1,9 @@
 // Families of periodic solutions from grazing: sequential continuation in
 // Omega (the paper's) and pseudo-arclength (LOCA), with the internal
-// resonances W = w_j / k that fold the branch.
+// resonances W = w_j / k that fold the branch. compute_backbone joins the
+// stages of branch_context.h (grazing_start, sequential_steps,
+// arclength_steps, leap) into segments, then labels the points
+// (main_branch.h).
 #pragma once
 
 #include <nsm/harmonic_balance.h>

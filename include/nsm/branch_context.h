@@ -1,0 +1,78 @@
+// What the stages of tracing one branch share (continuation.h has the
+// overview): the model and the scene, the Newton solvers, the direction and
+// ends of the Omega range, and when a converged solve becomes a point. The
+// stages are separate units: grazing_start, sequential_steps,
+// arclength_steps and leap.
+#pragma once
+
+#include <nsm/continuation.h>
+#include <nsm/progress.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace nsm
+{
+  /// How a segment of the branch ended.
+  enum class SegmentEnd
+  {
+    approach,  ///< the start of the range reached from a start before it
+    range,     ///< Omega min or max reached
+    fold,      ///< no convergence below Min step, or LOCA gave up
+    tongue,    ///< energy above Energy max (climbing a resonance tongue)
+    max_steps, ///< Max steps points in all
+    refused,   ///< arclength reached a point that is not a contact motion
+    jump       ///< an arclength step left the branch (shortened and retried)
+  };
+
+  /// "what at Omega = ..." for the run summary, with the nearest internal
+  /// resonance when given the list.
+  std::string event_message(const std::string                    &what,
+                            double                                omega,
+                            const std::vector<InternalResonance> &resonances = {});
+
+  class BranchContext
+  {
+  public:
+    BranchContext(HarmonicBalance &hb, const Scene &scene, std::vector<InternalResonance> resonances);
+
+    /// A converged solve becomes a point only if it is a genuine contact
+    /// motion: the trivial solution (no contact) and, in the full basis, a
+    /// solution whose unfolding parameter does not vanish are refused.
+    bool make_point(const std::vector<double> &x, double omega, double residual,
+                    unsigned int iterations, unsigned int segment, BackbonePoint &point);
+
+    /// Newton from the guess; a leap that fails with full steps tries again
+    /// with a line search and more iterations.
+    bool solve(double omega, const std::vector<double> &guess, unsigned int segment,
+               BackbonePoint &point, bool leaping = false);
+
+    /// Called after each point: Max steps reached? Also reports progress.
+    bool full(const Backbone &backbone);
+
+    bool in_range(double omega) const { return in_omega_range(scene, omega); }
+
+    /// a lies beyond b in the direction of continuation.
+    bool beyond(double a, double b) const { return direction * (a - b) > 0; }
+
+    /// Steps never exceed a tenth of the range covered, so that a narrow
+    /// range still gets points.
+    double max_step() const;
+
+    NewtonCost newton_cost() const;
+
+    HarmonicBalance                     &hb;
+    const Scene                         &scene;
+    const std::vector<InternalResonance> resonances;
+    const double                         direction;
+    const double                         near_end, far_end; ///< the range's ends, first met and last
+    double                               span = 0; ///< of the range covered from the start
+    std::optional<std::size_t>           first_fold; ///< in the current segment (arclength)
+
+  private:
+    NewtonSolver newton_;
+    NewtonSolver leap_newton_;
+    Progress     progress_;
+  };
+} // namespace nsm

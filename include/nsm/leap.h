@@ -1,0 +1,19 @@
+// Over a fold or a resonance tongue to the branch beyond it: Newton at Omega
+// values growing away from the segment's front, from three guesses.
+#pragma once
+
+#include <nsm/branch_context.h>
+
+namespace nsm
+{
+  /// Tries W beyond the fold at distances growing from Initial step to 5 % of
+  /// Omega (the last try exactly at the end of the range), from three
+  /// guesses: the front of the segment (its last point, or where arclength
+  /// first turned back before climbing a tongue), the segment's first point,
+  /// which the resonance has not distorted yet, and an impulsive contact
+  /// reaching the gap at that W. A landing must be within a factor 4 of the
+  /// front's energy (a landing far from it is on a tongue's flank). A success
+  /// appends the landing as the first point of `segment`; a failure records
+  /// that the branch was lost.
+  bool leap(BranchContext &context, Backbone &backbone, unsigned int segment);
+} // namespace nsm

@@ -1,0 +1,103 @@
+#include <nsm/branch_context.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace nsm
+{
+  std::string event_message(const std::string                    &what,
+                            const double                          omega,
+                            const std::vector<InternalResonance> &resonances)
+  {
+    std::ostringstream s;
+    s.precision(8);
+    s << what << " at Omega = " << omega;
+    if (!resonances.empty())
+      {
+        const auto &r = nearest_resonance(resonances, omega);
+        s << "; nearest internal resonance w_" << r.mode << " / " << r.harmonic << " = " << r.omega;
+      }
+    return s.str();
+  }
+
+  namespace
+  {
+    /// A leap starts far from the solution: Newton with a line search and
+    /// twice the iterations.
+    Scene::HarmonicBalance leap_parameters(Scene::HarmonicBalance params)
+    {
+      params.line_search    = "Polynomial";
+      params.max_iterations *= 2;
+      return params;
+    }
+  } // namespace
+
+  BranchContext::BranchContext(HarmonicBalance               &hb,
+                               const Scene                   &scene,
+                               std::vector<InternalResonance> resonances)
+    : hb(hb)
+    , scene(scene)
+    , resonances(std::move(resonances))
+    , direction(branch_direction(scene))
+    , near_end(direction > 0 ? scene.continuation.omega_min : scene.continuation.omega_max)
+    , far_end(direction > 0 ? scene.continuation.omega_max : scene.continuation.omega_min)
+    , newton_(hb, scene.harmonic_balance)
+    , leap_newton_(hb, leap_parameters(scene.harmonic_balance))
+    , progress_("continuation", scene.output.progress_every)
+  {}
+
+  bool BranchContext::make_point(const std::vector<double> &x, const double omega, const double residual,
+                                 const unsigned int iterations, const unsigned int segment,
+                                 BackbonePoint &point)
+  {
+    if (!(residual <= scene.harmonic_balance.tolerance))
+      return false;
+    hb.set_omega(omega);
+    const PeriodicSolutionMeasures m = hb.measure(x);
+    if (!(m.contact_fraction > 0 && m.max_contact_force > 0 && m.energy > 0 &&
+          std::isfinite(m.energy_spread)))
+      return false;
+    if (hb.has_unfolding() && std::abs(x[1]) > 1e-6)
+      return false;
+    point = {segment, omega, m, iterations, residual, x};
+    return true;
+  }
+
+  bool BranchContext::solve(const double omega, const std::vector<double> &guess,
+                            const unsigned int segment, BackbonePoint &point, const bool leaping)
+  {
+    for (NewtonSolver *solver : {&newton_, &leap_newton_})
+      {
+        const NewtonResult r = solver->solve(omega, guess);
+        if (r.converged && make_point(r.x, omega, r.residual, r.iterations, segment, point))
+          return true;
+        if (!leaping)
+          return false;
+      }
+    return false;
+  }
+
+  bool BranchContext::full(const Backbone &backbone)
+  {
+    progress_.update([&] {
+      std::ostringstream s;
+      s << backbone.points.size() << " points, Omega = " << backbone.points.back().omega << " (range "
+        << near_end << " to " << far_end << "), " << backbone.leaps << " leaps";
+      return s.str();
+    });
+    return backbone.points.size() >= scene.continuation.max_steps;
+  }
+
+  double BranchContext::max_step() const
+  {
+    return std::min(scene.continuation.max_step, span / 10);
+  }
+
+  NewtonCost BranchContext::newton_cost() const
+  {
+    NewtonCost total = newton_.cost();
+    total += leap_newton_.cost();
+    return total;
+  }
+} // namespace nsm

@@ -1,0 +1,60 @@
+#include <nsm/grazing_start.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace nsm
+{
+  namespace
+  {
+    [[noreturn]] void no_start(const BranchContext &context, const unsigned int mode, const double w)
+    {
+      std::ostringstream s;
+      s << "no converged non-trivial solution within 5 % of grazing of clamped-free mode " << mode
+        << " (w = " << w << ") and before the end of Continuation/Omega min..max"
+        << "; Contact/Alpha = " << context.scene.contact.alpha << " gives alpha gamma(0) = "
+        << context.scene.contact.alpha * context.hb.receptance()(0.0).gamma
+        << " (the contact law's switch lambda - alpha g balances force and gap for alpha "
+           "gamma(0) near 1, where the start converges most easily)";
+      throw NumericalError(s.str());
+    }
+  } // namespace
+
+  BackbonePoint start_at_grazing(BranchContext &context, Backbone &backbone)
+  {
+    const auto                &c     = context.scene.continuation;
+    const unsigned int         mode  = c.mode;
+    const std::vector<double> &poles = context.hb.receptance().poles();
+    if (mode > poles.size())
+      throw InputError("parameter 'Continuation/Mode' = " + std::to_string(mode) +
+                       " is out of range: allowed 1 to " + std::to_string(poles.size()) +
+                       " (clamped-free modes below Harmonics x Omega max)");
+    const double w = std::sqrt(poles[mode - 1]);
+    // The contact lasts a vanishing share of the period at grazing; 5 % of
+    // w_j away the branch is far beyond its grazing end. A start before the
+    // range is traced up to it; one beyond it has no point in it.
+    for (double offset = c.grazing_offset; offset < 0.05; offset *= 2)
+      {
+        const double omega = w * (1 + context.direction * offset);
+        if (context.beyond(omega, context.far_end))
+          break;
+        context.hb.set_omega(omega);
+        const std::vector<double> guess = context.hb.grazing_guess();
+        BackbonePoint             point;
+        if (guess.empty() || !context.solve(omega, guess, 0, point))
+          continue;
+        std::ostringstream s;
+        s.precision(10);
+        s << "start at grazing of clamped-free mode " << mode << " (w = " << w << ") at Omega = " << omega;
+        backbone.events.push_back(s.str());
+        if (point.measures.energy > c.energy_max)
+          throw InputError("parameter 'Continuation/Energy max' = " + std::to_string(c.energy_max) +
+                           " is out of range: allowed above the energy at grazing, " +
+                           std::to_string(point.measures.energy));
+        const bool before = context.beyond(context.near_end, omega);
+        context.span      = std::abs(context.far_end - (before ? context.near_end : omega));
+        return point;
+      }
+    no_start(context, mode, w);
+  }
+} // namespace nsm

@@ -1,0 +1,51 @@
+#include <nsm/leap.h>
+
+namespace nsm
+{
+  namespace
+  {
+    /// The first point of the segment the point at `last` belongs to.
+    std::size_t segment_start(const Backbone &backbone, std::size_t last)
+    {
+      const unsigned int segment = backbone.points[last].segment;
+      while (last > 0 && backbone.points[last - 1].segment == segment)
+        --last;
+      return last;
+    }
+  } // namespace
+
+  bool leap(BranchContext &context, Backbone &backbone, const unsigned int segment)
+  {
+    const auto         &c     = context.scene.continuation;
+    const BackbonePoint front = backbone.points[context.first_fold.value_or(backbone.points.size() - 1)];
+    const std::size_t   first = segment_start(backbone, backbone.points.size() - 1);
+    const std::vector<double> guesses[] = {front.x, backbone.points[first].x};
+    const double              energy    = front.measures.energy;
+    for (double distance = c.initial_step;
+         distance <= 0.05 * front.omega && context.beyond(context.far_end, front.omega);
+         distance *= 2)
+      {
+        const double omega = context.beyond(front.omega + context.direction * distance, context.far_end) ?
+                               context.far_end :
+                               front.omega + context.direction * distance;
+        context.hb.set_omega(omega);
+        for (const std::vector<double> &guess : {guesses[0], guesses[1], context.hb.grazing_guess()})
+          {
+            BackbonePoint point;
+            if (!guess.empty() && context.solve(omega, guess, segment, point, true) &&
+                point.measures.energy <= c.energy_max && point.measures.energy < 4 * energy &&
+                point.measures.energy > energy / 4)
+              {
+                backbone.events.push_back(event_message("leapt to a new segment", omega));
+                ++backbone.leaps;
+                backbone.points.push_back(std::move(point));
+                return true;
+              }
+          }
+        if (omega == context.far_end)
+          break;
+      }
+    backbone.events.push_back(event_message("branch lost after the fold", front.omega));
+    return false;
+  }
+} // namespace nsm

@@ -1,0 +1,140 @@
+// The stages of tracing one branch, each on its own (branch_context.h): the
+// start at grazing, sequential steps, arclength steps with their guards, and
+// the leap over a fold; on the uniform bar (w1 = pi / 2 exactly) and the seed
+// bar (w1 from method.md).
+#include <nsm/arclength_steps.h>
+#include <nsm/grazing_start.h>
+#include <nsm/leap.h>
+#include <nsm/sequential_steps.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "hb_model.h"
+
+namespace
+{
+  using testing_helpers::HbModel;
+
+  constexpr double w1_seed = 1.919137; // method.md, to 6 digits
+
+  nsm::Scene seed(nsm::ForceSign sign, nsm::ContinuationMethod method, double omega_max)
+  {
+    auto scene                      = testing_helpers::hb_scene("1.5 - x", 40);
+    scene.contact.sign              = sign;
+    scene.continuation.method       = method;
+    scene.continuation.omega_min    = 1.5;
+    scene.continuation.omega_max    = omega_max;
+    scene.continuation.energy_max   = 1e-3;
+    return scene;
+  }
+
+  /// A model, a context on it, and a backbone holding the start point.
+  struct Tracing
+  {
+    explicit Tracing(const nsm::Scene &scene)
+      : model(scene)
+      , context(model.hb, model.scene, model.resonances)
+    {
+      backbone.points.push_back(nsm::start_at_grazing(context, backbone));
+    }
+
+    HbModel            model;
+    nsm::BranchContext context;
+    nsm::Backbone      backbone;
+  };
+} // namespace
+
+TEST(GrazingStart, FirstPointLiesJustBeyondGrazingInTheBranchDirection)
+{
+  for (const auto sign : {nsm::ForceSign::physical, nsm::ForceSign::seed_eq5})
+    {
+      Tracing      t(seed(sign, nsm::ContinuationMethod::sequential, 2.2));
+      const auto  &start    = t.backbone.points.front();
+      const double relative = start.omega / w1_seed - 1;
+      // Grazing offset 1e-5 of w1: above w1 with the physical sign, below
+      // with eq. (5); w1 itself is known to 6 digits.
+      EXPECT_NEAR(relative, 1e-5 * t.context.direction, 1e-6) << start.omega;
+      EXPECT_EQ(start.segment, 0u);
+      // The energy is the linear mode's at grazing, u(L) = g0.
+      EXPECT_NEAR(start.measures.energy / t.model.grazing(1).second, 1.0, 0.05);
+      // The range is covered from the start to its far end.
+      EXPECT_DOUBLE_EQ(t.context.span, sign == nsm::ForceSign::physical ? 2.2 - start.omega :
+                                                                            start.omega - 1.5);
+      ASSERT_EQ(t.backbone.events.size(), 1u);
+      EXPECT_NE(t.backbone.events[0].find("start at grazing"), std::string::npos);
+    }
+}
+
+TEST(SequentialSteps, StaysOnBranchBoundsTheChangeToAFifthOfTheSolution)
+{
+  nsm::BackbonePoint from{}, to{};
+  from.x = {3, 4}; // norm 5: a change of norm up to 1 stays
+  to.x   = {3, 4.99};
+  EXPECT_TRUE(nsm::stays_on_branch(from, to));
+  to.x = {3, 5.01};
+  EXPECT_FALSE(nsm::stays_on_branch(from, to));
+  to.x = {3.01, 4};
+  EXPECT_TRUE(nsm::stays_on_branch(from, to));
+}
+
+TEST(SequentialSteps, UniformSegmentEndsExactlyAtOmegaMaxOnOneBranch)
+{
+  auto scene = testing_helpers::hb_scene("1", 10);
+  scene.continuation.omega_max  = 1.6;
+  scene.continuation.energy_max = 1e-5;
+  Tracing t(scene);
+  EXPECT_EQ(nsm::sequential_segment(t.context, t.backbone, 0), nsm::SegmentEnd::range);
+  const auto &p = t.backbone.points;
+  ASSERT_GT(p.size(), 5u);
+  EXPECT_EQ(p.back().omega, 1.6);
+  for (std::size_t i = 1; i < p.size(); ++i)
+    {
+      EXPECT_EQ(p[i].segment, 0u);
+      EXPECT_GT(p[i].omega, p[i - 1].omega);
+      EXPECT_LE(p[i].omega - p[i - 1].omega, t.context.max_step() * (1 + 1e-12));
+      EXPECT_TRUE(nsm::stays_on_branch(p[i - 1], p[i])) << p[i].omega;
+      // The branch hardens: the energy rises with Omega.
+      EXPECT_GT(p[i].measures.energy, p[i - 1].measures.energy) << p[i].omega;
+    }
+}
+
+TEST(ArclengthSteps, SeedSegmentTurnsAFoldAndStopsHighOnTheTongue)
+{
+  Tracing     t(seed(nsm::ForceSign::physical, nsm::ContinuationMethod::arclength, 2.0));
+  const auto  end = nsm::arclength_segment(t.context, t.backbone, 0);
+  const auto &c   = t.model.scene.continuation;
+  const auto &p   = t.backbone.points;
+  EXPECT_EQ(end, nsm::SegmentEnd::tongue);
+  ASSERT_TRUE(t.context.first_fold.has_value());
+  const std::size_t fold = *t.context.first_fold;
+  ASSERT_GT(fold, 0u);
+  ASSERT_LT(fold + 1, p.size());
+  // Omega turns back at the first fold, next to a listed resonance w_j / k.
+  EXPECT_LT((p[fold].omega - p[fold - 1].omega) * (p[fold + 1].omega - p[fold].omega), 0);
+  EXPECT_LT(std::abs(nsm::nearest_resonance(t.model.resonances, p[fold].omega).omega - p[fold].omega), 2e-3);
+  for (std::size_t i = 1; i < p.size(); ++i)
+    {
+      EXPECT_LE(std::abs(p[i].measures.contact_fraction - p[i - 1].measures.contact_fraction),
+                c.max_contact_change);
+      EXPECT_LE(std::abs(p[i].omega - p[i - 1].omega), c.max_step);
+      EXPECT_LE(p[i].measures.energy, c.tongue_energy_ratio * p[fold].measures.energy);
+    }
+}
+
+TEST(Leap, LandsBeyondTheFoldNearTheFrontsEnergy)
+{
+  Tracing t(seed(nsm::ForceSign::physical, nsm::ContinuationMethod::sequential, 2.0));
+  ASSERT_EQ(nsm::sequential_segment(t.context, t.backbone, 0), nsm::SegmentEnd::fold);
+  const nsm::BackbonePoint front = t.backbone.points.back();
+  ASSERT_TRUE(nsm::leap(t.context, t.backbone, 1));
+  const auto &landing = t.backbone.points.back();
+  EXPECT_EQ(landing.segment, 1u);
+  EXPECT_EQ(t.backbone.leaps, 1u);
+  // At least Initial step beyond the front, at most 5 % of Omega.
+  EXPECT_GE(landing.omega - front.omega, t.model.scene.continuation.initial_step * (1 - 1e-12));
+  EXPECT_LE(landing.omega - front.omega, 0.05 * front.omega);
+  EXPECT_GT(landing.measures.energy, front.measures.energy / 4);
+  EXPECT_LT(landing.measures.energy, front.measures.energy * 4);
+}
