@@ -111,28 +111,56 @@ namespace nsm
 
 namespace nsm
 {
+  namespace
+  {
+    /// The point nearest to omega with side * (its Omega - omega) >= 0
+    /// (either side for 0); null if none.
+    const BackbonePoint *nearest_on_side(const std::vector<BackbonePoint> &points, const double omega,
+                                         const int side)
+    {
+      const BackbonePoint *best = nullptr;
+      for (const BackbonePoint &q : points)
+        if (side * (q.omega - omega) >= 0 && (!best || std::abs(q.omega - omega) < std::abs(best->omega - omega)))
+          best = &q;
+      return best;
+    }
+  } // namespace
+
   BackbonePoint solve_on_branch(HarmonicBalance &hb,
                                 const Scene     &scene,
                                 const Backbone  &backbone,
                                 const double     omega,
                                 const bool       main_only)
   {
-    const auto &p = backbone.points;
+    const auto   &p = backbone.points;
+    BranchContext context(hb, scene, {});
+    BackbonePoint point;
+    const auto    eligible = [&](const BackbonePoint &q) { return !main_only || q.branch == Branch::main; };
     for (std::size_t i = 0; i + 1 < p.size(); ++i)
-      if (p[i].segment == p[i + 1].segment &&
-          (p[i].omega - omega) * (p[i + 1].omega - omega) <= 0 &&
-          (!main_only || (p[i].branch == Branch::main && p[i + 1].branch == Branch::main)))
+      if (p[i].segment == p[i + 1].segment && (p[i].omega - omega) * (p[i + 1].omega - omega) <= 0 &&
+          eligible(p[i]) && eligible(p[i + 1]))
         {
-          const double        t = (omega - p[i].omega) / (p[i + 1].omega - p[i].omega);
+          const double        run = p[i + 1].omega - p[i].omega;
+          const double        t   = run == 0 ? 0 : (omega - p[i].omega) / run;
           std::vector<double> guess(p[i].x.size());
           for (std::size_t j = 0; j < guess.size(); ++j)
             guess[j] = (1 - t) * p[i].x[j] + t * p[i + 1].x[j];
-          BranchContext context(hb, scene, {});
-          BackbonePoint point;
           if (context.solve(omega, guess, p[i].segment, point))
             return point;
-          break;
         }
+    // Omega in the gap a leap left, or Newton failed between the points: as a
+    // leap does, with a line search, from the nearest points below and above
+    // and from the impulsive guess.
+    if (!main_only && !p.empty())
+      {
+        for (const BackbonePoint *q : {nearest_on_side(p, omega, -1), nearest_on_side(p, omega, 1)})
+          if (q && context.solve(omega, q->x, q->segment, point, true))
+            return point;
+        hb.set_omega(omega);
+        const std::vector<double> guess = hb.grazing_guess();
+        if (!guess.empty() && context.solve(omega, guess, nearest_on_side(p, omega, 0)->segment, point, true))
+          return point;
+      }
     std::ostringstream s;
     s.precision(10);
     s << "no converged solution on the computed branch at Omega = " << omega;

@@ -105,9 +105,11 @@ namespace nsm
                             const std::vector<InternalResonance> &resonances);
 
   /// The solution at exactly `omega` on the computed branch: Newton from the
-  /// interpolation of the two backbone points of one segment that bracket
-  /// it, both labelled main if `main_only`. Throws NumericalError if no such
-  /// pair brackets omega or Newton fails.
+  /// interpolation of two backbone points of one segment that bracket it
+  /// (each such pair in turn), both labelled main if `main_only`. Otherwise
+  /// (omega in the gap a leap left), unless `main_only`, Newton with a line
+  /// search, as a leap, from the nearest points below and above and from the
+  /// impulsive guess. Throws NumericalError if nothing converges.
   BackbonePoint solve_on_branch(HarmonicBalance &hb,
                                 const Scene     &scene,
                                 const Backbone  &backbone,

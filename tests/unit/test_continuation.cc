@@ -346,3 +346,31 @@ TEST(Backbone, EnergyMaxBelowTheGrazingEnergyIsAnInputError)
   HbModel model(scene);
   EXPECT_THROW(model.backbone(), nsm::InputError);
 }
+
+TEST(Backbone, SolvesInTheGapALeapLeft)
+{
+  // Sequential stepping leaps over a fold: no two points of one segment
+  // bracket the Omega between the fold and the landing. A field asked for
+  // there is solved from the nearest point, as the leap did (before, an
+  // error: "no converged solution on the computed branch").
+  HbModel    model(seed_scene(nsm::ForceSign::physical, 1.5, 1.96));
+  const auto backbone = model.backbone();
+  const auto &p       = backbone.points;
+  std::size_t landing = 1;
+  while (landing < p.size() && p[landing].segment == p[landing - 1].segment)
+    ++landing;
+  ASSERT_LT(landing, p.size());
+  const double omega = (p[landing - 1].omega + p[landing].omega) / 2;
+  for (std::size_t i = 0; i + 1 < p.size(); ++i)
+    ASSERT_FALSE(p[i].segment == p[i + 1].segment && (p[i].omega - omega) * (p[i + 1].omega - omega) <= 0)
+      << "a segment brackets the gap";
+  const auto point = nsm::solve_on_branch(model.hb, model.scene, backbone, omega);
+  EXPECT_EQ(point.omega, omega);
+  EXPECT_LE(point.residual, model.scene.harmonic_balance.tolerance);
+  // Between the fold and the landing, at the energies on either side.
+  const auto [low, high] = std::minmax(p[landing - 1].measures.energy, p[landing].measures.energy);
+  EXPECT_GT(point.measures.energy, low / 4);
+  EXPECT_LT(point.measures.energy, high * 4);
+  // Studies ask for the main branch between main points only.
+  EXPECT_THROW(nsm::solve_on_branch(model.hb, model.scene, backbone, omega, true), nsm::NumericalError);
+}
