@@ -117,12 +117,9 @@ namespace nsm
       void land_on_end(const BackbonePoint &past)
       {
         const BackbonePoint &last = backbone_.points.back();
-        const double         t    = (context_.far_end - last.omega) / (past.omega - last.omega);
-        std::vector<double>  guess(last.x.size());
-        for (std::size_t i = 0; i < guess.size(); ++i)
-          guess[i] = (1 - t) * last.x[i] + t * past.x[i];
-        BackbonePoint point;
-        if (context_.solve(context_.far_end, guess, segment_, point) && stays(last, point))
+        BackbonePoint        point;
+        if (context_.solve(context_.far_end, interpolated_guess(last, past, context_.far_end), segment_, point) &&
+            stays(last, point))
           backbone_.points.push_back(std::move(point));
       }
 

@@ -21,6 +21,16 @@ namespace nsm
     return s.str();
   }
 
+  std::vector<double> interpolated_guess(const BackbonePoint &a, const BackbonePoint &b, const double omega)
+  {
+    const double        run = b.omega - a.omega;
+    const double        t   = run == 0 ? 0 : (omega - a.omega) / run;
+    std::vector<double> guess(a.x.size());
+    for (std::size_t i = 0; i < guess.size(); ++i)
+      guess[i] = (1 - t) * a.x[i] + t * b.x[i];
+    return guess;
+  }
+
   namespace
   {
     /// A leap starts far from the solution: Newton with a line search and

@@ -138,16 +138,9 @@ namespace nsm
     const auto    eligible = [&](const BackbonePoint &q) { return !main_only || q.branch == Branch::main; };
     for (std::size_t i = 0; i + 1 < p.size(); ++i)
       if (p[i].segment == p[i + 1].segment && (p[i].omega - omega) * (p[i + 1].omega - omega) <= 0 &&
-          eligible(p[i]) && eligible(p[i + 1]))
-        {
-          const double        run = p[i + 1].omega - p[i].omega;
-          const double        t   = run == 0 ? 0 : (omega - p[i].omega) / run;
-          std::vector<double> guess(p[i].x.size());
-          for (std::size_t j = 0; j < guess.size(); ++j)
-            guess[j] = (1 - t) * p[i].x[j] + t * p[i + 1].x[j];
-          if (context.solve(omega, guess, p[i].segment, point))
-            return point;
-        }
+          eligible(p[i]) && eligible(p[i + 1]) &&
+          context.solve(omega, interpolated_guess(p[i], p[i + 1], omega), p[i].segment, point))
+        return point;
     // Omega in the gap a leap left, or Newton failed between the points: as a
     // leap does, with a line search, from the nearest points below and above
     // and from the impulsive guess.

@@ -32,6 +32,10 @@ namespace nsm
                             double                                omega,
                             const std::vector<InternalResonance> &resonances = {});
 
+  /// The straight line through the unknowns of a and b, evaluated at omega
+  /// (a's unknowns if both share one Omega): a Newton guess between points.
+  std::vector<double> interpolated_guess(const BackbonePoint &a, const BackbonePoint &b, double omega);
+
   class BranchContext
   {
   public:
