@@ -26,6 +26,21 @@ namespace testing_helpers
     return scene;
   }
 
+  /// w1 of the seed bar (method.md), to 6 digits.
+  constexpr double w1_seed = 1.919137;
+
+  /// The seed bar's HB scene (M = 40) with a force sign and an Omega range;
+  /// Energy max 1e-3.
+  inline nsm::Scene seed_scene(nsm::ForceSign sign, double omega_min, double omega_max)
+  {
+    nsm::Scene scene = hb_scene("1.5 - x", 40);
+    scene.contact.sign            = sign;
+    scene.continuation.omega_min  = omega_min;
+    scene.continuation.omega_max  = omega_max;
+    scene.continuation.energy_max = 1e-3;
+    return scene;
+  }
+
   struct HbModel
   {
     explicit HbModel(const nsm::Scene &s)

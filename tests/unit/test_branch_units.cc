@@ -16,17 +16,12 @@
 namespace
 {
   using testing_helpers::HbModel;
-
-  constexpr double w1_seed = 1.919137; // method.md, to 6 digits
+  using testing_helpers::w1_seed;
 
   nsm::Scene seed(nsm::ForceSign sign, nsm::ContinuationMethod method, double omega_max)
   {
-    auto scene                      = testing_helpers::hb_scene("1.5 - x", 40);
-    scene.contact.sign              = sign;
-    scene.continuation.method       = method;
-    scene.continuation.omega_min    = 1.5;
-    scene.continuation.omega_max    = omega_max;
-    scene.continuation.energy_max   = 1e-3;
+    auto scene                = testing_helpers::seed_scene(sign, 1.5, omega_max);
+    scene.continuation.method = method;
     return scene;
   }
 

@@ -10,8 +10,8 @@
 namespace
 {
   using testing_helpers::HbModel;
-
-  constexpr double w1_seed = 1.919137; // method.md, to 6 digits
+  using testing_helpers::seed_scene;
+  using testing_helpers::w1_seed;
 
   nsm::Scene uniform_scene(unsigned int harmonics)
   {
@@ -35,16 +35,6 @@ namespace
     const auto backbone = model.backbone();
     const auto point    = nsm::solve_on_branch(model.hb, model.scene, backbone, omega);
     return point.measures.energy / exact_uniform_energy(omega, model.scene.contact.gap) - 1;
-  }
-
-  nsm::Scene seed_scene(nsm::ForceSign sign, double omega_min, double omega_max)
-  {
-    auto scene = testing_helpers::hb_scene("1.5 - x", 40);
-    scene.contact.sign              = sign;
-    scene.continuation.omega_min    = omega_min;
-    scene.continuation.omega_max    = omega_max;
-    scene.continuation.energy_max   = 1e-3;
-    return scene;
   }
 } // namespace
 
