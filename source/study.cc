@@ -2,6 +2,7 @@
 #include <nsm/progress.h>
 #include <nsm/scene_file.h>
 #include <nsm/study.h>
+#include <nsm/study_reference.h>
 #include <nsm/study_row.h>
 
 #include <deal.II/base/mpi.h>
@@ -14,6 +15,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 
 namespace nsm
@@ -220,6 +222,23 @@ namespace nsm
     return combinations;
   }
 
+  std::vector<Scene> reference_levels(const std::string &path, const Scene &base)
+  {
+    dealii::ParameterHandler prm;
+    read(prm, path);
+    set_row_outputs(prm, base.study);
+    if (!base.study.reference_degree.empty())
+      set_entry(prm, "Discretisation", "Degree", base.study.reference_degree);
+    set_entry(prm, "Discretisation", "Refinement", "none");
+    std::vector<Scene> levels;
+    for (const std::string &cells : base.study.reference_cells)
+      {
+        set_entry(prm, "Discretisation", "Cells", cells);
+        levels.push_back(Scene::from_parameters(prm, path + ", reference with " + cells + " cells"));
+      }
+    return levels;
+  }
+
   RunReport run_study(const std::string &path, const Scene &base)
   {
     const MPI_Comm     comm  = MPI_COMM_WORLD;
@@ -262,6 +281,27 @@ namespace nsm
                            error.message() + "; allowed: a new or empty directory, or this study's");
         write_atomically(directory + "/study.scene", [&](std::ostream &out) { out << scene_text; });
       }
+    std::vector<std::string>     reference_notes;
+    std::optional<FineReference> fine;
+    if (!base.study.reference_cells.empty())
+      {
+        const std::vector<Scene> levels = reference_levels(path, base);
+        // Rank 0 computes it or finds it kept; a failure there stops every rank.
+        std::string failure;
+        if (root)
+          try
+            {
+              reference_notes = make_fine_reference(levels, directory);
+            }
+          catch (const std::exception &e)
+            {
+              failure = e.what();
+            }
+        failure = dealii::Utilities::MPI::broadcast(comm, failure, 0);
+        if (!failure.empty())
+          throw NumericalError("the fine reference (Study/Reference cells) failed: " + failure);
+        fine = read_fine_reference(levels, directory);
+      }
     unsigned int failed = 0;
     Progress     progress("study", base.output.progress_every);
     for (std::size_t round = 0; round < missing.size(); round += ranks)
@@ -272,7 +312,7 @@ namespace nsm
           {
             const StudyCombination  &c     = combinations[missing[mine]];
             std::vector<std::string> cells = c.key;
-            for (std::string &cell : measure_study_row(c.scene))
+            for (std::string &cell : measure_study_row(c.scene, fine ? &*fine : nullptr))
               cells.push_back(std::move(cell));
             packed = pack_row(missing[mine], cells);
           }
@@ -310,10 +350,14 @@ namespace nsm
          << (ranks == 1 ? " rank, " : " ranks, ") << resumed << " from an earlier run, " << failed
          << " failed";
     report.notes.push_back(note.str());
+    for (std::string &line : reference_notes)
+      report.notes.push_back(std::move(line));
     in_combination_order();
     for (std::string &line : pareto_notes(table, key_size))
       report.notes.push_back(std::move(line));
     report.files = {directory + "/study.csv", directory + "/study.scene"};
+    if (fine)
+      report.files.push_back(directory + "/reference.csv");
     if (base.output.plots)
       for (std::string &f : make_plots(base, directory))
         report.files.push_back(std::move(f));

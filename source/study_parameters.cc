@@ -48,6 +48,23 @@ namespace nsm
     return spectrum_modes > 0 || !receptance_frequency_values.empty() || !backbone_omega_values.empty();
   }
 
+  void StudyParameters::check_reference_cells() const
+  {
+    const std::string allowed = "two or more cell counts, increasing, with Study/Backbone omegas set";
+    if (reference_cells.empty())
+      return;
+    bool increasing = reference_cells.size() >= 2 && !backbone_omega_values.empty();
+    for (std::size_t i = 1; i < reference_cells.size(); ++i)
+      increasing &= std::stoul(reference_cells[i - 1]) < std::stoul(reference_cells[i]);
+    if (!increasing)
+      {
+        std::string value;
+        for (const std::string &c : reference_cells)
+          value += (value.empty() ? "" : ", ") + c;
+        throw InputError("parameter 'Study/Reference cells' = " + value + " is not allowed; allowed: " + allowed);
+      }
+  }
+
   void StudyParameters::declare(dealii::ParameterHandler &prm)
   {
     namespace Patterns = dealii::Patterns;
@@ -72,6 +89,17 @@ namespace nsm
                       "",
                       Patterns::Anything(),
                       "Measure the main-branch energy at these Omega, within [Omega min, Omega max].");
+    prm.declare_entry("Reference degree",
+                      "",
+                      Patterns::Anything(),
+                      "Degree of the fine backbone reference (empty: the scene's Discretisation/Degree).");
+    prm.declare_entry("Reference cells",
+                      "",
+                      Patterns::Anything(),
+                      "Cells of the fine backbone reference's uniform meshes, two or more, coarse to "
+                      "fine: the finest is the reference that rows without an exact one are compared "
+                      "with, the others show its convergence (reference.csv, computed once and kept "
+                      "in the output directory). Empty: no fine reference. Needs Backbone omegas.");
     prm.declare_entry("Repeats",
                       "1",
                       Patterns::Integer(1, 100),
@@ -91,7 +119,6 @@ namespace nsm
           checks.push_back({sweep.subsection + "/" + sweep.name, value, std::string("Study/") + s.study_entry});
         sweeps.push_back(std::move(sweep));
       }
-    require_allowed(prm, checks);
     spectrum_modes         = static_cast<unsigned int>(prm.get_integer("Spectrum modes"));
     receptance_frequencies = prm.get("Receptance frequencies");
     receptance_frequency_values =
@@ -99,7 +126,15 @@ namespace nsm
     backbone_omegas       = prm.get("Backbone omegas");
     backbone_omega_values = parse_frequency_list(backbone_omegas, "Study/Backbone omegas");
     repeats               = static_cast<unsigned int>(prm.get_integer("Repeats"));
+    reference_degree      = prm.get("Reference degree");
+    reference_cells       = split_list(prm.get("Reference cells"));
+    if (!reference_degree.empty())
+      checks.push_back({"Discretisation/Degree", reference_degree, "Study/Reference degree"});
+    for (const std::string &cells : reference_cells)
+      checks.push_back({"Discretisation/Cells", cells, "Study/Reference cells"});
+    require_allowed(prm, checks);
     prm.leave_subsection();
+    check_reference_cells();
 
     bool sweeps_something = false;
     for (const Sweep &s : sweeps)

@@ -43,30 +43,55 @@ namespace nsm
 
     std::string text(const std::optional<double> &value) { return value ? text(*value) : ""; }
 
-    /// The exact values a row's measures compare with, computed once per row
-    /// and outside the timed stages, so that the costs are the run's alone.
+    /// The values a row's measures compare with, computed once per row and
+    /// outside the timed stages, so that the costs are the run's alone: the
+    /// bar's exact spectrum, receptance and mode where known, else the fine
+    /// backbone reference's points.
     struct Reference
     {
       std::string                        name = "none";
+      bool                               exact_bar = false;
       std::vector<double>                frequencies; ///< the first Spectrum modes clamped-free ones
       std::vector<double>                gammas;      ///< at the Receptance frequencies
-      std::vector<std::optional<double>> energies;    ///< the mode's, at the Backbone omegas
+      std::vector<std::optional<double>> energies, forces, fractions; ///< at the Backbone omegas
     };
 
-    Reference reference_of(const Scene &scene)
+    Reference reference_of(const Scene &scene, const FineReference *fine)
     {
       Reference                     r;
+      const StudyParameters        &study = scene.study;
+      const std::size_t             n     = study.backbone_omega_values.size();
       const std::optional<ExactBar> exact = ExactBar::of(BarModel(scene.bar));
-      if (!exact)
-        return r;
-      const StudyParameters &study = scene.study;
-      r.name                       = exact->name();
-      r.frequencies                = exact->clamped_free_frequencies(study.spectrum_modes);
-      for (const double w : study.receptance_frequency_values)
-        r.gammas.push_back(exact->receptance(w));
+      r.energies.assign(n, std::nullopt);
+      r.forces.assign(n, std::nullopt);
+      r.fractions.assign(n, std::nullopt);
       const bool mode = scene.contact.sign == ForceSign::physical && scene.continuation.mode == 1;
-      for (const double omega : study.backbone_omega_values)
-        r.energies.push_back(mode ? exact->first_mode_energy(omega, scene.contact.gap) : std::nullopt);
+      bool       exact_mode = false;
+      if (exact)
+        {
+          r.name        = exact->name();
+          r.exact_bar   = true;
+          r.frequencies = exact->clamped_free_frequencies(study.spectrum_modes);
+          for (const double w : study.receptance_frequency_values)
+            r.gammas.push_back(exact->receptance(w));
+          if (mode)
+            for (std::size_t i = 0; i < n; ++i)
+              {
+                r.energies[i] = exact->first_mode_energy(study.backbone_omega_values[i], scene.contact.gap);
+                exact_mode |= r.energies[i].has_value();
+              }
+        }
+      if (fine && !exact_mode && n > 0)
+        {
+          r.name = (exact ? r.name + "; backbone: " : std::string()) + fine->name;
+          for (std::size_t i = 0; i < n; ++i)
+            if (const auto &p = fine->points[i])
+              {
+                r.energies[i]  = p->energy;
+                r.forces[i]    = p->max_contact_force;
+                r.fractions[i] = p->contact_fraction;
+              }
+        }
       return r;
     }
 
@@ -74,9 +99,10 @@ namespace nsm
     struct Measures
     {
       unsigned int          dofs = 0, cells = 0, hb_unknowns = 0;
-      std::optional<double> spectrum_error, receptance_error, energy_error_max, energy_error_median;
+      std::optional<double> spectrum_error, receptance_error, energy_error_max, energy_error_median,
+        force_error_max, contact_fraction_error_max;
       unsigned int          energy_points = 0, main_points = 0;
-      std::vector<std::optional<double>> energies; ///< at each Backbone omega on the main branch
+      std::vector<std::optional<MainBranchPoint>> points; ///< at each Backbone omega on the main branch
       unsigned long         newton_iterations = 0, failed_solves = 0;
     };
 
@@ -103,32 +129,49 @@ namespace nsm
       return error / scale;
     }
 
-    /// Energy errors at the study's Omega values on the main branch, where
-    /// the exact mode is known; the solves run either way, for their cost.
-    void energy_errors(HarmonicBalance &hb, const Scene &scene, const Backbone &backbone,
-                       const Reference &reference, Measures &m)
+    /// The largest of `errors` (empty: not measured).
+    std::optional<double> largest(const std::vector<double> &errors)
     {
-      std::vector<double> errors;
-      m.energies.assign(scene.study.backbone_omega_values.size(), std::nullopt);
-      for (std::size_t i = 0; i < m.energies.size(); ++i)
+      if (errors.empty())
+        return std::nullopt;
+      return *std::max_element(errors.begin(), errors.end());
+    }
+
+    /// The main-branch points at the study's Omega values, and their errors
+    /// where the reference knows them (energy and largest contact force
+    /// relative, contact fraction absolute); the solves run either way, for
+    /// their cost.
+    void backbone_errors(HarmonicBalance &hb, const Scene &scene, const Backbone &backbone,
+                         const Reference &reference, Measures &m)
+    {
+      std::vector<double> energy, force, fraction;
+      m.points.assign(scene.study.backbone_omega_values.size(), std::nullopt);
+      for (std::size_t i = 0; i < m.points.size(); ++i)
         try
           {
             const double        omega = scene.study.backbone_omega_values[i];
             const BackbonePoint p     = solve_on_branch(hb, scene, backbone, omega, true);
             ++m.energy_points;
-            m.energies[i] = p.measures.energy;
-            if (const std::optional<double> e = reference.name == "none" ? std::nullopt : reference.energies[i])
-              errors.push_back(std::abs(p.measures.energy - *e) / *e);
+            m.points[i] = MainBranchPoint{p.measures.energy, p.measures.max_contact_force,
+                                          p.measures.contact_fraction};
+            if (const auto &e = reference.energies[i])
+              energy.push_back(std::abs(p.measures.energy - *e) / *e);
+            if (const auto &f = reference.forces[i])
+              force.push_back(std::abs(p.measures.max_contact_force - *f) / *f);
+            if (const auto &c = reference.fractions[i])
+              fraction.push_back(std::abs(p.measures.contact_fraction - *c));
           }
         catch (const NumericalError &)
           {
             // Not on a main-branch segment: counted by energy_points.
           }
-      if (errors.empty())
+      m.force_error_max            = largest(force);
+      m.contact_fraction_error_max = largest(fraction);
+      if (energy.empty())
         return;
-      std::sort(errors.begin(), errors.end());
-      m.energy_error_max    = errors.back();
-      m.energy_error_median = errors[errors.size() / 2];
+      std::sort(energy.begin(), energy.end());
+      m.energy_error_max    = energy.back();
+      m.energy_error_median = energy[energy.size() / 2];
     }
 
     Measures run_once(const Scene &scene, const Reference &reference, dealii::TimerOutput &timer)
@@ -136,7 +179,7 @@ namespace nsm
       using Scope = dealii::TimerOutput::Scope;
       Measures                        m;
       const BarModel                  bar(scene.bar);
-      const bool                      exact = reference.name != "none";
+      const bool                      exact = reference.exact_bar;
       std::unique_ptr<Discretisation> d;
       {
         Scope scope(timer, "mesh");
@@ -180,7 +223,7 @@ namespace nsm
       m.newton_iterations = backbone.newton_cost.converged_iterations + backbone.newton_cost.failed_iterations;
       m.failed_solves     = backbone.newton_cost.failed_solves;
       Scope scope(timer, "energy solves");
-      energy_errors(hb, scene, backbone, reference, m);
+      backbone_errors(hb, scene, backbone, reference, m);
       return m;
     }
 
@@ -214,7 +257,8 @@ namespace nsm
   {
     std::vector<std::string> columns = {"status", "reference", "dofs", "final_cells", "hb_unknowns",
                                         "time_samples_used", "spectrum_error", "receptance_error",
-                                        "energy_error_max", "energy_error_median", "energy_points",
+                                        "energy_error_max", "energy_error_median", "force_error_max",
+                                        "contact_fraction_error_max", "energy_points",
                                         "main_points", "newton_iterations", "failed_solves",
                                         "peak_memory_mib", "wall_total_min", "wall_total_median",
                                         "wall_total_max", "cpu_total_median"};
@@ -230,7 +274,14 @@ namespace nsm
     return columns;
   }
 
-  std::vector<std::string> measure_study_row(const Scene &scene)
+  std::vector<std::optional<MainBranchPoint>> main_branch_at(const Scene &scene)
+  {
+    std::ostringstream  quiet;
+    dealii::TimerOutput timer(quiet, dealii::TimerOutput::never, dealii::TimerOutput::wall_times);
+    return run_once(scene, reference_of(scene, nullptr), timer).points;
+  }
+
+  std::vector<std::string> measure_study_row(const Scene &scene, const FineReference *fine)
   {
     using Timer = dealii::TimerOutput;
     std::ostringstream                 quiet;
@@ -238,7 +289,7 @@ namespace nsm
     std::string                        status = "ok";
     std::vector<double>                totals, cpu;
     std::vector<std::vector<double>>   stage_walls(stages.size());
-    const Reference reference = reference_of(scene);
+    const Reference reference = reference_of(scene, fine);
     const double    resident  = reset_peak_memory();
     for (unsigned int r = 0; r < scene.study.repeats && status == "ok"; ++r)
       {
@@ -284,6 +335,8 @@ namespace nsm
                                     text(m.receptance_error),
                                     text(m.energy_error_max),
                                     text(m.energy_error_median),
+                                    text(m.force_error_max),
+                                    text(m.contact_fraction_error_max),
                                     std::to_string(m.energy_points),
                                     std::to_string(m.main_points),
                                     std::to_string(m.newton_iterations),
@@ -295,9 +348,9 @@ namespace nsm
                                     text(median(cpu))};
     for (const std::vector<double> &walls : stage_walls)
       row.push_back(text(median(walls)));
-    m.energies.resize(scene.study.backbone_omega_values.size());
-    for (const std::optional<double> &e : m.energies)
-      row.push_back(text(e));
+    m.points.resize(scene.study.backbone_omega_values.size());
+    for (const std::optional<MainBranchPoint> &p : m.points)
+      row.push_back(p ? text(p->energy) : "");
     return row;
   }
 } // namespace nsm

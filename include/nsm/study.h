@@ -22,6 +22,11 @@ namespace nsm
   /// combination is an InputError before anything runs.
   std::vector<StudyCombination> study_combinations(const std::string &path, const Scene &base);
 
+  /// The scenes of the fine backbone reference's levels (Study/Reference
+  /// cells, coarse to fine): the base scene on uniform meshes of Reference
+  /// degree, with a row's outputs.
+  std::vector<Scene> reference_levels(const std::string &path, const Scene &base);
+
   /// Runs the rows that Output/Directory/study.csv does not hold yet, the
   /// rows dealt out over the MPI ranks in rounds; after each round rank 0
   /// rewrites study.csv whole (rows in combination order) and prints the

@@ -33,9 +33,18 @@ namespace nsm
     std::string         backbone_omegas; ///< as written
     std::vector<double> backbone_omega_values;
     unsigned int        repeats = 1;
+    /// The fine backbone reference's degree ("" = the base scene's) and its
+    /// cell counts, coarse to fine (empty: no fine reference). The finest
+    /// level is the reference; the others show its convergence.
+    std::string              reference_degree;
+    std::vector<std::string> reference_cells;
 
     /// A scene is a study when it measures something.
     bool enabled() const;
+
+    /// Throws InputError unless Reference cells is empty or two or more
+    /// increasing counts with Backbone omegas set.
+    void check_reference_cells() const;
 
     static void declare(dealii::ParameterHandler &prm);
     void        parse(dealii::ParameterHandler &prm);

@@ -1,13 +1,16 @@
 #!/usr/bin/env python3
 """Study runs (issue 8), checked from their study.csv.
 
-usage: check_study.py NSM_BAR STUDIES_DIR {rates|ranks|resume}
+usage: check_study.py NSM_BAR STUDIES_DIR {rates|ranks|resume|reference}
   rates   space.prm: the eigenfrequency error falls like h^(2p) (rate within
           10 % of 2p) and exponentially in p, against the exact Bessel roots;
   ranks   ranks.prm serially and on 2 MPI ranks: identical rows, costs aside;
   resume  resume.prm stopped by SIGTERM after its first rows, then rerun: the
           rerun computes only the missing rows, keeps the earlier ones byte
-          for byte, and ends with the rows of an uninterrupted run.
+          for byte, and ends with the rows of an uninterrupted run;
+  reference reference.prm: the seed bar's fine backbone reference has converged
+          (FE_Q(10) x 14 against x 28), the rows' errors are against it, and a
+          rerun reads it from reference.csv instead of computing it again.
 """
 import csv
 import math
@@ -139,7 +142,78 @@ def resume(executable, studies):
     print(f"stopped after {done} of {len(expected)} rows; the rerun ran the others")
 
 
+def relative(a, b):
+    return abs(a - b) / abs(b)
+
+
+def reference(executable, studies):
+    directory = fresh("reference", studies, "reference.prm")
+    out = os.path.join(directory, "out")
+    result = run([executable, "reference.prm"], directory)
+    assert "fine reference: FE_Q(10) x 28 cells, computed in" in result.stdout, result.stdout
+    levels = read(os.path.join(out, "reference.csv"))
+    omegas = [float(r["Omega"]) for r in levels]
+    fine = {float(r["Omega"]): float(r["energy_cells_28"]) for r in levels if r["energy_cells_28"]}
+    # The reference has converged far below the errors the rows are judged
+    # by: FE_Q(10) resolves gamma over the band to 1e-12 on 28 cells
+    # (doc/accuracy-and-cost.md), so halving its cells moves the main branch
+    # by round-off and the solver's tolerance, not by 1e-6.
+    assert len(fine) >= 8, f"the reference is on the main branch at only {len(fine)} Omega"
+    for r in levels:
+        if r["energy_change"]:
+            change = relative(float(r["energy_cells_14"]), float(r["energy_cells_28"]))
+            assert abs(change - float(r["energy_change"])) <= 1e-12 * change, r
+            for q in ("energy_change", "max_contact_force_change", "contact_fraction_change"):
+                assert 0 <= float(r[q]) <= 1e-6, (r["Omega"], q, r[q])
+    rows = {(r["degree"], r["cells"]): r for r in read(os.path.join(out, "study.csv"))}
+    assert all(r["status"] == "ok" for r in rows.values())
+
+    def energy_errors(row):
+        errors = []
+        for omega in omegas:
+            cell = row[next(k for k in row if k.startswith("energy_at_") and abs(float(k[10:]) - omega) < 1e-9)]
+            if cell and omega in fine:
+                errors.append(relative(float(cell), fine[omega]))
+        return errors
+
+    for key, row in rows.items():
+        errors = energy_errors(row)
+        assert row["reference"].endswith("backbone: FE_Q(10) x 28 cells (reference.csv)"), row["reference"]
+        if errors:
+            assert abs(float(row["energy_error_max"]) - max(errors)) <= 1e-9 * max(errors), key
+    same = rows[("10", "28")]
+    assert float(same["energy_error_max"]) == 0 and float(same["force_error_max"]) == 0, same
+    # FE_Q(1) on 7 cells misses the first 10 modes by up to 20 % (Bessel
+    # roots); FE_Q(10) on 7 cells has them to 1e-13: a reference that cannot
+    # tell them apart by at least a factor 100 in energy is not the converged one.
+    coarse, good = float(rows[("1", "7")]["energy_error_max"]), float(rows[("10", "7")]["energy_error_max"])
+    assert good <= 1e-3 and coarse >= 100 * good, (coarse, good)
+
+    # Kept: a rerun reads reference.csv (then every row comes from study.csv).
+    path = os.path.join(out, "reference.csv")
+    stamp = os.stat(path).st_mtime_ns
+    result = run([executable, "reference.prm"], directory)
+    assert "read from out/reference.csv" in result.stdout and os.stat(path).st_mtime_ns == stamp, result.stdout
+    # ... and the rows are measured against it: with its energies scaled by
+    # 1.01 and the rows recomputed, the row equal to the reference is 1/1.01 - 1 off.
+    with open(path) as f:
+        table = list(csv.reader(f))
+    column = table[0].index("energy_cells_28")
+    for line in table[1:]:
+        if line[column]:
+            line[column] = repr(float(line[column]) * 1.01)
+    with open(path, "w", newline="") as f:
+        csv.writer(f, lineterminator="\n").writerows(table)
+    os.remove(os.path.join(out, "study.csv"))
+    run([executable, "reference.prm"], directory)
+    rows = {(r["degree"], r["cells"]): r for r in read(os.path.join(out, "study.csv"))}
+    shifted = float(rows[("10", "28")]["energy_error_max"])
+    assert abs(shifted - (1 - 1 / 1.01)) < 1e-9, shifted
+    print(f"reference at {len(fine)} of {len(omegas)} Omega; FE_Q(10) x 7 within {good:.2e}, "
+          f"FE_Q(1) x 7 {coarse:.2e}; kept and read on rerun")
+
+
 if __name__ == "__main__":
     executable, studies, mode = os.path.abspath(sys.argv[1]), sys.argv[2], sys.argv[3]
-    {"rates": rates, "ranks": ranks, "resume": resume}[mode](executable, studies)
+    {"rates": rates, "ranks": ranks, "resume": resume, "reference": reference}[mode](executable, studies)
     print(f"study {mode}: ok")
