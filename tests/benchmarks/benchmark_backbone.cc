@@ -1,7 +1,9 @@
 // Benchmark (not a test): the seed scene's backbone from grazing to
 // W = 2.2 with sequential and arclength continuation, on the paper's mesh
 // (FE_Q(1), 4000 cells) and on the FE_Q(10), 7-cell mesh of the same
-// receptance accuracy (benchmark_receptance). Ratios are from this one run.
+// receptance accuracy (benchmark_receptance); then, on the latter, how the
+// cost of a converged Newton solve and of its parts grows with the harmonics
+// M (sequential). Ratios are from this one run.
 #include <nsm/bar_model.h>
 #include <nsm/continuation.h>
 #include <nsm/discretisation.h>
@@ -54,6 +56,31 @@ namespace
                 newton.converged_solves ? double(newton.converged_iterations) / newton.converged_solves : 0.0,
                 newton.failed_solves, newton.failed_seconds);
   }
+  double per_call_us(double seconds, unsigned long calls) { return calls ? 1e6 * seconds / calls : 0.0; }
+
+  void scaling(unsigned int harmonics)
+  {
+    nsm::Scene scene = testing_helpers::bar_scene("1.5 - x", 10, 7);
+    scene.receptance.method         = nsm::ReceptanceMethod::modal;
+    scene.harmonic_balance.harmonics = harmonics;
+    scene.continuation.omega_min    = 1.5;
+    scene.continuation.energy_max   = 1e-3;
+    const nsm::BarModel       bar(scene.bar);
+    const nsm::Discretisation d(bar, scene.discretisation);
+    const nsm::Receptance     r(d, scene.receptance, harmonics * scene.continuation.omega_max);
+    nsm::HarmonicBalance      hb(scene, r);
+    const auto                start    = std::chrono::steady_clock::now();
+    const nsm::Backbone       backbone = nsm::compute_backbone(hb, scene, nsm::internal_resonances(r, scene));
+    const double              tracing  = since(start);
+    const auto               &cost     = hb.cost();
+    const auto               &newton   = backbone.newton_cost;
+    std::printf("| %u | %u | %zu | %.3f | %.3f (%.1f it) | %.1f | %.1f | %.1f | %.4f |\n", harmonics, hb.n_unknowns(),
+                backbone.points.size(), tracing,
+                newton.converged_solves ? 1e3 * newton.converged_seconds / newton.converged_solves : 0.0,
+                newton.converged_solves ? double(newton.converged_iterations) / newton.converged_solves : 0.0,
+                per_call_us(cost.residual_seconds, cost.residuals), per_call_us(cost.jacobian_seconds, cost.jacobians),
+                per_call_us(cost.linear_solve_seconds, cost.linear_solves), backbone.points.back().omega);
+  }
 } // namespace
 
 int main()
@@ -65,4 +92,9 @@ int main()
       run("FE_Q(1), 4000 cells", 1, 4000, method);
       run("FE_Q(10), 7 cells", 10, 7, method);
     }
+  std::printf("\nFE_Q(10), 7 cells, sequential, by harmonics M:\n\n");
+  std::printf("| M | unknowns | points | backbone [s] | ms per converged Newton solve | residual [us] | Jacobian [us] | linear solve [us] | last Omega |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|\n");
+  for (const unsigned int harmonics : {20u, 40u, 80u})
+    scaling(harmonics);
 }
