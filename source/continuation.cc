@@ -136,11 +136,15 @@ namespace nsm
     BranchContext context(hb, scene, {});
     BackbonePoint point;
     const auto    eligible = [&](const BackbonePoint &q) { return !main_only || q.branch == Branch::main; };
+    const auto    labelled = [&]() -> BackbonePoint & {
+      label_point(hb, scene.continuation.tongue_share, context.direction, p, point);
+      return point;
+    };
     for (std::size_t i = 0; i + 1 < p.size(); ++i)
       if (p[i].segment == p[i + 1].segment && (p[i].omega - omega) * (p[i + 1].omega - omega) <= 0 &&
           eligible(p[i]) && eligible(p[i + 1]) &&
           context.solve(omega, interpolated_guess(p[i], p[i + 1], omega), p[i].segment, point))
-        return point;
+        return labelled();
     // Omega in the gap a leap left, or Newton failed between the points: as a
     // leap does, with a line search, from the nearest points below and above
     // and from the impulsive guess.
@@ -148,11 +152,11 @@ namespace nsm
       {
         for (const BackbonePoint *q : {nearest_on_side(p, omega, -1), nearest_on_side(p, omega, 1)})
           if (q && context.solve(omega, q->x, q->segment, point, true))
-            return point;
+            return labelled();
         hb.set_omega(omega);
         const std::vector<double> guess = hb.grazing_guess();
         if (!guess.empty() && context.solve(omega, guess, nearest_on_side(p, omega, 0)->segment, point, true))
-          return point;
+          return labelled();
       }
     std::ostringstream s;
     s.precision(10);

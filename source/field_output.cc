@@ -241,12 +241,16 @@ namespace nsm
                                                   const std::vector<PeriodicField> &fields,
                                                   bool                              vtk)
   {
-    CsvTable table{"fields.csv", {"index", "Omega", "segment", "energy"}, {}};
+    CsvTable table{"fields.csv",
+                   {"index", "Omega", "segment", "energy", "branch", "resonance_mode", "resonance_harmonic"},
+                   {}};
     std::vector<std::pair<double, std::string>> records;
     for (std::size_t i = 0; i < fields.size(); ++i)
       {
         const BackbonePoint &p = fields[i].point();
-        table.rows.push_back({double(i), p.omega, double(p.segment), p.measures.energy});
+        table.rows.push_back({double(i), p.omega, double(p.segment), p.measures.energy,
+                              std::string(branch_name(p.branch)),
+                              double(p.resonance.mode), double(p.resonance.harmonic)});
         records.emplace_back(p.omega, name(i, ".vtu"));
       }
     std::vector<std::string> files{write_csv(directory, table)};

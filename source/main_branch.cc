@@ -79,6 +79,19 @@ namespace nsm
     return above;
   }
 
+  namespace
+  {
+    /// The resonance a tongue point belongs to: the harmonic that stands out
+    /// of its spectrum (the fundamental with fewer than 4 harmonics, when
+    /// none can).
+    InternalResonance tongue_resonance(HarmonicBalance &hb, const BackbonePoint &point)
+    {
+      hb.set_omega(point.omega);
+      const unsigned int k = spectral_excess(hb.harmonic_energies(point.x)).harmonic;
+      return resonance_of(hb.receptance(), std::max(k, 1u), point.omega);
+    }
+  } // namespace
+
   void label_branches(HarmonicBalance            &hb,
                       const double                tongue_share,
                       const double                direction,
@@ -101,17 +114,29 @@ namespace nsm
                                           [](const BackbonePoint &a, const BackbonePoint &b) {
                                             return a.measures.energy < b.measures.energy;
                                           });
-        hb.set_omega(top->omega);
-        // With fewer than 4 harmonics no harmonic can stand out: the tongue
-        // is then named after the fundamental.
-        const unsigned int      k = spectral_excess(hb.harmonic_energies(top->x)).harmonic;
-        const InternalResonance r = resonance_of(hb.receptance(), std::max(k, 1u), top->omega);
+        const InternalResonance r = tongue_resonance(hb, *top);
         for (; first < end; ++first)
           {
             points[first].branch    = Branch::tongue;
             points[first].resonance = r;
           }
       }
+  }
+
+  void label_point(HarmonicBalance                  &hb,
+                   const double                      tongue_share,
+                   const double                      direction,
+                   const std::vector<BackbonePoint> &points,
+                   BackbonePoint                    &point)
+  {
+    double least = point.measures.energy;
+    for (const BackbonePoint &q : points)
+      if (direction * (q.omega - point.omega) >= 0)
+        least = std::min(least, q.measures.energy);
+    const bool tongue = point.measures.energy > (1 + tongue_share) * least;
+    point.branch      = tongue ? Branch::tongue : Branch::main;
+    point.resonance   = tongue ? tongue_resonance(hb, point) : InternalResonance{0, 0, 0};
+    hb.set_omega(point.omega);
   }
 
   std::vector<Tongue> collect_tongues(const std::vector<BackbonePoint> &points)

@@ -108,13 +108,24 @@ namespace nsm
           table.rows.push_back({double(p.segment), p.omega, p.measures.energy,
                                 p.measures.energy_spread, p.measures.max_contact_force,
                                 p.measures.contact_fraction, double(p.newton_iterations),
-                                p.residual, p.branch == Branch::main ? "main" : "tongue",
+                                p.residual, branch_name(p.branch),
                                 double(p.resonance.mode), double(p.resonance.harmonic)});
           if (!verifications.empty())
             for (CsvCell &cell : verification_cells(verifications[i]))
               table.rows.back().push_back(std::move(cell));
         }
       return table;
+    }
+
+    /// A field asked for at an Omega where the computed branch is a tongue.
+    std::string tongue_field_note(const BackbonePoint &p)
+    {
+      std::ostringstream s;
+      s.precision(6);
+      s << "field at Omega = " << p.omega << " is on the resonance tongue of w_" << p.resonance.mode << " / "
+        << p.resonance.harmonic << " = " << p.resonance.omega << ", not on the main branch (energy "
+        << p.measures.energy << ", above the main branch beyond it by more than Tongue share)";
+      return s.str();
     }
 
     /// The summary line of a field's verification.
@@ -281,6 +292,8 @@ namespace nsm
           {
             fields.emplace_back(*hb, *discretisation, solve_on_branch(*hb, scene, backbone, omega),
                                 scene.contact.sign);
+            if (const BackbonePoint &p = fields.back().point(); p.branch == Branch::tongue)
+              report.notes.push_back(tongue_field_note(p));
             if (o.verify_in_time)
               report.notes.push_back(field_verification(fields.back(), *discretisation, scene));
             progress.update(report_count);

@@ -18,9 +18,12 @@ namespace nsm
 {
   enum class Branch
   {
-    main,  ///< the nonsmooth mode: no harmonic stands out of the spectrum
-    tongue ///< near W = w_j / k, harmonic k drives mode j near its resonance
+    main,  ///< the nonsmooth mode: on the backbone's monotone lower envelope (main_branch.h)
+    tongue ///< above it, near W = w_j / k, where harmonic k drives mode j near its resonance
   };
+
+  /// "main" or "tongue", as the CSV files write it.
+  inline const char *branch_name(const Branch b) { return b == Branch::main ? "main" : "tongue"; }
 
   struct InternalResonance
   {
@@ -109,7 +112,9 @@ namespace nsm
   /// (each such pair in turn), both labelled main if `main_only`. Otherwise
   /// (omega in the gap a leap left), unless `main_only`, Newton with a line
   /// search, as a leap, from the nearest points below and above and from the
-  /// impulsive guess. Throws NumericalError if nothing converges.
+  /// impulsive guess. The point is labelled main or tongue against the
+  /// backbone's envelope (label_point). Throws NumericalError if nothing
+  /// converges.
   BackbonePoint solve_on_branch(HarmonicBalance &hb,
                                 const Scene     &scene,
                                 const Backbone  &backbone,

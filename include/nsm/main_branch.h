@@ -44,6 +44,16 @@ namespace nsm
                       double                      direction,
                       std::vector<BackbonePoint> &points);
 
+  /// Labels one point solved off the backbone (a field at a given Omega) by
+  /// the same envelope: a tongue point, named from its own spectrum, if its
+  /// energy exceeds (1 + share) times the least energy of `points` at or
+  /// beyond its Omega in `direction`; else main.
+  void label_point(HarmonicBalance                  &hb,
+                   double                            tongue_share,
+                   double                            direction,
+                   const std::vector<BackbonePoint> &points,
+                   BackbonePoint                    &point);
+
   /// The tongues of a labelled backbone: runs of tongue points of one
   /// resonance, with the Omega of the main points at their feet.
   std::vector<Tongue> collect_tongues(const std::vector<BackbonePoint> &points);

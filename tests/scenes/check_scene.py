@@ -195,11 +195,34 @@ def read_pvd(path):
 FLOAT32 = 2.0 ** -23
 
 
+def check_field_labels(name, summary, fields):
+    """Each field's label is the backbone's envelope rule (Tongue share 0.02,
+    branch going up), recomputed here: tongue if its energy exceeds 1.02 times
+    the least energy written at or above its Omega. At 1.95 the seed bar's
+    computed branch is the flank of the tongue w_16 / 25 (doc/reproduction.md):
+    the field is labelled so, in fields.csv and in the run summary."""
+    with open(f"{name}/backbone.csv", newline="") as f:
+        backbone = [(float(r["Omega"]), float(r["energy"])) for r in csv.DictReader(f)]
+    for index, omega, segment, energy, branch, mode, harmonic in fields:
+        least = min([e for w, e in backbone if w >= omega] + [energy])
+        assert branch == (1 if energy > 1.02 * least else 0), (omega, energy, least, branch)
+        assert (mode == 0) == (branch == 0) and (harmonic == 0) == (branch == 0), (omega, mode, harmonic)
+    with open(f"{name}/tongues.csv", newline="") as f:
+        tongues = list(csv.DictReader(f))
+    first = fields[0]
+    assert first[4] == 1 and any(
+        int(t["mode"]) == first[5] and int(t["harmonic"]) == first[6] and
+        float(t["foot_omega_begin"]) <= first[1] <= float(t["foot_omega_end"]) for t in tongues), (first, tongues)
+    assert f"field at Omega = 1.95 is on the resonance tongue of w_{int(first[5])} / {int(first[6])}" in summary
+
+
 def check_fields_vtk(name, summary):
-    fields = table(f"{name}/fields.csv", ["index", "Omega", "segment", "energy"])
+    fields = table(f"{name}/fields.csv", ["index", "Omega", "segment", "energy", "branch", "resonance_mode",
+                                          "resonance_harmonic"])
     assert fields[0][1] == 1.95 and len(fields) >= 2, fields
+    check_field_labels(name, summary, fields)
     gap = 1e-3
-    for index, omega, segment, energy in fields:
+    for index, omega, segment, energy, *_ in fields:
         k = int(index)
         harmonics = table(f"{name}/field_{k}_harmonics.csv", ["k", "is_sine", "force", "displacement"])
         tip = table(f"{name}/field_{k}_tip.csv", ["t", "contact_displacement", "contact_velocity", "contact_force"])
