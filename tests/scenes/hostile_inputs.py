@@ -343,6 +343,15 @@ def rows(executable):
              code=2, words=["study row 2", "Discretisation/Graded/Layers"]),
         dict(name="study_omega_range", scene=section("Study", Backbone_omegas="1.95, 3") +
              output(Directory="out"), code=2, words=["Study/Backbone omegas", "[Omega min, Omega max]"]),
+        dict(name="study_reference_one_level", scene=section("Study", Backbone_omegas="1.95",
+                                                             Reference_cells="28") +
+             output(Directory="out"), code=2, words=["Study/Reference cells", "two or more"]),
+        dict(name="study_reference_decreasing", scene=section("Study", Backbone_omegas="1.95",
+                                                              Reference_cells="28, 14") +
+             output(Directory="out"), code=2, words=["Study/Reference cells", "increasing"]),
+        dict(name="study_reference_degree", scene=section("Study", Backbone_omegas="1.95", Reference_degree=99,
+                                                          Reference_cells="7, 14") +
+             output(Directory="out"), code=2, words=["Study/Reference degree", "Discretisation/Degree"]),
         dict(name="study_foreign_directory", scene=section("Study", Spectrum_modes=2) +
              output(Directory="mine"), setup=foreign_directory, code=2,
              words=["Output/Directory", "study.scene"]),
