@@ -153,8 +153,13 @@ STUDY_ERRORS = (("spectrum_error", "eigenfrequencies"), ("receptance_error", "re
 
 
 def natural(key):
-    """Sort key: numbers as numbers, then text."""
-    return [(0, float(v), "") if re.fullmatch(r"[-+0-9.eE]+", v) else (1, 0.0, v) for v in key]
+    """Sort key: numbers as numbers, then text (such as "-", a value not used)."""
+    def part(value):
+        try:
+            return (0, float(value), "")
+        except ValueError:
+            return (1, 0.0, value)
+    return [part(v) for v in key]
 
 
 def pareto(times, errors):

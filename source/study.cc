@@ -16,6 +16,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 
 namespace nsm
@@ -189,6 +190,28 @@ namespace nsm
     }
   } // namespace
 
+  namespace
+  {
+    /// The combination's values with those its run does not use written "-":
+    /// Time samples under exact integration, the graded mesh's parameters
+    /// unless Refinement = graded, the adaptive tolerance unless adaptive.
+    std::vector<std::string> used_values(const std::vector<StudyParameters::Sweep> &sweeps,
+                                         std::vector<std::string>                    key)
+    {
+      const auto value = [&](const char *name) -> std::string & {
+        const auto s = std::find_if(sweeps.begin(), sweeps.end(), [&](const auto &w) { return w.column == name; });
+        return key[s - sweeps.begin()];
+      };
+      if (value("integration") == "exact")
+        value("time_samples") = "-";
+      if (value("refinement") != "graded")
+        value("graded_layers") = value("graded_ratio") = "-";
+      if (value("refinement") != "adaptive")
+        value("adaptive_tolerance") = "-";
+      return key;
+    }
+  } // namespace
+
   std::vector<StudyCombination> study_combinations(const std::string &path, const Scene &base)
   {
     dealii::ParameterHandler prm;
@@ -199,8 +222,9 @@ namespace nsm
       values.push_back(s.values.empty() ?
                          std::vector<std::string>{in_subsection(prm, s.subsection, [&] { return prm.get(s.name); })} :
                          s.values);
-    std::vector<StudyCombination> combinations;
-    std::vector<std::size_t>      digit(values.size(), 0);
+    std::vector<StudyCombination>      combinations;
+    std::set<std::vector<std::string>> used;
+    std::vector<std::size_t>           digit(values.size(), 0);
     for (bool more = true; more;)
       {
         StudyCombination c;
@@ -209,8 +233,14 @@ namespace nsm
             set_entry(prm, base.study.sweeps[i].subsection, base.study.sweeps[i].name, values[i][digit[i]]);
             c.key.push_back(values[i][digit[i]]);
           }
-        c.scene = Scene::from_parameters(prm, path + ", study row " + std::to_string(combinations.size() + 1));
-        combinations.push_back(std::move(c));
+        // A combination that differs from an earlier one only in values its
+        // run does not use would repeat that run: it is left out.
+        c.key = used_values(base.study.sweeps, std::move(c.key));
+        if (used.insert(c.key).second)
+          {
+            c.scene = Scene::from_parameters(prm, path + ", study row " + std::to_string(combinations.size() + 1));
+            combinations.push_back(std::move(c));
+          }
         // The last sweep varies fastest.
         more = false;
         for (std::size_t i = values.size(); i-- > 0 && !more;)
@@ -346,9 +376,16 @@ namespace nsm
     if (!root)
       return report;
     std::ostringstream note;
+    std::size_t swept = 1;
+    for (const StudyParameters::Sweep &s : base.study.sweeps)
+      swept *= std::max<std::size_t>(1, s.values.size());
     note << "study: " << combinations.size() << " rows, " << missing.size() << " run now on " << ranks
          << (ranks == 1 ? " rank, " : " ranks, ") << resumed << " from an earlier run, " << failed
          << " failed";
+    if (swept > combinations.size())
+      note << "; " << swept - combinations.size()
+           << " combinations left out: each repeats an earlier row's run (Time samples under exact "
+              "integration, graded or adaptive parameters of another refinement)";
     report.notes.push_back(note.str());
     for (std::string &line : reference_notes)
       report.notes.push_back(std::move(line));

@@ -98,7 +98,7 @@ namespace nsm
     /// What one run measured; empty optionals were not measured.
     struct Measures
     {
-      unsigned int          dofs = 0, cells = 0, hb_unknowns = 0;
+      unsigned int          dofs = 0, cells = 0, hb_unknowns = 0, time_samples = 0;
       std::optional<double> spectrum_error, receptance_error, energy_error_max, energy_error_median,
         force_error_max, contact_fraction_error_max;
       unsigned int          energy_points = 0, main_points = 0;
@@ -219,6 +219,7 @@ namespace nsm
         backbone = compute_backbone(hb, scene, internal_resonances(*receptance, scene));
       }
       m.hb_unknowns       = hb.n_unknowns();
+      m.time_samples      = hb.n_samples();
       m.main_points       = backbone.main_points();
       m.newton_iterations = backbone.newton_cost.converged_iterations + backbone.newton_cost.failed_iterations;
       m.failed_solves     = backbone.newton_cost.failed_solves;
@@ -330,7 +331,7 @@ namespace nsm
                                     std::to_string(m.dofs),
                                     std::to_string(m.cells),
                                     std::to_string(m.hb_unknowns),
-                                    std::to_string(scene.time_samples()),
+                                    m.time_samples ? std::to_string(m.time_samples) : std::string(),
                                     text(m.spectrum_error),
                                     text(m.receptance_error),
                                     text(m.energy_error_max),

@@ -66,6 +66,9 @@ namespace nsm
     /// unfolding parameter mu of the phase condition instead: the sine part
     /// of the first harmonic is fixed to 0 and mu must vanish at a solution.
     unsigned int n_unknowns() const { return kinds_.size(); }
+    /// Samples per period: the sampled rule's Time samples, or the grid on
+    /// which the exact rule brackets the roots of lambda - alpha g.
+    unsigned int n_samples() const { return samples_; }
     bool         has_unfolding() const { return basis_ == HarmonicBasis::full; }
 
     /// Evaluates the receptance at k W, k = 0..M, once per distinct W.

@@ -19,7 +19,10 @@ namespace nsm
 
   /// Every combination of the study in `path` (its base is `base`), first
   /// sweep outermost, each a scene validated as any scene file is: a bad
-  /// combination is an InputError before anything runs.
+  /// combination is an InputError before anything runs. A combination that
+  /// differs from an earlier one only in values its run does not use (Time
+  /// samples under exact integration, graded or adaptive parameters of
+  /// another refinement) is left out.
   std::vector<StudyCombination> study_combinations(const std::string &path, const Scene &base);
 
   /// The scenes of the fine backbone reference's levels (Study/Reference

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Study runs (issue 8), checked from their study.csv.
 
-usage: check_study.py NSM_BAR STUDIES_DIR {rates|ranks|resume|reference|harmonics}
+usage: check_study.py NSM_BAR STUDIES_DIR {rates|ranks|resume|reference|harmonics|unused}
   rates   space.prm: the eigenfrequency error falls like h^(2p) (rate within
           10 % of 2p) and exponentially in p, against the exact Bessel roots;
   ranks   ranks.prm serially and on 2 MPI ranks: identical rows, costs aside;
@@ -13,7 +13,11 @@ usage: check_study.py NSM_BAR STUDIES_DIR {rates|ranks|resume|reference|harmonic
           rerun reads it from reference.csv instead of computing it again;
   harmonics harmonics.prm: on the uniform bar's main branch, the energy error
           against the exact mode g0^2 / (2 (T - 3)^2) falls from M = 10 to 20
-          to 40 at every Omega that all three find on it.
+          to 40 at every Omega that all three find on it;
+  unused  unused.prm: of 16 combinations, the 7 that differ from an earlier one
+          only in values their run does not use (Time samples under exact
+          integration, graded ratios without grading) are left out, the rest
+          run once each.
 """
 import csv
 import math
@@ -237,8 +241,24 @@ def harmonics(executable, studies):
         print(f"Omega {omega}: energy error " + ", ".join(f"M = {m}: {e:.2e}" for m, e in error.items()))
 
 
+def unused(executable, studies):
+    directory = fresh("unused", studies, "unused.prm")
+    result = run([executable, "unused.prm"], directory)
+    assert "study: 9 rows" in result.stdout and "7 combinations left out" in result.stdout, result.stdout
+    rows = read(os.path.join(directory, "out", "study.csv"))
+    keys = [(r["refinement"], r["graded_ratio"], r["integration"], r["time_samples"]) for r in rows]
+    assert len(set(keys)) == 9, keys
+    for refinement, ratio, integration, samples in keys:
+        assert (ratio == "-") == (refinement == "none"), keys
+        assert (samples == "-") == (integration == "exact"), keys
+    # The graded rows are other meshes: their errors differ from the uniform one's.
+    errors = {r["refinement"] + r["graded_ratio"]: float(r["spectrum_error"]) for r in rows}
+    assert len(set(errors.values())) == 3, errors
+    print(f"{len(rows)} rows of 16 combinations: {sorted(set(keys))}")
+
+
 if __name__ == "__main__":
     executable, studies, mode = os.path.abspath(sys.argv[1]), sys.argv[2], sys.argv[3]
     {"rates": rates, "ranks": ranks, "resume": resume, "reference": reference,
-     "harmonics": harmonics}[mode](executable, studies)
+     "harmonics": harmonics, "unused": unused}[mode](executable, studies)
     print(f"study {mode}: ok")
