@@ -269,6 +269,47 @@ namespace nsm
     return levels;
   }
 
+  namespace
+  {
+    /// "; n combinations left out: ..." if study_combinations left any out.
+    std::string left_out_note(const StudyParameters &study, const std::size_t rows)
+    {
+      std::size_t swept = 1;
+      for (const StudyParameters::Sweep &s : study.sweeps)
+        swept *= std::max<std::size_t>(1, s.values.size());
+      if (swept == rows)
+        return "";
+      return "; " + std::to_string(swept - rows) +
+             " combinations left out: each repeats an earlier row's run (Time samples under exact "
+             "integration, graded or adaptive parameters of another refinement)";
+    }
+
+    /// The study's fine backbone reference, if it asks for one: rank 0
+    /// computes it (or finds it kept) and adds the summary's lines to
+    /// `notes`; every rank then reads it. A failure on rank 0 stops all.
+    std::optional<FineReference> shared_fine_reference(const std::string &path, const Scene &base,
+                                                       const MPI_Comm comm, std::vector<std::string> &notes)
+    {
+      if (base.study.reference_cells.empty())
+        return std::nullopt;
+      const std::vector<Scene> levels = reference_levels(path, base);
+      std::string              failure;
+      if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+        try
+          {
+            notes = make_fine_reference(levels, base.output.directory);
+          }
+        catch (const std::exception &e)
+          {
+            failure = e.what();
+          }
+      failure = dealii::Utilities::MPI::broadcast(comm, failure, 0);
+      if (!failure.empty())
+        throw NumericalError("the fine reference (Study/Reference cells) failed: " + failure);
+      return read_fine_reference(levels, base.output.directory);
+    }
+  } // namespace
+
   RunReport run_study(const std::string &path, const Scene &base)
   {
     const MPI_Comm     comm  = MPI_COMM_WORLD;
@@ -311,27 +352,8 @@ namespace nsm
                            error.message() + "; allowed: a new or empty directory, or this study's");
         write_atomically(directory + "/study.scene", [&](std::ostream &out) { out << scene_text; });
       }
-    std::vector<std::string>     reference_notes;
-    std::optional<FineReference> fine;
-    if (!base.study.reference_cells.empty())
-      {
-        const std::vector<Scene> levels = reference_levels(path, base);
-        // Rank 0 computes it or finds it kept; a failure there stops every rank.
-        std::string failure;
-        if (root)
-          try
-            {
-              reference_notes = make_fine_reference(levels, directory);
-            }
-          catch (const std::exception &e)
-            {
-              failure = e.what();
-            }
-        failure = dealii::Utilities::MPI::broadcast(comm, failure, 0);
-        if (!failure.empty())
-          throw NumericalError("the fine reference (Study/Reference cells) failed: " + failure);
-        fine = read_fine_reference(levels, directory);
-      }
+    std::vector<std::string>           reference_notes;
+    const std::optional<FineReference> fine = shared_fine_reference(path, base, comm, reference_notes);
     unsigned int failed = 0;
     Progress     progress("study", base.output.progress_every);
     for (std::size_t round = 0; round < missing.size(); round += ranks)
@@ -376,16 +398,9 @@ namespace nsm
     if (!root)
       return report;
     std::ostringstream note;
-    std::size_t swept = 1;
-    for (const StudyParameters::Sweep &s : base.study.sweeps)
-      swept *= std::max<std::size_t>(1, s.values.size());
     note << "study: " << combinations.size() << " rows, " << missing.size() << " run now on " << ranks
          << (ranks == 1 ? " rank, " : " ranks, ") << resumed << " from an earlier run, " << failed
-         << " failed";
-    if (swept > combinations.size())
-      note << "; " << swept - combinations.size()
-           << " combinations left out: each repeats an earlier row's run (Time samples under exact "
-              "integration, graded or adaptive parameters of another refinement)";
+         << " failed" << left_out_note(base.study, combinations.size());
     report.notes.push_back(note.str());
     for (std::string &line : reference_notes)
       report.notes.push_back(std::move(line));
