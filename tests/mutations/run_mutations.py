@@ -56,6 +56,12 @@ MUTATIONS = [
     ("tongues sought below the envelope of the points before", "source/continuation.cc",
      "label_branches(hb, c.tongue_share, branch_direction(scene), p);",
      "label_branches(hb, c.tongue_share, -branch_direction(scene), p);"),
+    ("fine backbone reference with the gap 10 % off", "source/study.cc",
+     'set_entry(prm, "Discretisation", "Refinement", "none");',
+     'set_entry(prm, "Discretisation", "Refinement", "none");\n    set_entry(prm, "Contact", "Gap", "1.1e-3");'),
+    ("fields always labelled main", "source/main_branch.cc",
+     "const bool tongue = point.measures.energy > (1 + tongue_share) * least;",
+     "const bool tongue = false && point.measures.energy > (1 + tongue_share) * least;"),
 ]
 
 
