@@ -1,5 +1,8 @@
 #include <nsm/leap.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace nsm
 {
   namespace
@@ -21,8 +24,16 @@ namespace nsm
     const std::size_t   first = segment_start(backbone, backbone.points.size() - 1);
     const std::vector<double> guesses[] = {front.x, backbone.points[first].x};
     const double              energy    = front.measures.energy;
+    const double              reach     = 0.05 * front.omega;
+    // A front high on a tongue (a previous leap may have landed there) must
+    // not bar the way back down: landings may go as low as a quarter of the
+    // least energy written within reach behind the front.
+    double least = energy;
+    for (const BackbonePoint &p : backbone.points)
+      if (std::abs(p.omega - front.omega) <= reach && !context.beyond(p.omega, front.omega))
+        least = std::min(least, p.measures.energy);
     for (double distance = c.initial_step;
-         distance <= 0.05 * front.omega && context.beyond(context.far_end, front.omega);
+         distance <= reach && context.beyond(context.far_end, front.omega);
          distance *= 2)
       {
         const double omega = context.beyond(front.omega + context.direction * distance, context.far_end) ?
@@ -34,7 +45,7 @@ namespace nsm
             BackbonePoint point;
             if (!guess.empty() && context.solve(omega, guess, segment, point, true) &&
                 point.measures.energy <= c.energy_max && point.measures.energy < 4 * energy &&
-                point.measures.energy > energy / 4)
+                point.measures.energy > least / 4)
               {
                 backbone.events.push_back(event_message("leapt to a new segment", omega));
                 ++backbone.leaps;

@@ -11,8 +11,10 @@ namespace nsm
   /// guesses: the front of the segment (its last point, or where arclength
   /// first turned back before climbing a tongue), the segment's first point,
   /// which the resonance has not distorted yet, and an impulsive contact
-  /// reaching the gap at that W. A landing must be within a factor 4 of the
-  /// front's energy (a landing far from it is on a tongue's flank). A success
+  /// reaching the gap at that W. A landing must be below 4 times the front's
+  /// energy (far above it is a tongue's flank) and above a quarter of the
+  /// least energy written within reach behind the front (a front high on a
+  /// tongue must not bar the way down to the branch). A success
   /// appends the landing as the first point of `segment`; a failure records
   /// that the branch was lost.
   bool leap(BranchContext &context, Backbone &backbone, unsigned int segment);

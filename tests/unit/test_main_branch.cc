@@ -135,10 +135,10 @@ namespace
   // overestimate at 91 % and 96 % of Omega. Measured here: main points median
   // 4.8 % and 4.9 %, 49 and 44 of the 50 windows of 0.01 in [1.58, 2.08);
   // tongue points median 38 % and 41 %.
-  void check_uniform_main_branch(const unsigned int harmonics)
+  void check_uniform_main_branch(const unsigned int harmonics, const double omega_max, const unsigned int windows_min)
   {
     auto scene = testing_helpers::hb_scene("1", harmonics);
-    scene.continuation.omega_max  = 2.08;
+    scene.continuation.omega_max  = omega_max;
     scene.continuation.energy_max = 1;
     HbModel    model(scene);
     const auto backbone = model.backbone();
@@ -155,18 +155,20 @@ namespace
             // The truncated HB overestimates; a main point well below the
             // exact energy would be another branch.
             EXPECT_GT(error, -0.05) << p.omega;
-            if (p.omega >= 1.58 && p.omega < 2.08)
+            if (p.omega >= 1.58 && p.omega < omega_max)
               windows.insert(static_cast<int>((p.omega - 1.58) / 0.01));
           }
         else
           {
             tongue_errors.push_back(std::abs(error));
             // A tongue point names a resonance of the map, harmonic k >= 3,
-            // whose w_j (FE, exact to 1e-7 relative up to k W = 84) is the
-            // clamped-free mode nearest to k W at the tongue's top.
+            // whose w_j (FE, exact to 1e-7 relative up to k W = 84; above,
+            // FE_Q(10) x 10 resolves the modes less well) is the clamped-free
+            // mode nearest to k W at the tongue's top.
             EXPECT_GE(p.resonance.harmonic, 3u);
-            EXPECT_NEAR(p.resonance.omega * p.resonance.harmonic / ((2 * p.resonance.mode - 1) * M_PI / 2),
-                        1.0, 1e-7);
+            if (p.resonance.omega * p.resonance.harmonic <= 84)
+              EXPECT_NEAR(p.resonance.omega * p.resonance.harmonic / ((2 * p.resonance.mode - 1) * M_PI / 2),
+                          1.0, 1e-7);
           }
       }
     ASSERT_GE(main_errors.size(), 100u);
@@ -182,7 +184,9 @@ namespace
     // The main branch spans the range: at M = 40 the nearest solutions leave 2
     // windows without a point within 5 % (at M = 20, 12); the path may miss a
     // few more.
-    EXPECT_GE(windows.size(), 40u);
+    EXPECT_GE(windows.size(), windows_min);
+    // The branch is followed to the end of the range.
+    EXPECT_EQ(backbone.points.back().omega, omega_max);
     EXPECT_FALSE(backbone.tongues.empty());
     EXPECT_EQ(backbone.main_points(), main_errors.size());
   }
@@ -190,10 +194,19 @@ namespace
 
 TEST(MainBranch, UniformBarMainPointsAreCloseToTheExactEnergyAtM20)
 {
-  check_uniform_main_branch(20);
+  check_uniform_main_branch(20, 2.08, 40);
 }
 
 TEST(MainBranch, UniformBarMainPointsAreCloseToTheExactEnergyAtM40)
 {
-  check_uniform_main_branch(40);
+  check_uniform_main_branch(40, 2.08, 40);
+}
+
+TEST(MainBranch, UniformBarMainPointsAreCloseToTheExactEnergyAtM80)
+{
+  // To W = 2.0 (beyond, near T = 3, the M = 80 run meets branches of the
+  // right energy but a tenth of the contact). Measured: main median 3.4 %,
+  // 39 of the 42 windows, tongue median 30 %. Before a front high on a
+  // tongue stopped barring landings below it, the run was lost at 1.885.
+  check_uniform_main_branch(80, 2.0, 36);
 }
