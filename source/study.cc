@@ -285,19 +285,21 @@ namespace nsm
     }
 
     /// The study's fine backbone reference, if it asks for one: rank 0
-    /// computes it (or finds it kept) and adds the summary's lines to
-    /// `notes`; every rank then reads it. A failure on rank 0 stops all.
+    /// computes it (or finds it kept); every rank then reads it once, and
+    /// rank 0 adds the summary's lines to `notes`. A failure on rank 0 stops
+    /// all.
     std::optional<FineReference> shared_fine_reference(const std::string &path, const Scene &base,
                                                        const MPI_Comm comm, std::vector<std::string> &notes)
     {
       if (base.study.reference_cells.empty())
         return std::nullopt;
       const std::vector<Scene> levels = reference_levels(path, base);
-      std::string              failure;
-      if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+      const bool               root   = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+      std::string              origin, failure;
+      if (root)
         try
           {
-            notes = make_fine_reference(levels, base.output.directory);
+            origin = keep_fine_reference(levels, base.output.directory);
           }
         catch (const std::exception &e)
           {
@@ -306,7 +308,10 @@ namespace nsm
       failure = dealii::Utilities::MPI::broadcast(comm, failure, 0);
       if (!failure.empty())
         throw NumericalError("the fine reference (Study/Reference cells) failed: " + failure);
-      return read_fine_reference(levels, base.output.directory);
+      const CsvTable table = read_csv(base.output.directory + "/reference.csv");
+      if (root)
+        notes = fine_reference_notes(table, levels, origin);
+      return read_fine_reference(table, levels);
     }
   } // namespace
 

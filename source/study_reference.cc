@@ -79,25 +79,29 @@ namespace nsm
     }
   } // namespace
 
-  std::vector<std::string> make_fine_reference(const std::vector<Scene> &levels, const std::string &directory)
+  std::string keep_fine_reference(const std::vector<Scene> &levels, const std::string &directory)
   {
-    const std::string path  = directory + "/reference.csv";
-    const auto        start = std::chrono::steady_clock::now();
-    const bool        kept  = std::filesystem::exists(path);
-    if (!kept)
-      write_csv(directory, reference_table(levels));
-    const CsvTable     table = read_csv(path);
+    const std::string path = directory + "/reference.csv";
+    if (std::filesystem::exists(path))
+      return "read from " + path;
+    const auto start = std::chrono::steady_clock::now();
+    write_csv(directory, reference_table(levels));
+    std::ostringstream origin;
+    origin.precision(3);
+    origin << "computed in " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+           << " s";
+    return origin.str();
+  }
+
+  std::vector<std::string> fine_reference_notes(const CsvTable &table, const std::vector<Scene> &levels,
+                                                const std::string &origin)
+  {
     std::ostringstream note;
     note.precision(3);
-    note << "fine reference: " << level_name(levels.back()) << ", ";
-    if (kept)
-      note << "read from " << path;
-    else
-      note << "computed in " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
-           << " s";
     const std::vector<std::optional<double>> found = column_values(table, column("energy", levels.back()));
-    note << "; on the main branch at " << std::count_if(found.begin(), found.end(), [](auto v) { return v.has_value(); })
-         << " of " << found.size() << " Omega";
+    note << "fine reference: " << level_name(levels.back()) << ", " << origin << "; on the main branch at "
+         << std::count_if(found.begin(), found.end(), [](auto v) { return v.has_value(); }) << " of "
+         << found.size() << " Omega";
     std::ostringstream changes;
     changes.precision(3);
     changes << "  largest change from " << level_name(levels[levels.size() - 2]) << ":";
@@ -111,15 +115,14 @@ namespace nsm
     return {note.str(), changes.str()};
   }
 
-  FineReference read_fine_reference(const std::vector<Scene> &levels, const std::string &directory)
+  FineReference read_fine_reference(const CsvTable &table, const std::vector<Scene> &levels)
   {
-    const CsvTable table = read_csv(directory + "/reference.csv");
-    FineReference  reference{level_name(levels.back()) + " (reference.csv)", {}};
-    const auto     energy = column_values(table, column("energy", levels.back()));
-    const auto     force  = column_values(table, column("max_contact_force", levels.back()));
-    const auto     share  = column_values(table, column("contact_fraction", levels.back()));
+    FineReference reference{level_name(levels.back()) + " (reference.csv)", {}};
+    const auto    energy = column_values(table, column("energy", levels.back()));
+    const auto    force  = column_values(table, column("max_contact_force", levels.back()));
+    const auto    share  = column_values(table, column("contact_fraction", levels.back()));
     if (energy.size() != levels.back().study.backbone_omega_values.size())
-      throw InputError(directory + "/reference.csv has " + std::to_string(energy.size()) + " rows; allowed: " +
+      throw InputError("reference.csv has " + std::to_string(energy.size()) + " rows; allowed: " +
                        std::to_string(levels.back().study.backbone_omega_values.size()) +
                        ", one per Study/Backbone omegas (delete it to recompute)");
     for (std::size_t i = 0; i < energy.size(); ++i)

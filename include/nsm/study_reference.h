@@ -4,6 +4,7 @@
 // reference; the next coarser one shows how far it has converged.
 #pragma once
 
+#include <nsm/output.h>
 #include <nsm/study_row.h>
 
 #include <string>
@@ -14,10 +15,16 @@ namespace nsm
   /// Computes the main-branch points of `levels` (coarse to fine) at the
   /// study's Backbone omegas and writes directory/reference.csv, unless the
   /// file exists: run_study has checked that the directory holds this
-  /// scene's study. Returns the run summary's lines: where the reference
-  /// came from, and how much its finest level changed from the next coarser.
-  std::vector<std::string> make_fine_reference(const std::vector<Scene> &levels, const std::string &directory);
+  /// scene's study. Returns where the reference came from ("computed in ..."
+  /// or "read from ...").
+  std::string keep_fine_reference(const std::vector<Scene> &levels, const std::string &directory);
 
-  /// The finest level's points, read from directory/reference.csv.
-  FineReference read_fine_reference(const std::vector<Scene> &levels, const std::string &directory);
+  /// The run summary's lines on reference.csv's `table`: its origin, where it
+  /// found the main branch, and how much its finest level changed from the
+  /// next coarser.
+  std::vector<std::string> fine_reference_notes(const CsvTable &table, const std::vector<Scene> &levels,
+                                                const std::string &origin);
+
+  /// The finest level's points in reference.csv's `table`.
+  FineReference read_fine_reference(const CsvTable &table, const std::vector<Scene> &levels);
 } // namespace nsm
