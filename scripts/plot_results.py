@@ -149,7 +149,8 @@ def field_plots(directory, gap):
 
 
 STUDY_ERRORS = (("spectrum_error", "eigenfrequencies"), ("receptance_error", "receptance"),
-                ("energy_error_max", "main-branch energy (max)"))
+                ("energy_error_max", "main-branch energy (max)"),
+                ("main_energy_error_median", "energy of the main points (median)"))
 
 
 def natural(key):
