@@ -19,12 +19,11 @@ namespace nsm
 
   bool leap(BranchContext &context, Backbone &backbone, const unsigned int segment)
   {
-    const auto         &c     = context.scene.continuation;
-    const BackbonePoint front = backbone.points[context.first_fold.value_or(backbone.points.size() - 1)];
-    const std::size_t   first = segment_start(backbone, backbone.points.size() - 1);
-    const std::vector<double> guesses[] = {front.x, backbone.points[first].x};
-    const double              energy    = front.measures.energy;
-    const double              reach     = 0.05 * front.omega;
+    const auto         &c      = context.scene.continuation;
+    const BackbonePoint front  = backbone.points[context.first_fold.value_or(backbone.points.size() - 1)];
+    const std::size_t   first  = segment_start(backbone, backbone.points.size() - 1);
+    const double        energy = front.measures.energy;
+    const double        reach  = 0.05 * front.omega;
     // A front high on a tongue (a previous leap may have landed there) must
     // not bar the way back down: landings may go as low as a quarter of the
     // least energy written within reach behind the front.
@@ -32,30 +31,46 @@ namespace nsm
     for (const BackbonePoint &p : backbone.points)
       if (std::abs(p.omega - front.omega) <= reach && !context.beyond(p.omega, front.omega))
         least = std::min(least, p.measures.energy);
-    for (double distance = c.initial_step;
-         distance <= reach && context.beyond(context.far_end, front.omega);
-         distance *= 2)
-      {
-        const double omega = context.beyond(front.omega + context.direction * distance, context.far_end) ?
-                               context.far_end :
-                               front.omega + context.direction * distance;
-        context.hb.set_omega(omega);
-        for (const std::vector<double> &guess : {guesses[0], guesses[1], context.hb.grazing_guess()})
-          {
-            BackbonePoint point;
-            if (!guess.empty() && context.solve(omega, guess, segment, point, true) &&
-                point.measures.energy <= c.energy_max && point.measures.energy < 4 * energy &&
-                point.measures.energy > least / 4)
-              {
-                backbone.events.push_back(event_message("leapt to a new segment", omega));
-                ++backbone.leaps;
-                backbone.points.push_back(std::move(point));
-                return true;
-              }
-          }
-        if (omega == context.far_end)
-          break;
-      }
+
+    // Newton from each guess at growing distances beyond the front; the first
+    // landing within the energy bounds starts the new segment.
+    const auto land = [&](const bool last_resort) {
+      for (double distance = c.initial_step;
+           distance <= reach && context.beyond(context.far_end, front.omega);
+           distance *= 2)
+        {
+          const double omega = context.beyond(front.omega + context.direction * distance, context.far_end) ?
+                                 context.far_end :
+                                 front.omega + context.direction * distance;
+          context.hb.set_omega(omega);
+          const std::vector<std::vector<double>> guesses =
+            last_resort ? std::vector<std::vector<double>>{backbone.points[first - 1].x} :
+                          std::vector<std::vector<double>>{front.x, backbone.points[first].x,
+                                                           context.hb.grazing_guess()};
+          for (const std::vector<double> &guess : guesses)
+            {
+              BackbonePoint point;
+              if (!guess.empty() && context.solve(omega, guess, segment, point, true) &&
+                  point.measures.energy <= c.energy_max && point.measures.energy < 4 * energy &&
+                  point.measures.energy > least / 4)
+                {
+                  backbone.events.push_back(event_message(
+                    last_resort ? "leapt to a new segment from the fold before the tongue" : "leapt to a new segment",
+                    omega));
+                  ++backbone.leaps;
+                  backbone.points.push_back(std::move(point));
+                  return true;
+                }
+            }
+          if (omega == context.far_end)
+            break;
+        }
+      return false;
+    };
+    // The last resort, where the previous leap landed on a tongue that ends in
+    // a fold no guess gets past: the front of that leap, before the tongue.
+    if (land(false) || (first > 0 && land(true)))
+      return true;
     backbone.events.push_back(event_message("branch lost after the fold", front.omega));
     return false;
   }

@@ -232,6 +232,28 @@ TEST(Backbone, ArclengthCrossesTheTonguesToTheEndOfTheRange)
     }
 }
 
+TEST(Backbone, ArclengthComesBackDownFromATongueToTheEndOfTheRange)
+{
+  // prm/seed-high-order.prm's mesh, FE_Q(10) x 7, to W = 2.2: the leap past
+  // the fold at 2.1923 lands on the tongue of w_27 / 38, and from that
+  // tongue's fold only the lowest point behind converges back onto the main
+  // branch (without it arclength was lost at 2.1946). The end must be where
+  // sequential continuation ends, an independent path, to its solves'
+  // tolerance (measured: 1e-11).
+  auto scene                      = seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
+  scene.discretisation.cells      = 7;
+  scene.continuation.method       = nsm::ContinuationMethod::arclength;
+  HbModel    arclength(scene);
+  const auto end = arclength.backbone().points.back();
+  scene.continuation.method = nsm::ContinuationMethod::sequential;
+  HbModel sequential(scene);
+  const auto reference = sequential.backbone().points.back();
+  ASSERT_EQ(reference.omega, 2.2);
+  EXPECT_EQ(end.omega, 2.2);
+  EXPECT_EQ(end.branch, nsm::Branch::main);
+  EXPECT_NEAR(end.measures.energy / reference.measures.energy, 1, 1e-8);
+}
+
 TEST(Backbone, SampledApproachesExactIntegrationAsSamplesGrow)
 {
   auto scene = uniform_scene(10);
