@@ -179,8 +179,12 @@ def study_plot(directory):
     if not rows:
         return
     swept = list(rows[0])[:list(rows[0]).index("status")]
-    # One line per combination of the varying parameters but the mesh size.
-    varying = [c for c in swept if c != "cells" and len({r[c] for r in rows}) > 1]
+    # The size along a line: the mesh, or the harmonics in a study of M alone.
+    size, size_column, size_name = "cells", "dofs", "DoFs"
+    if len({r["cells"] for r in rows}) == 1 and len({r["harmonics"] for r in rows}) > 1:
+        size, size_column, size_name = "harmonics", "hb_unknowns", "harmonic-balance unknowns"
+    # One line per combination of the varying parameters but the size.
+    varying = [c for c in swept if c != size and len({r[c] for r in rows}) > 1]
     measures = [(c, name) for c, name in STUDY_ERRORS if any(r[c] for r in rows)]
     if not measures:
         return
@@ -193,13 +197,13 @@ def study_plot(directory):
         colours = plt.cm.viridis([i / max(1, len(groups) - 1) for i in range(len(groups))])
         styles = {}
         for (key, group), colour in zip(sorted(groups.items(), key=lambda g: natural(g[0])), colours):
-            group.sort(key=lambda r: int(r["dofs"]))
+            group.sort(key=lambda r: int(r[size_column]))
             label = ", ".join(f"{c} {v}" for c, v in zip(varying, key)) or "study"
             # The parameters after the first (e.g. the refinement) set marker and line style.
             index = styles.setdefault(key[1:], len(styles))
             marker, dashes = "os^vdp"[index % 6], ["-", "--", ":", "-."][index % 4]
             errors = [float(r[column]) for r in group]
-            by_dofs.loglog([int(r["dofs"]) for r in group], errors, marker, ls=dashes, ms=3, color=colour,
+            by_dofs.loglog([int(r[size_column]) for r in group], errors, marker, ls=dashes, ms=3, color=colour,
                            label=label)
             by_time.loglog([float(r["wall_total_median"]) for r in group], errors, marker, ms=3,
                            color=colour)
@@ -207,7 +211,7 @@ def study_plot(directory):
         by_time.step([t for t, _ in front], [e for _, e in front], "k-", where="post", lw=1,
                      label="Pareto front")
         by_time.plot([t for t, _ in front], [e for _, e in front], "ks", mfc="none", ms=7)
-        by_dofs.set_xlabel("DoFs")
+        by_dofs.set_xlabel(size_name)
         by_time.set_xlabel("wall time per run [s] (median)")
         for a in (by_dofs, by_time):
             a.set_ylabel("relative error: " + name)
