@@ -27,6 +27,13 @@ namespace nsm
     {
       return std::accumulate(energies.begin(), energies.end(), 0.0);
     }
+
+    /// The labels' one rule: more than `share` above the envelope (the least
+    /// energy at the point's Omega or beyond) is a tongue.
+    bool exceeds_envelope(const double energy, const double envelope, const double share)
+    {
+      return energy > (1 + share) * envelope;
+    }
   } // namespace
 
   double harmonic_excess(const std::vector<double> &energies, const unsigned int k)
@@ -74,7 +81,7 @@ namespace nsm
         while (end < order.size() && points[order[end]].omega == points[order[n]].omega)
           least = std::min(least, points[order[end++]].measures.energy);
         for (; n < end; ++n)
-          above[order[n]] = points[order[n]].measures.energy > (1 + share) * least;
+          above[order[n]] = exceeds_envelope(points[order[n]].measures.energy, least, share);
       }
     return above;
   }
@@ -133,7 +140,7 @@ namespace nsm
     for (const BackbonePoint &q : points)
       if (direction * (q.omega - point.omega) >= 0)
         least = std::min(least, q.measures.energy);
-    const bool tongue = point.measures.energy > (1 + tongue_share) * least;
+    const bool tongue = exceeds_envelope(point.measures.energy, least, tongue_share);
     point.branch      = tongue ? Branch::tongue : Branch::main;
     point.resonance   = tongue ? tongue_resonance(hb, point) : InternalResonance{0, 0, 0};
     hb.set_omega(point.omega);

@@ -192,22 +192,22 @@ namespace nsm
 
   namespace
   {
-    /// The combination's values with those its run does not use written "-":
-    /// Time samples under exact integration, the graded mesh's parameters
-    /// unless Refinement = graded, the adaptive tolerance unless adaptive.
+    /// The combination's values with those its run does not use written "-"
+    /// (Sweep::used_if_column: Time samples under exact integration, the
+    /// graded and adaptive parameters under another refinement).
     std::vector<std::string> used_values(const std::vector<StudyParameters::Sweep> &sweeps,
                                          std::vector<std::string>                    key)
     {
-      const auto value = [&](const char *name) -> std::string & {
-        const auto s = std::find_if(sweeps.begin(), sweeps.end(), [&](const auto &w) { return w.column == name; });
-        return key[s - sweeps.begin()];
-      };
-      if (value("integration") == "exact")
-        value("time_samples") = "-";
-      if (value("refinement") != "graded")
-        value("graded_layers") = value("graded_ratio") = "-";
-      if (value("refinement") != "adaptive")
-        value("adaptive_tolerance") = "-";
+      const std::vector<std::string> as_set = key;
+      for (std::size_t i = 0; i < sweeps.size(); ++i)
+        if (!sweeps[i].used_if_column.empty())
+          {
+            const auto condition = std::find_if(sweeps.begin(), sweeps.end(), [&](const auto &w) {
+              return w.column == sweeps[i].used_if_column;
+            });
+            if (as_set[condition - sweeps.begin()] != sweeps[i].used_if_value)
+              key[i] = "-";
+          }
       return key;
     }
   } // namespace

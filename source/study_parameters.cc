@@ -11,23 +11,26 @@ namespace nsm
   namespace
   {
     /// The parameters a study can sweep: scene subsection, scene name,
-    /// the Study entry that lists its values, and its study.csv column.
+    /// the Study entry that lists its values, its study.csv column, and the
+    /// column and value under which a run uses it (none: always).
     struct Sweepable
     {
       const char *subsection, *name, *study_entry, *column;
+      const char *used_if_column = "", *used_if_value = "";
     };
 
     const Sweepable sweepable[] = {
       {"Discretisation", "Degree", "Degrees", "degree"},
       {"Discretisation", "Cells", "Cells", "cells"},
       {"Discretisation", "Refinement", "Refinements", "refinement"},
-      {"Discretisation/Graded", "Layers", "Graded layers", "graded_layers"},
-      {"Discretisation/Graded", "Ratio", "Graded ratios", "graded_ratio"},
-      {"Discretisation/Adaptive", "Tolerance", "Adaptive tolerances", "adaptive_tolerance"},
+      {"Discretisation/Graded", "Layers", "Graded layers", "graded_layers", "refinement", "graded"},
+      {"Discretisation/Graded", "Ratio", "Graded ratios", "graded_ratio", "refinement", "graded"},
+      {"Discretisation/Adaptive", "Tolerance", "Adaptive tolerances", "adaptive_tolerance", "refinement",
+       "adaptive"},
       {"Receptance", "Method", "Receptance methods", "receptance_method"},
       {"Harmonic balance", "Harmonics", "Harmonics", "harmonics"},
       {"Harmonic balance", "Integration", "Integrations", "integration"},
-      {"Harmonic balance", "Time samples", "Time samples", "time_samples"}};
+      {"Harmonic balance", "Time samples", "Time samples", "time_samples", "integration", "sampled"}};
 
     std::vector<std::string> split_list(const std::string &text)
     {
@@ -114,7 +117,8 @@ namespace nsm
     std::vector<AllowedCheck> checks;
     for (const Sweepable &s : sweepable)
       {
-        Sweep sweep{s.subsection, s.name, s.study_entry, s.column, split_list(prm.get(s.study_entry))};
+        Sweep sweep{s.subsection,    s.name,          s.study_entry, s.column, split_list(prm.get(s.study_entry)),
+                    s.used_if_column, s.used_if_value};
         for (const std::string &value : sweep.values)
           checks.push_back({sweep.subsection + "/" + sweep.name, value, std::string("Study/") + s.study_entry});
         sweeps.push_back(std::move(sweep));
