@@ -24,7 +24,9 @@ namespace nsm
       std::string              study_entry; ///< the Study entry that lists the values
       std::string              column;     ///< its column in study.csv
       std::vector<std::string> values;     ///< empty: the base scene's value only
-      std::string used_if_column, used_if_value; ///< a run uses it only where that column holds that value (empty: always)
+      /// A run uses the value only where the column `used_if_column` holds
+      /// `used_if_value` (empty: always).
+      std::string used_if_column, used_if_value;
     };
 
     std::vector<Sweep>  sweeps;
