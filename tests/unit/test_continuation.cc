@@ -236,10 +236,10 @@ TEST(Backbone, ArclengthComesBackDownFromATongueToTheEndOfTheRange)
 {
   // prm/seed-high-order.prm's mesh, FE_Q(10) x 7, to W = 2.2: the leap past
   // the fold at 2.1923 lands on the tongue of w_27 / 38, and from that
-  // tongue's fold only the lowest point behind converges back onto the main
-  // branch (without it arclength was lost at 2.1946). The end must be where
-  // sequential continuation ends, an independent path, to its solves'
-  // tolerance (measured: 1e-11).
+  // tongue's fold at 2.1946 no guess lands; the leap's last resort, from the
+  // fold at 2.1923, comes back onto the main branch (without it the run ends
+  // at 2.19278 on the tongue). The end must be where sequential continuation
+  // ends, an independent path, to its solves' tolerance (measured: 1e-11).
   auto scene                      = seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
   scene.discretisation.cells      = 7;
   scene.continuation.method       = nsm::ContinuationMethod::arclength;
