@@ -15,13 +15,27 @@ namespace nsm
         --last;
       return last;
     }
+
+    /// Where the leap starts: the point of the segment furthest along the
+    /// continuation up to its first fold (the last point if none). A segment
+    /// that begins on a tongue's flank can run backwards first; leaping from a
+    /// point behind its own start could go round the same tongues for ever.
+    std::size_t leap_front(const BranchContext &context, const Backbone &backbone, const std::size_t first)
+    {
+      const std::size_t last  = context.first_fold.value_or(backbone.points.size() - 1);
+      std::size_t       front = last;
+      for (std::size_t i = first; i < last; ++i)
+        if (context.beyond(backbone.points[i].omega, backbone.points[front].omega))
+          front = i;
+      return front;
+    }
   } // namespace
 
   bool leap(BranchContext &context, Backbone &backbone, const unsigned int segment)
   {
     const auto         &c      = context.scene.continuation;
-    const BackbonePoint front  = backbone.points[context.first_fold.value_or(backbone.points.size() - 1)];
     const std::size_t   first  = segment_start(backbone, backbone.points.size() - 1);
+    const BackbonePoint front  = backbone.points[leap_front(context, backbone, first)];
     const double        energy = front.measures.energy;
     const double        reach  = 0.05 * front.omega;
     // A front high on a tongue (a previous leap may have landed there) must

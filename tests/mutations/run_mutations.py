@@ -64,6 +64,9 @@ MUTATIONS = [
      "const bool tongue = false && exceeds_envelope(point.measures.energy, least, tongue_share);"),
     ("leap without its last resort", "source/leap.cc",
      "if (land(false) || (first > 0 && land(true)))", "if (land(false))"),
+    ("leap from the segment's first fold even behind its start", "source/leap.cc",
+     "backbone.points[leap_front(context, backbone, first)]",
+     "backbone.points[context.first_fold.value_or(backbone.points.size() - 1)]"),
     ("main points' error counts the tongue points", "source/study_row.cc",
      "        if (p.branch == Branch::main)\n", "        if (p.branch == Branch::main || true)\n"),
 ]
