@@ -74,14 +74,9 @@ namespace nsm
         return event_message(why.str(), candidate.omega);
       }
 
-      /// An arclength step may also turn a fold, where the solution changes
-      /// little along the arc but the contact set does: one whose contact
-      /// fraction changed by more than Max contact change has jumped.
       bool stays(const BackbonePoint &from, const BackbonePoint &to) const
       {
-        return stays_on_branch(from, to) &&
-               std::abs(to.measures.contact_fraction - from.measures.contact_fraction) <=
-                 context_.scene.continuation.max_contact_change;
+        return stays_on_branch(from, to, context_.scene.continuation.max_contact_change);
       }
 
       /// The main branch rises with Omega; where arclength first turns back

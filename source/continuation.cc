@@ -140,10 +140,17 @@ namespace nsm
       label_point(hb, scene.continuation.tongue_share, context.direction, p, point);
       return point;
     };
+    // Between two points of one segment, the solution must continue the branch
+    // from both, as a step would; Newton from their interpolation can land on
+    // another branch.
+    const auto between = [&](const BackbonePoint &a, const BackbonePoint &b) {
+      const double max_change = scene.continuation.max_contact_change;
+      return context.solve(omega, interpolated_guess(a, b, omega), a.segment, point) &&
+             stays_on_branch(a, point, max_change) && stays_on_branch(b, point, max_change);
+    };
     for (std::size_t i = 0; i + 1 < p.size(); ++i)
       if (p[i].segment == p[i + 1].segment && (p[i].omega - omega) * (p[i + 1].omega - omega) <= 0 &&
-          eligible(p[i]) && eligible(p[i + 1]) &&
-          context.solve(omega, interpolated_guess(p[i], p[i + 1], omega), p[i].segment, point))
+          eligible(p[i]) && eligible(p[i + 1]) && between(p[i], p[i + 1]))
         return labelled();
     // Omega in the gap a leap left, or Newton failed between the points: as a
     // leap does, with a line search, from the nearest points below and above

@@ -1,11 +1,14 @@
 #include <nsm/sequential_steps.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace nsm
 {
-  bool stays_on_branch(const BackbonePoint &from, const BackbonePoint &to)
+  bool stays_on_branch(const BackbonePoint &from, const BackbonePoint &to, const double max_contact_change)
   {
+    if (!(std::abs(to.measures.contact_fraction - from.measures.contact_fraction) <= max_contact_change))
+      return false;
     double change = 0, size = 0;
     for (std::size_t i = 0; i < from.x.size(); ++i)
       {
@@ -54,7 +57,7 @@ namespace nsm
           omega = context.far_end;
         BackbonePoint point;
         if (context.solve(omega, secant_guess(backbone, first, omega), segment, point) &&
-            stays_on_branch(current, point))
+            stays_on_branch(current, point, c.max_contact_change))
           {
             if (point.measures.energy > c.energy_max)
               return SegmentEnd::tongue;

@@ -67,6 +67,11 @@ MUTATIONS = [
     ("leap from the segment's first fold even behind its start", "source/leap.cc",
      "backbone.points[leap_front(context, backbone, first)]",
      "backbone.points[context.first_fold.value_or(backbone.points.size() - 1)]"),
+    ("sequential steps without the contact guard", "source/sequential_steps.cc",
+     "stays_on_branch(current, point, c.max_contact_change))", "stays_on_branch(current, point, 1.0))"),
+    ("a point between two of a segment need not continue them", "source/continuation.cc",
+     "stays_on_branch(a, point, max_change) && stays_on_branch(b, point, max_change);",
+     "max_change >= 0;"),
     ("main points' error counts the tongue points", "source/study_row.cc",
      "        if (p.branch == Branch::main)\n", "        if (p.branch == Branch::main || true)\n"),
 ]

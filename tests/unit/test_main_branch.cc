@@ -133,8 +133,8 @@ namespace
   // mode's force, the nearest converged solution has a median error of 4.9 %
   // (M = 20) and 4.8 % (M = 40), half of them beyond 5 %, with the sign of an
   // overestimate at 91 % and 96 % of Omega. Measured here: main points median
-  // 4.8 % and 4.5 %, 49 and 44 of the 50 windows of 0.01 in [1.58, 2.08);
-  // tongue points median 38 % and 39 %.
+  // 5.0 % and 4.6 %, 50 and 47 of the 50 windows of 0.01 in [1.58, 2.08);
+  // tongue points median 47 % and 38 %.
   void check_uniform_main_branch(const unsigned int harmonics, const double omega_max, const unsigned int windows_min,
                                  const nsm::ContinuationMethod method = nsm::ContinuationMethod::sequential)
   {
