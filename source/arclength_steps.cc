@@ -76,7 +76,7 @@ namespace nsm
 
       bool stays(const BackbonePoint &from, const BackbonePoint &to) const
       {
-        return stays_on_branch(from, to, context_.scene.continuation.max_contact_change);
+        return stays_on_branch(from, to, context_.scene.continuation);
       }
 
       /// The main branch rises with Omega; where arclength first turns back

@@ -144,9 +144,8 @@ namespace nsm
     // from both, as a step would; Newton from their interpolation can land on
     // another branch.
     const auto between = [&](const BackbonePoint &a, const BackbonePoint &b) {
-      const double max_change = scene.continuation.max_contact_change;
       return context.solve(omega, interpolated_guess(a, b, omega), a.segment, point) &&
-             stays_on_branch(a, point, max_change) && stays_on_branch(b, point, max_change);
+             stays_on_branch(a, point, scene.continuation) && stays_on_branch(b, point, scene.continuation);
     };
     for (std::size_t i = 0; i + 1 < p.size(); ++i)
       if (p[i].segment == p[i + 1].segment && (p[i].omega - omega) * (p[i + 1].omega - omega) <= 0 &&

@@ -37,10 +37,10 @@ namespace nsm
     const std::size_t   first  = segment_start(backbone, backbone.points.size() - 1);
     const BackbonePoint front  = backbone.points[leap_front(context, backbone, first)];
     const double        energy = front.measures.energy;
-    const double        reach  = 0.05 * front.omega;
+    const double        reach  = c.search_reach * front.omega;
     // A front high on a tongue (a previous leap may have landed there) must
-    // not bar the way back down: landings may go as low as a quarter of the
-    // least energy written within reach behind the front.
+    // not bar the way back down: landings may go as low as the least energy
+    // written within reach behind the front, divided by Leap energy ratio.
     double least = energy;
     for (const BackbonePoint &p : backbone.points)
       if (std::abs(p.omega - front.omega) <= reach && !context.beyond(p.omega, front.omega))
@@ -65,8 +65,9 @@ namespace nsm
             {
               BackbonePoint point;
               if (!guess.empty() && context.solve(omega, guess, segment, point, true) &&
-                  point.measures.energy <= c.energy_max && point.measures.energy < 4 * energy &&
-                  point.measures.energy > least / 4)
+                  point.measures.energy <= c.energy_max &&
+                  point.measures.energy < c.leap_energy_ratio * energy &&
+                  point.measures.energy > least / c.leap_energy_ratio)
                 {
                   backbone.events.push_back(event_message(
                     last_resort ? "leapt to a new segment from the fold before the tongue" : "leapt to a new segment",

@@ -476,14 +476,31 @@ namespace nsm
                       text(d.tongue_energy_ratio),
                       Patterns::Double(1, 1e6),
                       "Arclength follows a resonance tongue until its energy reaches this many "
-                      "times the energy of the last main-branch point before it (the tongue's "
-                      "foot), then leaps from the foot to the main branch beyond the tongue.");
+                      "times the energy where the segment first turned back (a fold), then "
+                      "leaps to the main branch beyond the tongue.");
     prm.declare_entry("Max contact change",
                       text(d.max_contact_change),
                       Patterns::Double(1e-6, 1),
                       "Largest change of the contact fraction from one point of a segment to "
                       "the next; a larger one is a jump to another branch, and the step is "
                       "shortened.");
+    prm.declare_entry("Max solution change",
+                      text(d.max_solution_change),
+                      Patterns::Double(1e-3, 10),
+                      "Largest change of the HB unknowns from one point of a segment to the "
+                      "next, relative to their norm; a larger one is a jump to another branch, "
+                      "and the step is shortened.");
+    prm.declare_entry("Leap energy ratio",
+                      text(d.leap_energy_ratio),
+                      Patterns::Double(1.001, 1e6),
+                      "A leap lands only below this many times the energy before the fold (above "
+                      "it, on a tongue's flank) and above the least energy written within reach "
+                      "behind the front divided by it.");
+    prm.declare_entry("Search reach",
+                      text(d.search_reach),
+                      Patterns::Double(1e-4, 0.5),
+                      "How far, relative to Omega, the start searches from grazing and a leap "
+                      "searches beyond the front for a converged point.");
     prm.leave_subsection();
   }
 
@@ -515,6 +532,13 @@ namespace nsm
     tongue_share   = prm.get_double("Tongue share");
     tongue_energy_ratio = prm.get_double("Tongue energy ratio");
     max_contact_change  = prm.get_double("Max contact change");
+    max_solution_change = prm.get_double("Max solution change");
+    leap_energy_ratio   = prm.get_double("Leap energy ratio");
+    search_reach        = prm.get_double("Search reach");
+    require(grazing_offset < search_reach,
+            "Continuation/Grazing offset",
+            "< Search reach = " + format_value(search_reach),
+            format_value(grazing_offset));
     prm.leave_subsection();
   }
 

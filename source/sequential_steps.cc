@@ -5,9 +5,9 @@
 
 namespace nsm
 {
-  bool stays_on_branch(const BackbonePoint &from, const BackbonePoint &to, const double max_contact_change)
+  bool stays_on_branch(const BackbonePoint &from, const BackbonePoint &to, const Scene::Continuation &c)
   {
-    if (!(std::abs(to.measures.contact_fraction - from.measures.contact_fraction) <= max_contact_change))
+    if (!(std::abs(to.measures.contact_fraction - from.measures.contact_fraction) <= c.max_contact_change))
       return false;
     double change = 0, size = 0;
     for (std::size_t i = 0; i < from.x.size(); ++i)
@@ -15,7 +15,7 @@ namespace nsm
         change += (to.x[i] - from.x[i]) * (to.x[i] - from.x[i]);
         size += from.x[i] * from.x[i];
       }
-    return change <= 0.04 * size;
+    return change <= c.max_solution_change * c.max_solution_change * size;
   }
 
   namespace
@@ -57,7 +57,7 @@ namespace nsm
           omega = context.far_end;
         BackbonePoint point;
         if (context.solve(omega, secant_guess(backbone, first, omega), segment, point) &&
-            stays_on_branch(current, point, c.max_contact_change))
+            stays_on_branch(current, point, c))
           {
             if (point.measures.energy > c.energy_max)
               return SegmentEnd::tongue;

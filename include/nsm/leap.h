@@ -6,15 +6,17 @@
 
 namespace nsm
 {
-  /// Tries W beyond the fold at distances growing from Initial step to 5 % of
-  /// Omega (the last try exactly at the end of the range), from three
-  /// guesses: the front of the segment (its last point, or where arclength
-  /// first turned back before climbing a tongue), the segment's first point,
-  /// which the resonance has not distorted yet, and an impulsive contact
-  /// reaching the gap at that W. A landing must be below 4 times the front's
-  /// energy (far above it is a tongue's flank) and above a quarter of the
-  /// least energy written within reach behind the front (a front high on a
-  /// tongue must not bar the way down to the branch). A success
+  /// Tries W beyond the fold at distances growing from Initial step to Search
+  /// reach times Omega (the last try exactly at the end of the range), from
+  /// three guesses: the front of the segment (its furthest point up to where
+  /// arclength first turned back before climbing a tongue), the segment's
+  /// first point, which the resonance has not distorted yet, and an impulsive
+  /// contact reaching the gap at that W. A landing must be below Leap energy
+  /// ratio times the front's energy (far above it is a tongue's flank) and
+  /// above the least energy written within reach behind the front divided by
+  /// that ratio (a front high on a tongue must not bar the way down to the
+  /// branch). If nothing lands, the last resort tries the last point before
+  /// the segment as the only guess. A success
   /// appends the landing as the first point of `segment`; a failure records
   /// that the branch was lost.
   bool leap(BranchContext &context, Backbone &backbone, unsigned int segment);

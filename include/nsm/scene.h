@@ -171,6 +171,9 @@ namespace nsm
       double             tongue_share   = 0.02;
       double             tongue_energy_ratio = 2.0;
       double             max_contact_change  = 0.01;
+      double             max_solution_change = 0.2;
+      double             leap_energy_ratio   = 4.0;
+      double             search_reach        = 0.05;
 
       static void declare(dealii::ParameterHandler &prm);
       void        parse(dealii::ParameterHandler &prm);

@@ -6,11 +6,11 @@
 
 namespace nsm
 {
-  /// A step whose solution moved by more than a fifth of the solution itself,
-  /// or whose contact fraction changed by more than `max_contact_change`
-  /// (Continuation/Max contact change), has jumped to another branch (over a
-  /// fold), not followed it.
-  bool stays_on_branch(const BackbonePoint &from, const BackbonePoint &to, double max_contact_change);
+  /// A step whose solution moved by more than `Max solution change` times the
+  /// solution itself, or whose contact fraction changed by more than `Max
+  /// contact change`, has jumped to another branch (over a fold), not followed
+  /// it.
+  bool stays_on_branch(const BackbonePoint &from, const BackbonePoint &to, const Scene::Continuation &c);
 
   /// Steps from the backbone's last point; the step grows by 1.5 after a
   /// solve of at most 4 iterations, up to the context's max_step(), and is

@@ -296,6 +296,10 @@ def rows(executable):
         dict(name="mode_beyond_mesh", scene=section("Continuation", Mode=10000) +
              output(Directory="out", Backbone="true"), code=2,
              words=["Continuation/Mode", "[1, 4000]"]),
+        dict(name="grazing_offset_beyond_reach", scene=section(
+            "Continuation", Grazing_offset="1e-2", Search_reach="1e-3") +
+             output(Directory="out", Backbone="true"), code=2,
+             words=["Continuation/Grazing offset", "< Search reach = 0.001"]),
         dict(name="fields_outside_range", scene=output(Directory="out", Fields_at=5), code=2,
              words=["Output/Fields at", "[Omega min, Omega max]"]),
         dict(name="verify_without_backbone", scene=spectrum_scene() +

@@ -62,25 +62,32 @@ TEST(GrazingStart, FirstPointLiesJustBeyondGrazingInTheBranchDirection)
     }
 }
 
-TEST(SequentialSteps, StaysOnBranchBoundsTheChangeToAFifthOfTheSolutionAndTheContactChange)
+TEST(SequentialSteps, StaysOnBranchBoundsTheChangeOfTheSolutionAndOfTheContact)
 {
-  nsm::BackbonePoint from{}, to{};
+  nsm::Scene::Continuation c; // a fifth of the solution, 0.01 of the contact fraction
+  nsm::BackbonePoint       from{}, to{};
   from.x = {3, 4}; // norm 5: a change of norm up to 1 stays
   to.x   = {3, 4.99};
-  EXPECT_TRUE(nsm::stays_on_branch(from, to, 0.01));
+  EXPECT_TRUE(nsm::stays_on_branch(from, to, c));
   to.x = {3, 5.01};
-  EXPECT_FALSE(nsm::stays_on_branch(from, to, 0.01));
+  EXPECT_FALSE(nsm::stays_on_branch(from, to, c));
   to.x = {3.01, 4};
-  EXPECT_TRUE(nsm::stays_on_branch(from, to, 0.01));
+  EXPECT_TRUE(nsm::stays_on_branch(from, to, c));
   // The contact fraction may change by at most the bound, either way.
   from.measures.contact_fraction = 0.10;
   to.measures.contact_fraction   = 0.109;
-  EXPECT_TRUE(nsm::stays_on_branch(from, to, 0.01));
+  EXPECT_TRUE(nsm::stays_on_branch(from, to, c));
   to.measures.contact_fraction = 0.111;
-  EXPECT_FALSE(nsm::stays_on_branch(from, to, 0.01));
+  EXPECT_FALSE(nsm::stays_on_branch(from, to, c));
   to.measures.contact_fraction = 0.089;
-  EXPECT_FALSE(nsm::stays_on_branch(from, to, 0.01));
-  EXPECT_TRUE(nsm::stays_on_branch(from, to, 0.02));
+  EXPECT_FALSE(nsm::stays_on_branch(from, to, c));
+  c.max_contact_change = 0.02;
+  EXPECT_TRUE(nsm::stays_on_branch(from, to, c));
+  // A tighter bound on the solution refuses what a fifth allowed.
+  to.measures.contact_fraction = 0.10;
+  to.x                         = {3, 4.99};
+  c.max_solution_change        = 0.1;
+  EXPECT_FALSE(nsm::stays_on_branch(from, to, c));
 }
 
 TEST(SequentialSteps, UniformSegmentEndsExactlyAtOmegaMaxOnOneBranch)
@@ -98,7 +105,7 @@ TEST(SequentialSteps, UniformSegmentEndsExactlyAtOmegaMaxOnOneBranch)
       EXPECT_EQ(p[i].segment, 0u);
       EXPECT_GT(p[i].omega, p[i - 1].omega);
       EXPECT_LE(p[i].omega - p[i - 1].omega, t.context.max_step() * (1 + 1e-12));
-      EXPECT_TRUE(nsm::stays_on_branch(p[i - 1], p[i], scene.continuation.max_contact_change)) << p[i].omega;
+      EXPECT_TRUE(nsm::stays_on_branch(p[i - 1], p[i], scene.continuation)) << p[i].omega;
       // The branch hardens: the energy rises with Omega.
       EXPECT_GT(p[i].measures.energy, p[i - 1].measures.energy) << p[i].omega;
     }

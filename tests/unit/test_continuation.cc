@@ -205,9 +205,11 @@ TEST(Backbone, SequentialMainBranchDoesNotDependOnTheStepSize)
       {
         const auto &from = backbone->points[i - 1], &to = backbone->points[i];
         if (from.segment == to.segment)
-          EXPECT_LE(std::abs(to.measures.contact_fraction - from.measures.contact_fraction),
-                    coarse.continuation.max_contact_change)
-            << "W = " << to.omega;
+          {
+            EXPECT_LE(std::abs(to.measures.contact_fraction - from.measures.contact_fraction),
+                      coarse.continuation.max_contact_change)
+              << "W = " << to.omega;
+          }
       }
   unsigned int compared = 0, agree = 0;
   for (const auto &p : a.points)
