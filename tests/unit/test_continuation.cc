@@ -266,9 +266,11 @@ TEST(Backbone, ArclengthCrossesTheTonguesToTheEndOfTheRange)
       EXPECT_LE(b.omega, c.omega_max);
       if (a.segment != b.segment)
         continue;
-      // No jump to another branch within a segment.
+      // No jump to another branch within a segment, and no step longer than
+      // Max step in Omega.
       EXPECT_LE(std::abs(b.measures.contact_fraction - a.measures.contact_fraction), c.max_contact_change)
         << "W = " << b.omega;
+      EXPECT_LE(std::abs(b.omega - a.omega), c.max_step) << "W = " << b.omega;
     }
   // Each segment climbs a tongue to at most Tongue energy ratio times the
   // energy where it first turned back.
@@ -302,7 +304,17 @@ TEST(Backbone, ArclengthComesBackDownFromATongueToTheEndOfTheRange)
   scene.discretisation.cells      = 7;
   scene.continuation.method       = nsm::ContinuationMethod::arclength;
   HbModel    arclength(scene);
-  const auto end = arclength.backbone().points.back();
+  const auto backbone = arclength.backbone();
+  const auto end      = backbone.points.back();
+  // No step moves Omega by more than Max step: on this mesh LOCA's corrector
+  // slid from 1.9222 to 1.9477, and from 1.9823 to 1.9989, before such steps
+  // were refused.
+  for (std::size_t i = 1; i < backbone.points.size(); ++i)
+    if (backbone.points[i].segment == backbone.points[i - 1].segment)
+      {
+        EXPECT_LE(std::abs(backbone.points[i].omega - backbone.points[i - 1].omega), scene.continuation.max_step)
+          << "W = " << backbone.points[i].omega;
+      }
   scene.continuation.method = nsm::ContinuationMethod::sequential;
   HbModel sequential(scene);
   const auto reference = sequential.backbone().points.back();

@@ -142,7 +142,7 @@ namespace
     scene.continuation.omega_max  = omega_max;
     scene.continuation.energy_max = 1;
     scene.continuation.method     = method;
-    // Arclength records every tongue it climbs: 2145 points at M = 40.
+    // Arclength records every tongue it climbs: 2142 points at M = 40.
     scene.continuation.max_steps = 5000;
     HbModel    model(scene);
     const auto backbone = model.backbone();
@@ -209,8 +209,8 @@ TEST(MainBranch, UniformBarMainPointsAreCloseToTheExactEnergyAtM40)
 }
 
 // Arclength climbs each tongue up to Tongue energy ratio and leaps from the
-// furthest point of the segment. Measured: M = 20, 684 points, main median
-// 5.3 %, 49 windows; M = 40, 2145 points, main median 4.0 %, 49 windows, tongue
+// furthest point of the segment. Measured: M = 20, 727 points, main median
+// 5.5 %, 50 windows; M = 40, 2142 points, main median 3.9 %, 49 windows, tongue
 // median 51 %. Before leaps started from the furthest point, a segment that
 // ran backwards first sent the M = 40 run round the tongues near 1.83 until
 // Max steps.
