@@ -83,7 +83,8 @@ namespace nsm
       return false;
     };
     // The last resort, where the previous leap landed on a tongue that ends in
-    // a fold no guess gets past: the front of that leap, before the tongue.
+    // a fold no guess gets past: the last point before that leap, before the
+    // tongue.
     if (land(false) || (first > 0 && land(true)))
       return true;
     backbone.events.push_back(event_message("branch lost after the fold", front.omega));
