@@ -41,7 +41,7 @@ namespace nsm
           return stop(SegmentEnd::refused, refusal(candidate));
         if (point.measures.energy > c.energy_max || climbed_tongue(point))
           return stop(SegmentEnd::tongue);
-        if (!stays(backbone_.points.back(), point) || slid(backbone_.points.back(), point))
+        if (!stays(backbone_.points.back(), point))
           return stop(SegmentEnd::jump);
         if (context_.beyond(point.omega, context_.far_end))
           {
@@ -74,18 +74,15 @@ namespace nsm
         return event_message(why.str(), candidate.omega);
       }
 
-      bool stays(const BackbonePoint &from, const BackbonePoint &to) const
-      {
-        return stays_on_branch(from, to, context_.scene.continuation);
-      }
-
-      /// LOCA's corrector moves on the plane normal to the tangent, which does
-      /// not bound Omega: where the tangent lies mostly along the unknowns it
+      /// The step guards of stays_on_branch, and one of LOCA's own: its
+      /// corrector moves on the plane normal to the tangent, which does not
+      /// bound Omega, and where the tangent lies mostly along the unknowns it
       /// can slide far along Omega onto another branch. A step never moves
       /// Omega by more than its length, at most Max step.
-      bool slid(const BackbonePoint &from, const BackbonePoint &to) const
+      bool stays(const BackbonePoint &from, const BackbonePoint &to) const
       {
-        return std::abs(to.omega - from.omega) > context_.scene.continuation.max_step;
+        const auto &c = context_.scene.continuation;
+        return stays_on_branch(from, to, c) && std::abs(to.omega - from.omega) <= c.max_step;
       }
 
       /// The main branch rises with Omega; where arclength first turns back

@@ -31,8 +31,9 @@ namespace nsm
                        " (clamped-free modes below Harmonics x Omega max)");
     const double w = std::sqrt(poles[mode - 1]);
     // The contact lasts a vanishing share of the period at grazing; Search
-    // reach (5 %) of w_j away the branch is far beyond its grazing end. A start before the
-    // range is traced up to it; one beyond it has no point in it.
+    // reach (5 %) of w_j away the branch is far beyond its grazing end. A
+    // start before the range is traced up to it; one beyond it has no point
+    // in it.
     for (double offset = c.grazing_offset; offset < c.search_reach; offset *= 2)
       {
         const double omega = w * (1 + context.direction * offset);

@@ -1,9 +1,10 @@
 // Pseudo-arclength continuation of one segment with LOCA (run_arclength),
 // kept on its branch by three guards (method.md): a step that changes the
-// contact fraction by more than Max contact change or the solution by more
-// than Max solution change has jumped and is retried shorter; a tongue is followed up to
-// Tongue energy ratio times the energy where the segment first turned back;
-// a step past the end of the range is solved exactly at the end.
+// contact fraction by more than Max contact change, the solution by more than
+// Max solution change or Omega by more than Max step has jumped and is retried
+// shorter; a tongue is followed up to Tongue energy ratio times the energy
+// where the segment first turned back; a step past the end of the range is
+// solved exactly at the end.
 #pragma once
 
 #include <nsm/branch_context.h>
