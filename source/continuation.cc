@@ -4,6 +4,7 @@
 #include <nsm/grazing_start.h>
 #include <nsm/leap.h>
 #include <nsm/main_branch.h>
+#include <nsm/range_end.h>
 #include <nsm/sequential_steps.h>
 
 #include <algorithm>
@@ -70,8 +71,13 @@ namespace nsm
             end = arclength_segment(context, backbone, segment);
           const double omega = backbone.points.back().omega;
           if (end == SegmentEnd::range)
-            return backbone.events.push_back(event_message(
-              context.in_range(omega) ? "end of the Omega range" : "left the Omega range", omega));
+            {
+              backbone.events.push_back(event_message(
+                context.in_range(omega) ? "end of the Omega range" : "left the Omega range", omega));
+              if (context.in_range(omega))
+                find_branch_below_at_end(context, backbone, segment);
+              return;
+            }
           if (end == SegmentEnd::max_steps)
             return backbone.events.push_back(event_message("Max steps reached", omega));
           if (end == SegmentEnd::refused)

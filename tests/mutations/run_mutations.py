@@ -76,6 +76,8 @@ MUTATIONS = [
      "std::abs(to.omega - from.omega) <= c.max_step;", "std::abs(to.omega - from.omega) <= 1e300 * c.max_step;"),
     ("main points' error counts the tongue points", "source/study_row.cc",
      "        if (p.branch == Branch::main)\n", "        if (p.branch == Branch::main || true)\n"),
+    ("the range's end on a tongue's flank taken as the branch", "source/continuation.cc",
+     "find_branch_below_at_end(context, backbone, segment);", "(void)segment;"),
 ]
 
 

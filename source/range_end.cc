@@ -1,0 +1,73 @@
+#include <nsm/range_end.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace nsm
+{
+  namespace
+  {
+    std::size_t first_of_segment(const Backbone &backbone, const unsigned int segment)
+    {
+      std::size_t first = backbone.points.size() - 1;
+      while (first > 0 && backbone.points[first - 1].segment == segment)
+        --first;
+      return first;
+    }
+
+    /// The segment's first point, the impulsive contact, the last point
+    /// before the segment, and the first point of each earlier segment within
+    /// reach: where leaps landed, the points the resonances distort least.
+    std::vector<std::vector<double>> guesses_at_end(BranchContext &context, const Backbone &backbone,
+                                                    const std::size_t first, const double reach)
+    {
+      const std::vector<BackbonePoint> &p = backbone.points;
+      context.hb.set_omega(p.back().omega);
+      std::vector<std::vector<double>> guesses{p[first].x, context.hb.grazing_guess()};
+      if (first > 0)
+        guesses.push_back(p[first - 1].x);
+      for (std::size_t i = 1; i < first; ++i)
+        if (p[i].segment != p[i - 1].segment && std::abs(p[i].omega - p.back().omega) <= reach)
+          guesses.push_back(p[i].x);
+      return guesses;
+    }
+  } // namespace
+
+  bool find_branch_below_at_end(BranchContext &context, Backbone &backbone, const unsigned int segment)
+  {
+    const auto         &c     = context.scene.continuation;
+    const BackbonePoint last  = backbone.points.back();
+    const std::size_t   first = first_of_segment(backbone, segment);
+    const double        reach = c.search_reach * last.omega;
+    double              top = 0, least = last.measures.energy;
+    for (std::size_t i = 0; i < backbone.points.size(); ++i)
+      {
+        const double energy = backbone.points[i].measures.energy;
+        if (i >= first)
+          top = std::max(top, energy);
+        if (std::abs(backbone.points[i].omega - last.omega) <= reach)
+          least = std::min(least, energy);
+      }
+    if (!(top > (1 + c.tongue_share) * last.measures.energy))
+      return false;
+
+    // The lowest landing: the labels' envelope is the least energy.
+    std::optional<BackbonePoint> lowest;
+    for (const std::vector<double> &guess : guesses_at_end(context, backbone, first, reach))
+      {
+        BackbonePoint point;
+        if (!guess.empty() && context.solve(last.omega, guess, segment + 1, point, true) &&
+            (1 + c.tongue_share) * point.measures.energy < last.measures.energy &&
+            point.measures.energy > least / c.leap_energy_ratio &&
+            (!lowest || point.measures.energy < lowest->measures.energy))
+          lowest = std::move(point);
+      }
+    if (!lowest)
+      return false;
+    backbone.events.push_back(event_message("found the branch below a tongue's flank", last.omega));
+    ++backbone.leaps;
+    backbone.points.push_back(std::move(*lowest));
+    return true;
+  }
+} // namespace nsm
