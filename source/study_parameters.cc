@@ -103,6 +103,14 @@ namespace nsm
                       "fine: the finest is the reference that rows without an exact one are compared "
                       "with, the others show its convergence (reference.csv, computed once and kept "
                       "in the output directory). Empty: no fine reference. Needs Backbone omegas.");
+    prm.declare_entry("Verify in time",
+                      "false",
+                      Patterns::Bool(),
+                      "Integrate each main-branch point found at the Backbone omegas in time on the "
+                      "row's FE model with the physical wall (Output/Verify steps and Verify periods): "
+                      "study.csv gives the median and largest one-period defect max |u(T) - u(0)| / g0, "
+                      "a measure against a true periodic motion for bars whose mode is not known. "
+                      "Needs Backbone omegas.");
     prm.declare_entry("Repeats",
                       "1",
                       Patterns::Integer(1, 100),
@@ -130,6 +138,7 @@ namespace nsm
     backbone_omegas       = prm.get("Backbone omegas");
     backbone_omega_values = parse_frequency_list(backbone_omegas, "Study/Backbone omegas");
     repeats               = static_cast<unsigned int>(prm.get_integer("Repeats"));
+    verify_in_time        = prm.get_bool("Verify in time");
     reference_degree      = prm.get("Reference degree");
     reference_cells       = split_list(prm.get("Reference cells"));
     if (!reference_degree.empty())
@@ -139,6 +148,9 @@ namespace nsm
     require_allowed(prm, checks);
     prm.leave_subsection();
     check_reference_cells();
+    if (verify_in_time && backbone_omega_values.empty())
+      throw InputError("parameter 'Study/Verify in time' = true is not allowed; allowed: false "
+                       "unless Study/Backbone omegas is set");
 
     bool sweeps_something = false;
     for (const Sweep &s : sweeps)

@@ -7,6 +7,7 @@
 #include <nsm/receptance.h>
 #include <nsm/spectrum.h>
 #include <nsm/study_row.h>
+#include <nsm/time_verification.h>
 
 #include <deal.II/base/timer.h>
 
@@ -24,7 +25,8 @@ namespace nsm
   {
     /// The timed stages, in the order of their study.csv columns.
     const std::vector<std::string> stages = {"mesh", "refinement", "spectrum", "receptance set-up",
-                                             "receptance", "harmonic balance", "energy solves"};
+                                             "receptance", "harmonic balance", "energy solves",
+                                             "verification in time"};
 
     std::string column_name(std::string stage)
     {
@@ -111,9 +113,11 @@ namespace nsm
     {
       unsigned int          dofs = 0, cells = 0, hb_unknowns = 0, time_samples = 0;
       std::optional<double> spectrum_error, receptance_error, energy_error_max, energy_error_median,
-        force_error_max, contact_fraction_error_max, main_error_median, main_error_q90;
+        force_error_max, contact_fraction_error_max, main_error_median, main_error_q90, time_defect_median,
+        time_defect_max;
       unsigned int          energy_points = 0, main_points = 0;
       std::vector<std::optional<MainBranchPoint>> points; ///< at each Backbone omega on the main branch
+      std::vector<BackbonePoint>                  solved; ///< those found, for the verification in time
       unsigned long         newton_iterations = 0, failed_solves = 0;
     };
 
@@ -165,6 +169,7 @@ namespace nsm
             ++m.energy_points;
             m.points[i] = MainBranchPoint{p.measures.energy, p.measures.max_contact_force,
                                           p.measures.contact_fraction};
+            m.solved.push_back(p);
             if (const auto &e = reference.energies[i])
               energy.push_back(std::abs(p.measures.energy - *e) / *e);
             if (const auto &f = reference.forces[i])
@@ -200,6 +205,23 @@ namespace nsm
       std::sort(errors.begin(), errors.end());
       m.main_error_median = errors[errors.size() / 2];
       m.main_error_q90    = errors[(errors.size() * 9) / 10];
+    }
+
+    /// The one-period defects of the main-branch points found at the
+    /// Backbone omegas, integrated in time on the row's own FE model.
+    void time_defects(HarmonicBalance &hb, const Discretisation &d, const Scene &scene, Measures &m)
+    {
+      std::vector<double> defects;
+      for (const BackbonePoint &p : m.solved)
+        {
+          const PeriodicField field(hb, d, p, scene.contact.sign);
+          defects.push_back(verify_in_time(field, d, scene).time.periodicity_defect);
+        }
+      if (defects.empty())
+        return;
+      std::sort(defects.begin(), defects.end());
+      m.time_defect_median = defects[defects.size() / 2];
+      m.time_defect_max    = defects.back();
     }
 
     Measures run_once(const Scene &scene, const Reference &reference, dealii::TimerOutput &timer)
@@ -253,8 +275,15 @@ namespace nsm
       m.failed_solves     = backbone.newton_cost.failed_solves;
       if (reference.mode_bar)
         main_point_errors(backbone, *reference.mode_bar, scene.contact.gap, m);
-      Scope scope(timer, "energy solves");
-      backbone_errors(hb, scene, backbone, reference, m);
+      {
+        Scope scope(timer, "energy solves");
+        backbone_errors(hb, scene, backbone, reference, m);
+      }
+      if (study.verify_in_time)
+        {
+          Scope scope(timer, "verification in time");
+          time_defects(hb, *d, scene, m);
+        }
       return m;
     }
 
@@ -290,7 +319,8 @@ namespace nsm
                                         "time_samples_used", "spectrum_error", "receptance_error",
                                         "energy_error_max", "energy_error_median", "force_error_max",
                                         "contact_fraction_error_max", "main_energy_error_median",
-                                        "main_energy_error_q90", "energy_points",
+                                        "main_energy_error_q90", "main_time_defect_median",
+                                        "main_time_defect_max", "energy_points",
                                         "main_points", "newton_iterations", "failed_solves",
                                         "peak_memory_mib", "wall_total_min", "wall_total_median",
                                         "wall_total_max", "cpu_total_median"};
@@ -373,6 +403,8 @@ namespace nsm
                                     text(m.contact_fraction_error_max),
                                     text(m.main_error_median),
                                     text(m.main_error_q90),
+                                    text(m.time_defect_median),
+                                    text(m.time_defect_max),
                                     std::to_string(m.energy_points),
                                     std::to_string(m.main_points),
                                     std::to_string(m.newton_iterations),

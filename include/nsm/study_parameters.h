@@ -36,6 +36,11 @@ namespace nsm
     std::string         backbone_omegas; ///< as written
     std::vector<double> backbone_omega_values;
     unsigned int        repeats = 1;
+    /// Integrate the main-branch points found at the Backbone omegas in time
+    /// (Output/Verify steps and periods): their periodicity defect measures
+    /// the harmonic balance against a true periodic motion where no exact mode
+    /// is known.
+    bool verify_in_time = false;
     /// The fine backbone reference's degree ("" = the base scene's) and its
     /// cell counts, coarse to fine (empty: no fine reference). The finest
     /// level is the reference; the others show its convergence.

@@ -78,6 +78,9 @@ MUTATIONS = [
      "        if (p.branch == Branch::main)\n", "        if (p.branch == Branch::main || true)\n"),
     ("the range's end on a tongue's flank taken as the branch", "source/continuation.cc",
      "find_branch_below_at_end(context, backbone, segment);", "(void)segment;"),
+    ("study's time defects with the force sign flipped", "source/study_row.cc",
+     "const PeriodicField field(hb, d, p, scene.contact.sign);",
+     "const PeriodicField field(hb, d, p, ForceSign::seed_eq5);"),
 ]
 
 

@@ -347,6 +347,8 @@ def rows(executable):
              code=2, words=["study row 2", "Discretisation/Graded/Layers"]),
         dict(name="study_omega_range", scene=section("Study", Backbone_omegas="1.95, 3") +
              output(Directory="out"), code=2, words=["Study/Backbone omegas", "[Omega min, Omega max]"]),
+        dict(name="study_verify_without_omegas", scene=section("Study", Spectrum_modes=2, Verify_in_time="true") +
+             output(Directory="out"), code=2, words=["Study/Verify in time", "Study/Backbone omegas"]),
         dict(name="study_reference_one_level", scene=section("Study", Backbone_omegas="1.95",
                                                              Reference_cells="28") +
              output(Directory="out"), code=2, words=["Study/Reference cells", "two or more"]),

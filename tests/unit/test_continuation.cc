@@ -275,7 +275,9 @@ TEST(Backbone, ARunEndingOnATonguesFlankFindsTheBranchBelowAtOmegaMax)
   // The branch hardens: the end lies above every main point before it.
   for (std::size_t i = 0; i + 2 < p.size(); ++i)
     if (p[i].branch == nsm::Branch::main)
-      EXPECT_LT(p[i].measures.energy, end.measures.energy) << "W = " << p[i].omega;
+      {
+        EXPECT_LT(p[i].measures.energy, end.measures.energy) << "W = " << p[i].omega;
+      }
 }
 
 TEST(Backbone, ArclengthGoesRoundAFoldAtAnInternalResonance)
