@@ -21,6 +21,14 @@ namespace nsm
     return s.str();
   }
 
+  std::size_t last_segment_start(const Backbone &backbone)
+  {
+    std::size_t first = backbone.points.size() - 1;
+    while (first > 0 && backbone.points[first - 1].segment == backbone.points.back().segment)
+      --first;
+    return first;
+  }
+
   std::vector<double> interpolated_guess(const BackbonePoint &a, const BackbonePoint &b, const double omega)
   {
     const double        run = b.omega - a.omega;

@@ -7,15 +7,6 @@ namespace nsm
 {
   namespace
   {
-    /// The first point of the segment the point at `last` belongs to.
-    std::size_t segment_start(const Backbone &backbone, std::size_t last)
-    {
-      const unsigned int segment = backbone.points[last].segment;
-      while (last > 0 && backbone.points[last - 1].segment == segment)
-        --last;
-      return last;
-    }
-
     /// Where the leap starts: the point of the segment furthest along the
     /// continuation up to its first fold (the last point if none). A segment
     /// that begins on a tongue's flank can run backwards first; leaping from a
@@ -34,7 +25,7 @@ namespace nsm
   bool leap(BranchContext &context, Backbone &backbone, const unsigned int segment)
   {
     const auto         &c      = context.scene.continuation;
-    const std::size_t   first  = segment_start(backbone, backbone.points.size() - 1);
+    const std::size_t   first  = last_segment_start(backbone);
     const BackbonePoint front  = backbone.points[leap_front(context, backbone, first)];
     const double        energy = front.measures.energy;
     const double        reach  = c.search_reach * front.omega;

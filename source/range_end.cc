@@ -8,14 +8,6 @@ namespace nsm
 {
   namespace
   {
-    std::size_t first_of_segment(const Backbone &backbone, const unsigned int segment)
-    {
-      std::size_t first = backbone.points.size() - 1;
-      while (first > 0 && backbone.points[first - 1].segment == segment)
-        --first;
-      return first;
-    }
-
     /// The segment's first point, the impulsive contact, the last point
     /// before the segment, and the first point of each earlier segment within
     /// reach: where leaps landed, the points the resonances distort least.
@@ -38,7 +30,7 @@ namespace nsm
   {
     const auto         &c     = context.scene.continuation;
     const BackbonePoint last  = backbone.points.back();
-    const std::size_t   first = first_of_segment(backbone, segment);
+    const std::size_t   first = last_segment_start(backbone);
     const double        reach = c.search_reach * last.omega;
     double              top = 0, least = last.measures.energy;
     for (std::size_t i = 0; i < backbone.points.size(); ++i)

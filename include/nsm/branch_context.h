@@ -36,6 +36,9 @@ namespace nsm
   /// (a's unknowns if both share one Omega): a Newton guess between points.
   std::vector<double> interpolated_guess(const BackbonePoint &a, const BackbonePoint &b, double omega);
 
+  /// The first point of the segment the backbone's last point belongs to.
+  std::size_t last_segment_start(const Backbone &backbone);
+
   class BranchContext
   {
   public:
