@@ -1,3 +1,4 @@
+#include <nsm/main_branch.h>
 #include <nsm/range_end.h>
 
 #include <algorithm>
@@ -9,18 +10,19 @@ namespace nsm
   namespace
   {
     /// The segment's first point, the impulsive contact, the last point
-    /// before the segment, and the first point of each earlier segment within
-    /// reach: where leaps landed, the points the resonances distort least.
+    /// before the segment, and every earlier point within reach that the
+    /// envelope of the points written so far puts on the main branch.
     std::vector<std::vector<double>> guesses_at_end(BranchContext &context, const Backbone &backbone,
                                                     const std::size_t first, const double reach)
     {
       const std::vector<BackbonePoint> &p = backbone.points;
+      const std::vector<bool> above = above_envelope(p, context.direction, context.scene.continuation.tongue_share);
       context.hb.set_omega(p.back().omega);
       std::vector<std::vector<double>> guesses{p[first].x, context.hb.grazing_guess()};
       if (first > 0)
         guesses.push_back(p[first - 1].x);
-      for (std::size_t i = 1; i < first; ++i)
-        if (p[i].segment != p[i - 1].segment && std::abs(p[i].omega - p.back().omega) <= reach)
+      for (std::size_t i = 0; i + 1 < first; ++i)
+        if (!above[i] && std::abs(p[i].omega - p.back().omega) <= reach)
           guesses.push_back(p[i].x);
       return guesses;
     }

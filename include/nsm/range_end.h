@@ -13,7 +13,8 @@ namespace nsm
   /// below one of its points: the main branch hardens, a tongue's far flank
   /// descends), Newton at the far end looks for the branch below, from the
   /// segment's first point, an impulsive contact, the last point before the
-  /// segment and the first point of each earlier segment within Search reach.
+  /// segment and every earlier point within Search reach that the envelope of
+  /// the points so far puts on the main branch.
   /// The lowest solution more than Tongue share below the last point, and
   /// above the least energy written within Search reach divided by Leap energy
   /// ratio, is appended as `segment + 1`; the labels then read the flank as

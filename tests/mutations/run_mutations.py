@@ -81,6 +81,8 @@ MUTATIONS = [
     ("study's time defects with the force sign flipped", "source/study_row.cc",
      "const PeriodicField field(hb, d, p, scene.contact.sign);",
      "const PeriodicField field(hb, d, p, ForceSign::seed_eq5);"),
+    ("the search at the range's end without the main points' guesses", "source/range_end.cc",
+     "if (!above[i] && std::abs(", "if (false && std::abs("),
 ]
 
 

@@ -254,30 +254,31 @@ TEST(Backbone, SequentialMainBranchDoesNotDependOnTheStepSize)
 
 TEST(Backbone, ARunEndingOnATonguesFlankFindsTheBranchBelowAtOmegaMax)
 {
-  // Seed bar to W = 2 with steps of 1e-4: the run reaches 2.0 on the
-  // descending flank of a tongue, 60 % above the branch (2.451e-6). With
-  // nothing written beyond 2.0, the labels called that flank main. Measured:
-  // the branch below at 2.0 has 1.5349e-6; on 7 cells 1.5349e-6, and the run
-  // with the default steps on 7 cells, which leaps to 2.0, 1.5368e-6.
-  auto scene = seed_scene(nsm::ForceSign::physical, 1.5, 2.0);
-  scene.continuation.initial_step = scene.continuation.max_step = 1e-4;
-  scene.continuation.max_steps = 10000;
-  HbModel     model(scene);
-  const auto  backbone = model.backbone();
-  const auto &p        = backbone.points;
+  // The seed bar on FE_Q(10) x 7 (prm/seed-high-order.prm) to W = 2.2. With
+  // the default steps a leap lands at 2.2 on the branch; with steps of 1e-4
+  // the run reaches 2.2 on the descending flank of a tongue, 33 % above it,
+  // which the labels called main with nothing written beyond. Measured: the
+  // branch found below the flank equals the default run's end to 1.4e-14
+  // (8 % above it when only the segments' first points were guesses).
+  auto coarse = seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
+  coarse.discretisation.cells = 7;
+  auto fine                   = coarse;
+  fine.continuation.initial_step = fine.continuation.max_step = 1e-4;
+  fine.continuation.max_steps = 10000;
+  HbModel     coarse_model(coarse), fine_model(fine);
+  const auto  a = coarse_model.backbone(), b = fine_model.backbone();
+  const auto &p = b.points;
   ASSERT_GE(p.size(), 3u);
   const auto &end = p.back(), &flank = p[p.size() - 2];
-  ASSERT_EQ(end.omega, 2.0);
-  ASSERT_EQ(flank.omega, 2.0) << "the run did not look below the flank it ended on";
+  ASSERT_EQ(end.omega, 2.2);
+  ASSERT_EQ(flank.omega, 2.2) << "the run did not look below the flank it ended on";
   EXPECT_EQ(end.branch, nsm::Branch::main);
   EXPECT_EQ(flank.branch, nsm::Branch::tongue);
-  EXPECT_GT(flank.measures.energy, (1 + scene.continuation.tongue_share) * end.measures.energy);
-  // The branch hardens: the end lies above every main point before it.
-  for (std::size_t i = 0; i + 2 < p.size(); ++i)
-    if (p[i].branch == nsm::Branch::main)
-      {
-        EXPECT_LT(p[i].measures.energy, end.measures.energy) << "W = " << p[i].omega;
-      }
+  EXPECT_GT(flank.measures.energy, (1 + fine.continuation.tongue_share) * end.measures.energy);
+  // One branch at the end whatever the path, to the Newton tolerance.
+  ASSERT_EQ(a.points.back().omega, 2.2);
+  EXPECT_EQ(a.points.back().branch, nsm::Branch::main);
+  EXPECT_NEAR(end.measures.energy / a.points.back().measures.energy, 1, 1e-8);
 }
 
 TEST(Backbone, ArclengthGoesRoundAFoldAtAnInternalResonance)
