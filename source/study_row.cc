@@ -341,8 +341,11 @@ namespace nsm
     std::ostringstream  quiet;
     dealii::TimerOutput timer(quiet, dealii::TimerOutput::never, dealii::TimerOutput::wall_times);
     // Without a reference, run_once skips the spectrum and receptance errors
-    // the study's rows measure: a reference level needs only its backbone.
-    return run_once(scene, no_reference(scene), timer).points;
+    // the study's rows measure, and without verification the time
+    // integration: a reference level needs only its backbone.
+    Scene level                = scene;
+    level.study.verify_in_time = false;
+    return run_once(level, no_reference(level), timer).points;
   }
 
   std::vector<std::string> measure_study_row(const Scene &scene, const FineReference *fine)
