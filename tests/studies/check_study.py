@@ -241,10 +241,22 @@ def harmonics(executable, studies):
         assert error[40] <= 0.05, (omega, error)
         print(f"Omega {omega}: energy error " + ", ".join(f"M = {m}: {e:.2e}" for m, e in error.items()))
     main_points_error_falls(executable, directory, rows)
-    time_defects_fall(executable, directory, rows, common)
+    time_defects_fall(executable, directory, rows)
 
 
-def time_defects_fall(executable, directory, rows, common):
+def plain_run(executable, directory, name, output):
+    """harmonics.prm without its Study section, at M = 40, as a plain run
+    writing its backbone to directory/name, with `output` added to Output."""
+    with open(os.path.join(directory, "harmonics.prm")) as f:
+        scene = f.read().split("subsection Study")[0]
+    with open(os.path.join(directory, name + ".prm"), "w") as f:
+        f.write(scene + "subsection Harmonic balance\n  set Harmonics = 40\nend\n"
+                f"subsection Output\n  set Directory = {name}\n  set Backbone = true\n  set Plots = false\n"
+                + output + "end\n")
+    return run([executable, name + ".prm"], directory)
+
+
+def time_defects_fall(executable, directory, rows):
     """The HB point's state at t = 0 integrated over one period comes back the
     closer, the nearer the truncated series is to the exact mode (whose defect
     is the time integration's alone: doubling Verify steps moves the seed bar's
@@ -257,14 +269,9 @@ def time_defects_fall(executable, directory, rows, common):
     for i in range(2):
         assert defects[10][i] > defects[20][i] > defects[40][i] > 0, defects
     found = [k[len("energy_at_"):] for k in rows[40] if k.startswith("energy_at_") and rows[40][k]]
-    with open(os.path.join(directory, "harmonics.prm")) as f:
-        scene = f.read().split("subsection Study")[0]
-    with open(os.path.join(directory, "fields.prm"), "w") as f:
-        f.write(scene + "subsection Harmonic balance\n  set Harmonics = 40\nend\n"
-                "subsection Output\n  set Directory = fields\n  set Backbone = true\n  set Plots = false\n"
-                f"  set Fields at = {', '.join(found)}\n  set Verify in time = true\n"
-                "  set Verify every = 1000000\n  set Verify periods = 1\nend\n")
-    summary = run([executable, "fields.prm"], directory).stdout
+    summary = plain_run(executable, directory, "fields",
+                        f"  set Fields at = {', '.join(found)}\n  set Verify in time = true\n"
+                        "  set Verify every = 1000000\n  set Verify periods = 1\n").stdout
     plain = sorted(float(line.split("one-period defect / g0 ")[1].split()[0])
                    for line in summary.splitlines() if "verified in time: one-period defect" in line)
     assert len(plain) == len(found), (summary, found)
@@ -286,12 +293,7 @@ def main_points_error_falls(executable, directory, rows):
     print("main points' median energy error: " + ", ".join(f"M = {m}: {e:.2e}" for m, e in median.items()))
     assert median[10] > median[20] > median[40], median
     assert median[40] <= 0.05, median  # what the truncated series reaches (doc/studies.md)
-    with open(os.path.join(directory, "harmonics.prm")) as f:
-        scene = f.read().split("subsection Study")[0]
-    with open(os.path.join(directory, "base.prm"), "w") as f:
-        f.write(scene + "subsection Harmonic balance\n  set Harmonics = 40\nend\n"
-                "subsection Output\n  set Directory = base\n  set Backbone = true\n  set Plots = false\nend\n")
-    run([executable, "base.prm"], directory)
+    plain_run(executable, directory, "base", "")
     errors = sorted(abs(float(p["energy"]) / exact_uniform_energy(float(p["Omega"]), 1e-3) - 1)
                     for p in read(os.path.join(directory, "base", "backbone.csv")) if p["branch"] == "main")
     assert len(errors) == int(rows[40]["main_points"]), (len(errors), rows[40]["main_points"])
