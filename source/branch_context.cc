@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace nsm
@@ -27,6 +28,16 @@ namespace nsm
     while (first > 0 && backbone.points[first - 1].segment == backbone.points.back().segment)
       --first;
     return first;
+  }
+
+  double least_energy_behind(const BranchContext &context, const Backbone &backbone, const double omega,
+                             const double reach)
+  {
+    double least = std::numeric_limits<double>::infinity();
+    for (const BackbonePoint &p : backbone.points)
+      if (std::abs(p.omega - omega) <= reach && !context.beyond(p.omega, omega))
+        least = std::min(least, p.measures.energy);
+    return least;
   }
 
   std::vector<double> interpolated_guess(const BackbonePoint &a, const BackbonePoint &b, const double omega)

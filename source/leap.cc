@@ -32,10 +32,7 @@ namespace nsm
     // A front high on a tongue (a previous leap may have landed there) must
     // not bar the way back down: landings may go as low as the least energy
     // written within reach behind the front, divided by Leap energy ratio.
-    double least = energy;
-    for (const BackbonePoint &p : backbone.points)
-      if (std::abs(p.omega - front.omega) <= reach && !context.beyond(p.omega, front.omega))
-        least = std::min(least, p.measures.energy);
+    const double least = least_energy_behind(context, backbone, front.omega, reach);
 
     // Newton from each guess at growing distances beyond the front; the first
     // landing within the energy bounds starts the new segment.

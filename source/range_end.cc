@@ -34,17 +34,13 @@ namespace nsm
     const BackbonePoint last  = backbone.points.back();
     const std::size_t   first = last_segment_start(backbone);
     const double        reach = c.search_reach * last.omega;
-    double              top = 0, least = last.measures.energy;
-    for (std::size_t i = 0; i < backbone.points.size(); ++i)
-      {
-        const double energy = backbone.points[i].measures.energy;
-        if (i >= first)
-          top = std::max(top, energy);
-        if (std::abs(backbone.points[i].omega - last.omega) <= reach)
-          least = std::min(least, energy);
-      }
-    if (!(top > (1 + c.tongue_share) * last.measures.energy))
+    const auto          top   = std::max_element(backbone.points.begin() + first, backbone.points.end(),
+                                                 [](const BackbonePoint &a, const BackbonePoint &b) {
+                                                   return a.measures.energy < b.measures.energy;
+                                                 });
+    if (!(top->measures.energy > (1 + c.tongue_share) * last.measures.energy))
       return false;
+    const double least = least_energy_behind(context, backbone, last.omega, reach);
 
     // The lowest landing: the labels' envelope is the least energy.
     std::optional<BackbonePoint> lowest;

@@ -82,4 +82,8 @@ namespace nsm
     NewtonSolver leap_newton_;
     Progress     progress_;
   };
+
+  /// The least energy written within `reach` of omega and not beyond it in
+  /// the direction of continuation: how low a landing there may go.
+  double least_energy_behind(const BranchContext &context, const Backbone &backbone, double omega, double reach);
 } // namespace nsm
