@@ -17,8 +17,10 @@
 // with v = D x - alpha gamma(0) e_0, and J = diag(cos) - G diag(D).
 #pragma once
 
+#include <nsm/active_set.h>
 #include <nsm/receptance.h>
 #include <nsm/scene.h>
+#include <nsm/trigonometric.h>
 
 #include <vector>
 
@@ -65,10 +67,10 @@ namespace nsm
     /// and cos (full basis). In the full basis slot 1 (sin W t) holds the
     /// unfolding parameter mu of the phase condition instead: the sine part
     /// of the first harmonic is fixed to 0 and mu must vanish at a solution.
-    unsigned int n_unknowns() const { return kinds_.size(); }
+    unsigned int n_unknowns() const { return functions_.size(); }
     /// Samples per period: the sampled rule's Time samples, or the grid on
     /// which the exact rule brackets the roots of lambda - alpha g.
-    unsigned int n_samples() const { return samples_; }
+    unsigned int n_samples() const { return active_set_.n_samples(); }
     bool         has_unfolding() const { return basis_ == HarmonicBasis::full; }
 
     /// Evaluates the receptance at k W, k = 0..M, once per distinct W.
@@ -113,12 +115,6 @@ namespace nsm
     double force_scale() const { return force_scale_; }
 
   private:
-    enum Kind
-    {
-      cosine,
-      sine
-    };
-
     struct Phase
     {
       double cos, sin, dtheta_domega; ///< of theta at frequency k W
@@ -129,13 +125,6 @@ namespace nsm
     /// q's coefficients v = D x - alpha gamma(0) e_0 (slot 1 of the full basis
     /// carries mu, not a coefficient).
     std::vector<double> contact_coefficients(const std::vector<double> &x) const;
-    /// Active Gram matrix of q (row-major n x n), and the contact fraction.
-    double active_gram(const std::vector<double> &v, std::vector<double> &gram) const;
-    double active_gram_exact(const std::vector<double> &v, std::vector<double> &gram) const;
-    double active_gram_sampled(const std::vector<double> &v, std::vector<double> &gram) const;
-    /// Roots of q in [0, 2 pi), sorted; also tells whether q > 0 at 0.
-    std::vector<double> roots(const std::vector<double> &v) const;
-    double              value(const std::vector<double> &v, double tau, double *slope) const;
 
     const Receptance   &receptance_;
     unsigned int        harmonics_;
@@ -147,19 +136,13 @@ namespace nsm
     double              gap_;
     double              gamma0_;
     double              force_scale_;
-    std::vector<Kind>   kinds_;
-    std::vector<unsigned int> orders_; ///< k of each basis function
-    unsigned int        samples_;      ///< sampled rule: Nt; exact: bracketing grid
-    std::vector<double> table_;        ///< phi_i(tau_s), row-major n x samples
+    TrigonometricBasis  functions_;
+    ActiveSet           active_set_;
     /// cos m tau and sin m tau, m = 0..2M, at the 4 (2M + 1) points where the
     /// energy over the period is evaluated (row-major, m x points).
     std::vector<double> energy_cos_, energy_sin_;
     double              omega_ = -1;
     std::vector<Phase>  phases_;       ///< per harmonic k = 0..M
-    // NOX asks for F and J at the same point separately: the Gram matrix of
-    // the last q is kept.
-    mutable std::vector<double> cached_coefficients_, cached_gram_;
-    mutable double              cached_fraction_ = 0;
     mutable HarmonicBalanceCost cost_;
   };
 } // namespace nsm

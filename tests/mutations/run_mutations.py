@@ -31,7 +31,7 @@ MUTATIONS = [
      "sizes[params.cells - 1 - i] = std::pow(params.graded_ratio, i - first + 1);"),
     ("energy off by 1 %", "source/harmonic_balance.cc",
      "result.energy = ec[0];", "result.energy = 1.01 * ec[0];"),
-    ("one Gram-matrix entry 1 % wrong", "source/harmonic_balance.cc",
+    ("one Gram-matrix entry 1 % wrong", "source/active_set.cc",
      "gram[i * n + j] += norm * coefficient * (sine_term ? is[m] : ic[m]);",
      "gram[i * n + j] += (i == 1 && j == 2 ? 1.01 : 1.0) * norm * coefficient * "
      "(sine_term ? is[m] : ic[m]);"),
@@ -83,6 +83,8 @@ MUTATIONS = [
      "const PeriodicField field(hb, d, p, ForceSign::seed_eq5);"),
     ("the search at the range's end without the main points' guesses", "source/range_end.cc",
      "if (!above[i] && std::abs(", "if (false && std::abs("),
+    ("contacts shorter than a sample spacing missed", "source/active_set.cc",
+     "if (!(peak || trough) || std::abs(q[t]) > reach)", "if (true)"),
 ]
 
 
