@@ -28,24 +28,6 @@ namespace nsm
       std::chrono::steady_clock::time_point start_;
     };
 
-    /// 1, then per harmonic k its cosine (and, in the full basis, its sine
-    /// before it).
-    TrigonometricBasis basis_functions(const unsigned int harmonics, const HarmonicBasis basis)
-    {
-      TrigonometricBasis functions{{false}, {0}};
-      for (unsigned int k = 1; k <= harmonics; ++k)
-        {
-          if (basis == HarmonicBasis::full)
-            {
-              functions.sine.push_back(true);
-              functions.order.push_back(k);
-            }
-          functions.sine.push_back(false);
-          functions.order.push_back(k);
-        }
-      return functions;
-    }
-
     /// The exact rule samples q only to bracket its roots: 8 points per
     /// period of the highest harmonic, plus the extremum checks in roots().
     unsigned int samples_of(const Scene &scene)
@@ -63,7 +45,7 @@ namespace nsm
     , sign_(scene.contact.sign == ForceSign::physical ? 1.0 : -1.0)
     , alpha_(scene.contact.alpha)
     , gap_(scene.contact.gap)
-    , functions_(basis_functions(harmonics_, basis_))
+    , functions_(harmonic_basis(harmonics_, basis_ == HarmonicBasis::full))
     , active_set_(functions_, integration_, samples_of(scene))
   {
     gamma0_       = receptance(0.0).gamma;

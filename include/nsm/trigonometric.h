@@ -23,6 +23,24 @@ namespace nsm
     unsigned int size() const { return order.size(); }
   };
 
+  /// The harmonic balance's basis up to harmonic M: 1, then per k its cosine,
+  /// after its sine if with_sines (the full basis).
+  inline TrigonometricBasis harmonic_basis(const unsigned int harmonics, const bool with_sines)
+  {
+    TrigonometricBasis functions{{false}, {0}};
+    for (unsigned int k = 1; k <= harmonics; ++k)
+      {
+        if (with_sines)
+          {
+            functions.sine.push_back(true);
+            functions.order.push_back(k);
+          }
+        functions.sine.push_back(false);
+        functions.order.push_back(k);
+      }
+    return functions;
+  }
+
   /// cos(m t) and sin(m t) for m = 0..count-1 by the angle-sum recurrence.
   inline void trig_table(const double t, const unsigned int count, std::vector<double> &c, std::vector<double> &s)
   {

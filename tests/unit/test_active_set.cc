@@ -8,19 +8,6 @@
 
 namespace
 {
-  /// 1, then per k = 1..M its sine (full basis) and its cosine.
-  nsm::TrigonometricBasis basis(const unsigned int harmonics, const bool full)
-  {
-    nsm::TrigonometricBasis b{{false}, {0}};
-    for (unsigned int k = 1; k <= harmonics; ++k)
-      {
-        if (full)
-          b.sine.push_back(true), b.order.push_back(k);
-        b.sine.push_back(false), b.order.push_back(k);
-      }
-    return b;
-  }
-
   /// The exact rule's grid, as the harmonic balance sets it.
   unsigned int grid(const unsigned int harmonics)
   {
@@ -41,7 +28,7 @@ namespace
 
 TEST(ActiveSet, RootsOfAShiftedCosineAreAtItsArccos)
 {
-  const auto       b = basis(3, false);
+  const auto       b = nsm::harmonic_basis(3, false);
   nsm::ActiveSet   set(b, nsm::Integration::exact, grid(3));
   std::vector<double> v(b.size(), 0.0);
   v[0] = -0.3, v[1] = 1; // q = cos(tau) - 0.3
@@ -60,7 +47,7 @@ TEST(ActiveSet, GramOverTheWholePeriodIsTheIdentity)
   for (const bool full : {false, true})
     for (const auto rule : {nsm::Integration::exact, nsm::Integration::sampled})
       {
-        const auto     b = basis(4, full);
+        const auto     b = nsm::harmonic_basis(4, full);
         nsm::ActiveSet set(b, rule, rule == nsm::Integration::exact ? grid(4) : 64);
         std::vector<double> v(b.size(), 0.0), gram;
         v[0] = 1;
@@ -74,7 +61,7 @@ TEST(ActiveSet, GramOverTheWholePeriodIsTheIdentity)
 TEST(ActiveSet, ExactGramMatchesABruteForceQuadrature)
 {
   const unsigned int  harmonics = 4;
-  const auto          b = basis(harmonics, true);
+  const auto          b = nsm::harmonic_basis(harmonics, true);
   nsm::ActiveSet      set(b, nsm::Integration::exact, grid(harmonics));
   const std::vector<double> v = {0.1, 0.7, -0.4, 0.25, 0.3, -0.2, 0.15, 0.1, -0.05};
   std::vector<double> gram;
@@ -112,7 +99,7 @@ TEST(ActiveSet, FindsAContactShorterThanASampleSpacing)
   // q = D_M(tau - tau0) - (2 M + 1 - delta): positive only within x* of
   // tau0, half a grid spacing off the samples, and negative at every sample.
   const unsigned int harmonics = 5;
-  const auto         b = basis(harmonics, true);
+  const auto         b = nsm::harmonic_basis(harmonics, true);
   const unsigned int samples = grid(harmonics);
   nsm::ActiveSet     set(b, nsm::Integration::exact, samples);
   const double       h = 2 * M_PI / samples, tau0 = 7.5 * h, delta = 1e-3, top = 2.0 * harmonics + 1;
