@@ -34,15 +34,19 @@ namespace nsm
     const BackbonePoint last  = backbone.points.back();
     const std::size_t   first = last_segment_start(backbone);
     const double        reach = c.search_reach * last.omega;
-    const auto          top   = std::max_element(backbone.points.begin() + first, backbone.points.end(),
-                                                 [](const BackbonePoint &a, const BackbonePoint &b) {
-                                                   return a.measures.energy < b.measures.energy;
-                                                 });
-    if (!(top->measures.energy > (1 + c.tongue_share) * last.measures.energy))
+    const auto [bottom, top] = std::minmax_element(backbone.points.begin() + first, backbone.points.end(),
+                                                   [](const BackbonePoint &a, const BackbonePoint &b) {
+                                                     return a.measures.energy < b.measures.energy;
+                                                   });
+    const bool descended = top->measures.energy > (1 + c.tongue_share) * last.measures.energy;
+    const bool climbed   = last.measures.energy > (1 + c.tongue_share) * bottom->measures.energy;
+    if (!descended && !climbed)
       return false;
     const double least = least_energy_behind(context, backbone, last.omega, reach);
 
-    // The lowest landing: the labels' envelope is the least energy.
+    // The lowest landing (the labels' envelope is the least energy) with at
+    // least the end's contact: the main branch has the most contact at its
+    // Omega, the other branches below a rising end less (doc/method.md).
     std::optional<BackbonePoint> lowest;
     for (const std::vector<double> &guess : guesses_at_end(context, backbone, first, reach))
       {
@@ -50,6 +54,7 @@ namespace nsm
         if (!guess.empty() && context.solve(last.omega, guess, segment + 1, point, true) &&
             (1 + c.tongue_share) * point.measures.energy < last.measures.energy &&
             point.measures.energy > least / c.leap_energy_ratio &&
+            point.measures.contact_fraction >= last.measures.contact_fraction &&
             (!lowest || point.measures.energy < lowest->measures.energy))
           lowest = std::move(point);
       }
