@@ -12,8 +12,10 @@ namespace nsm
   /// segment came down to it (its last point lies more than Tongue share
   /// below one of its points: the main branch hardens, a tongue's far flank
   /// descends) or climbed to it (its last point lies more than Tongue share
-  /// above one of its points: the main branch or a tongue's near flank),
-  /// Newton at the far end looks for the branch below, from the
+  /// above one of its points) with more than Max contact change less contact
+  /// than written within Search reach (a tongue's near flank; the rising main
+  /// branch keeps its contact), Newton at the far end looks for the branch
+  /// below, from the
   /// segment's first point, an impulsive contact, the last point before the
   /// segment and every earlier point within Search reach that the envelope of
   /// the points so far puts on the main branch.
