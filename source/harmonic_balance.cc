@@ -1,10 +1,8 @@
 #include <nsm/harmonic_balance.h>
 #include <nsm/trigonometric.h>
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 
 namespace nsm
 {
@@ -47,24 +45,11 @@ namespace nsm
     , gap_(scene.contact.gap)
     , functions_(harmonic_basis(harmonics_, basis_ == HarmonicBasis::full))
     , active_set_(functions_, integration_, samples_of(scene))
+    , measures_(harmonics_)
   {
     gamma0_       = receptance(0.0).gamma;
     force_scale_  = gap_ / gamma0_;
     alpha_gamma0_ = alpha_ * gamma0_;
-
-    std::vector<double> c, s;
-    const unsigned int  top = 2 * harmonics_ + 1, points = 4 * top;
-    energy_cos_.resize(top * points);
-    energy_sin_.resize(top * points);
-    for (unsigned int t = 0; t < points; ++t)
-      {
-        trig_table(two_pi * t / points, top, c, s);
-        for (unsigned int m = 0; m < top; ++m)
-          {
-            energy_cos_[m * points + t] = c[m];
-            energy_sin_[m * points + t] = s[m];
-          }
-      }
   }
 
   void HarmonicBalance::set_omega(const double omega)
@@ -93,7 +78,7 @@ namespace nsm
         const double g     = value.gamma;
         const double norm  = std::sqrt(1 + g * g);
         const double flip  = receptance_.poles_below(w) % 2 ? -1.0 : 1.0;
-        Phase       &phase = phases_[k];
+        HarmonicPhase &phase = phases_[k];
         phase.cos            = flip / norm;
         phase.sin            = flip * g / norm;
         phase.omega2         = w * w;
@@ -107,7 +92,7 @@ namespace nsm
     std::vector<double> v(n_unknowns());
     for (unsigned int i = 0; i < n_unknowns(); ++i)
       {
-        const Phase &p = phases_[functions_.order[i]];
+        const HarmonicPhase &p = phases_[functions_.order[i]];
         v[i] = x[i] * (p.cos - sign_ * alpha_ * p.sin);
       }
     if (has_unfolding())
@@ -145,7 +130,7 @@ namespace nsm
         jacobian->assign(n * n, 0.0);
         for (unsigned int j = 0; j < n; ++j)
           {
-            const Phase &p = phases_[functions_.order[j]];
+            const HarmonicPhase &p = phases_[functions_.order[j]];
             const double d = is_unfolding(j) ? 0.0 : p.cos - sign_ * alpha_ * p.sin;
             for (unsigned int i = 0; i < n; ++i)
               (*jacobian)[i + j * n] = -gram[i * n + j] * d;
@@ -159,7 +144,7 @@ namespace nsm
           {
             if (is_unfolding(i))
               continue;
-            const Phase &p = phases_[functions_.order[i]];
+            const HarmonicPhase &p = phases_[functions_.order[i]];
             (*domega)[i] -= x[i] * p.sin * p.dtheta_domega;
             const double dd = (-p.sin - sign_ * alpha_ * p.cos) * p.dtheta_domega;
             for (unsigned int r = 0; r < n; ++r)
@@ -193,7 +178,7 @@ namespace nsm
     FourierCoefficients result;
     for (unsigned int i = 0; i < n_unknowns(); ++i)
       {
-        const Phase &p = phases_[functions_.order[i]];
+        const HarmonicPhase &p = phases_[functions_.order[i]];
         const double c = has_unfolding() && i == 1 ? 0.0 : force_scale_ * x[i];
         result.order.push_back(functions_.order[i]);
         result.is_sine.push_back(functions_.sine[i]);
@@ -203,21 +188,18 @@ namespace nsm
     return result;
   }
 
+  std::vector<double> HarmonicBalance::coefficients_only(const std::vector<double> &x) const
+  {
+    std::vector<double> coefficient(x);
+    if (has_unfolding())
+      coefficient[1] = 0;
+    return coefficient;
+  }
+
   std::vector<double> HarmonicBalance::harmonic_energies(const std::vector<double> &x) const
   {
-    // a^2 (gamma + 2 w^2 gamma') / 4 per cosine or sine (a_0^2 gamma(0) / 2),
-    // in the angle variables a^2 gamma = c^2 sin cos, a^2 gamma' = c^2 dtheta/dw^2.
-    std::vector<double> energies(harmonics_ + 1, 0.0);
-    for (unsigned int i = 0; i < n_unknowns(); ++i)
-      {
-        if (has_unfolding() && i == 1)
-          continue;
-        const Phase &p = phases_[functions_.order[i]];
-        const double c = force_scale_ * x[i];
-        energies[functions_.order[i]] += c * c * (p.sin * p.cos + 2 * p.omega2 * p.dtheta_domega2) /
-                                (functions_.order[i] == 0 ? 2.0 : 4.0);
-      }
-    return energies;
+    const std::vector<double> coefficient = coefficients_only(x);
+    return measures_.harmonic_energies({functions_, phases_, coefficient, force_scale_, omega_});
   }
 
   double HarmonicBalance::contact_fraction(const std::vector<double> &x) const
@@ -228,82 +210,13 @@ namespace nsm
 
   PeriodicSolutionMeasures HarmonicBalance::measure(const std::vector<double> &x) const
   {
-    const unsigned int  n = n_unknowns(), top = 2 * harmonics_ + 1;
-    const double        f2 = force_scale_ * force_scale_, w2 = omega_ * omega_;
-    std::vector<double> coefficient(n);
-    for (unsigned int i = 0; i < n; ++i)
-      coefficient[i] = has_unfolding() && i == 1 ? 0.0 : x[i];
-
-    // Energy over the period as a trigonometric polynomial: with h_k the
-    // receptance field, h_k^T M h_l = (gamma_k - gamma_l) / (w_k^2 - w_l^2),
-    // which in the angle variables reads sin(theta_k - theta_l) / (...).
-    std::vector<double> ec(top, 0.0), es(top, 0.0);
-    const auto add = [&](double weight) {
-      return [&, weight](bool sine, int m, double c) { (sine ? es : ec)[m] += weight * c; };
-    };
-    for (unsigned int i = 0; i < n; ++i)
-      for (unsigned int j = 0; j < n; ++j)
-        {
-          const Phase &p = phases_[functions_.order[i]], &q = phases_[functions_.order[j]];
-          const double cc = coefficient[i] * coefficient[j] * f2;
-          double       mass, stiffness;
-          if (functions_.order[i] == functions_.order[j])
-            {
-              mass      = p.dtheta_domega2;
-              stiffness = p.sin * p.cos + p.omega2 * p.dtheta_domega2;
-            }
-          else
-            {
-              const double d = p.omega2 - q.omega2;
-              mass      = (p.sin * q.cos - p.cos * q.sin) / d;
-              stiffness = (p.omega2 * p.sin * q.cos - q.omega2 * p.cos * q.sin) / d;
-            }
-          // strain: phi_i phi_j; kinetic: W^2 phi_i' phi_j' (derivatives in tau).
-          product_terms(functions_.sine[i], functions_.order[i], functions_.sine[j], functions_.order[j],
-                        add(0.5 * cc * stiffness));
-          const double ki = functions_.order[i], kj = functions_.order[j];
-          const double sign_i = functions_.sine[i] ? 1.0 : -1.0, sign_j = functions_.sine[j] ? 1.0 : -1.0;
-          product_terms(!functions_.sine[i], functions_.order[i], !functions_.sine[j], functions_.order[j],
-                        add(0.5 * cc * w2 * mass * ki * kj * sign_i * sign_j));
-        }
-
-    PeriodicSolutionMeasures result{};
-    result.energy = ec[0];
-    const unsigned int  points = 4 * top;
-    std::vector<double> e(points, 0.0);
-    for (unsigned int m = 0; m < top; ++m)
-      for (unsigned int t = 0; t < points; ++t)
-        e[t] += ec[m] * energy_cos_[m * points + t] + es[m] * energy_sin_[m * points + t];
-    const double e_min = *std::min_element(e.begin(), e.end());
-    const double e_max = *std::max_element(e.begin(), e.end());
-    result.energy_spread = (e_max - e_min) / result.energy;
-
-    // Contact force and gap at the samples.
-    double lambda_max = -std::numeric_limits<double>::max(), lambda_min = -lambda_max;
-    double gap_min = lambda_min, complementarity = 0;
-    const unsigned int         samples = active_set_.n_samples();
-    const std::vector<double> &table   = active_set_.table();
-    for (unsigned int t = 0; t < samples; ++t)
-      {
-        double lambda = 0, u = 0;
-        for (unsigned int i = 0; i < n; ++i)
-          {
-            const Phase &p = phases_[functions_.order[i]];
-            lambda += coefficient[i] * p.cos * table[i * samples + t];
-            u -= sign_ * coefficient[i] * p.sin * table[i * samples + t];
-          }
-        lambda *= force_scale_, u *= force_scale_;
-        const double g = gap_ - u;
-        lambda_max = std::max(lambda_max, lambda), lambda_min = std::min(lambda_min, lambda);
-        gap_min = std::min(gap_min, g);
-        complementarity = std::max(complementarity, std::abs(lambda * g));
-      }
+    const std::vector<double> coefficient = coefficients_only(x);
+    const PhasedSolution      solution{functions_, phases_, coefficient, force_scale_, omega_};
+    PeriodicSolutionMeasures  result{};
+    measures_.energy(solution, result);
+    measures_.force_and_gap(solution, active_set_, sign_, gap_, result);
     std::vector<double> gram;
-    result.contact_fraction    = active_set_.gram(contact_coefficients(x), gram);
-    result.max_contact_force   = lambda_max;
-    result.min_force           = lambda_min / lambda_max;
-    result.min_gap             = gap_min / gap_;
-    result.max_complementarity = complementarity / (lambda_max * gap_);
+    result.contact_fraction = active_set_.gram(contact_coefficients(x), gram);
     return result;
   }
 } // namespace nsm

@@ -20,24 +20,13 @@
 #include <nsm/active_set.h>
 #include <nsm/receptance.h>
 #include <nsm/scene.h>
+#include <nsm/solution_measures.h>
 #include <nsm/trigonometric.h>
 
 #include <vector>
 
 namespace nsm
 {
-  /// Quantities of one converged (or candidate) periodic solution.
-  struct PeriodicSolutionMeasures
-  {
-    double energy;            ///< period mean of kinetic + strain energy
-    double energy_spread;     ///< (max - min) / mean over the period
-    double max_contact_force; ///< max over the period of lambda(t)
-    double contact_fraction;  ///< share of the period with lambda - alpha g > 0
-    double min_force;         ///< min lambda / max lambda (Signorini: >= 0)
-    double min_gap;           ///< min g / g0 (Signorini: >= 0)
-    double max_complementarity; ///< max |lambda g| / (max lambda g0)
-  };
-
   /// Where the HB time goes (wall seconds and counts), for benchmarks. The
   /// linear solves are timed by the NOX/LOCA glue and recorded here too.
   struct HarmonicBalanceCost
@@ -115,16 +104,12 @@ namespace nsm
     double force_scale() const { return force_scale_; }
 
   private:
-    struct Phase
-    {
-      double cos, sin, dtheta_domega; ///< of theta at frequency k W
-      double omega2;                  ///< (k W)^2
-      double dtheta_domega2;          ///< d theta / d(w^2) = gamma' cos^2
-    };
-
     /// q's coefficients v = D x - alpha gamma(0) e_0 (slot 1 of the full basis
     /// carries mu, not a coefficient).
     std::vector<double> contact_coefficients(const std::vector<double> &x) const;
+
+    /// x with the unfolding slot (if any) zeroed, for the measures.
+    std::vector<double> coefficients_only(const std::vector<double> &x) const;
 
     const Receptance   &receptance_;
     unsigned int        harmonics_;
@@ -138,11 +123,9 @@ namespace nsm
     double              force_scale_;
     TrigonometricBasis  functions_;
     ActiveSet           active_set_;
-    /// cos m tau and sin m tau, m = 0..2M, at the 4 (2M + 1) points where the
-    /// energy over the period is evaluated (row-major, m x points).
-    std::vector<double> energy_cos_, energy_sin_;
+    SolutionMeasures    measures_;
     double              omega_ = -1;
-    std::vector<Phase>  phases_;       ///< per harmonic k = 0..M
+    std::vector<HarmonicPhase> phases_;       ///< per harmonic k = 0..M
     mutable HarmonicBalanceCost cost_;
   };
 } // namespace nsm

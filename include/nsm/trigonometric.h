@@ -1,6 +1,6 @@
 // The real trigonometric basis of the harmonic balance in tau = W t, and the
 // identities its integrals rest on. Shared by the active set's Gram matrix and
-// the energy of a solution (harmonic_balance.h).
+// the energy of a solution (solution_measures.h).
 #pragma once
 
 #include <cmath>

@@ -29,7 +29,7 @@ MUTATIONS = [
     ("graded layer at the clamp", "source/discretisation.cc",
      "sizes[i] = std::pow(params.graded_ratio, i - first + 1);",
      "sizes[params.cells - 1 - i] = std::pow(params.graded_ratio, i - first + 1);"),
-    ("energy off by 1 %", "source/harmonic_balance.cc",
+    ("energy off by 1 %", "source/solution_measures.cc",
      "result.energy = ec[0];", "result.energy = 1.01 * ec[0];"),
     ("one Gram-matrix entry 1 % wrong", "source/active_set.cc",
      "gram[i * n + j] += norm * coefficient * (sine_term ? is[m] : ic[m]);",
