@@ -252,6 +252,34 @@ TEST(Backbone, SequentialMainBranchDoesNotDependOnTheStepSize)
   EXPECT_GE(agree, 0.95 * compared) << agree << " of " << compared;
 }
 
+namespace
+{
+  /// Runs the seed bar to W = 2.2 with `coarse` steps and with steps of 1e-4,
+  /// which end on a tongue's flank; checks that the fine run looked below the
+  /// flank at 2.2 and found the coarse run's end (one branch whatever the
+  /// path, to the Newton tolerance). Returns the fine run's points.
+  std::vector<nsm::BackbonePoint> check_branch_found_below_the_end(const nsm::Scene &coarse)
+  {
+    auto fine                      = coarse;
+    fine.continuation.initial_step = fine.continuation.max_step = 1e-4;
+    fine.continuation.max_steps    = 10000;
+    HbModel    coarse_model(coarse), fine_model(fine);
+    const auto a = coarse_model.backbone(), b = fine_model.backbone();
+    const auto p = b.points;
+    EXPECT_GE(p.size(), 3u);
+    const auto &end = p.back(), &flank = p[p.size() - 2];
+    EXPECT_EQ(end.omega, 2.2);
+    EXPECT_EQ(flank.omega, 2.2) << "the run did not look below the flank it ended on";
+    EXPECT_EQ(end.branch, nsm::Branch::main);
+    EXPECT_EQ(flank.branch, nsm::Branch::tongue);
+    EXPECT_GT(flank.measures.energy, (1 + fine.continuation.tongue_share) * end.measures.energy);
+    EXPECT_EQ(a.points.back().omega, 2.2);
+    EXPECT_EQ(a.points.back().branch, nsm::Branch::main);
+    EXPECT_NEAR(end.measures.energy / a.points.back().measures.energy, 1, 1e-8);
+    return p;
+  }
+} // namespace
+
 TEST(Backbone, ARunEndingOnATonguesFlankFindsTheBranchBelowAtOmegaMax)
 {
   // The seed bar on FE_Q(10) x 7 (prm/seed-high-order.prm) to W = 2.2. With
@@ -260,60 +288,32 @@ TEST(Backbone, ARunEndingOnATonguesFlankFindsTheBranchBelowAtOmegaMax)
   // which the labels called main with nothing written beyond. Measured: the
   // branch found below the flank equals the default run's end to 1.4e-14
   // (8 % above it when only the segments' first points were guesses).
-  auto coarse = seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
+  auto coarse                 = seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
   coarse.discretisation.cells = 7;
-  auto fine                   = coarse;
-  fine.continuation.initial_step = fine.continuation.max_step = 1e-4;
-  fine.continuation.max_steps = 10000;
-  HbModel     coarse_model(coarse), fine_model(fine);
-  const auto  a = coarse_model.backbone(), b = fine_model.backbone();
-  const auto &p = b.points;
-  ASSERT_GE(p.size(), 3u);
-  const auto &end = p.back(), &flank = p[p.size() - 2];
-  ASSERT_EQ(end.omega, 2.2);
-  ASSERT_EQ(flank.omega, 2.2) << "the run did not look below the flank it ended on";
-  EXPECT_EQ(end.branch, nsm::Branch::main);
-  EXPECT_EQ(flank.branch, nsm::Branch::tongue);
-  EXPECT_GT(flank.measures.energy, (1 + fine.continuation.tongue_share) * end.measures.energy);
-  // One branch at the end whatever the path, to the Newton tolerance.
-  ASSERT_EQ(a.points.back().omega, 2.2);
-  EXPECT_EQ(a.points.back().branch, nsm::Branch::main);
-  EXPECT_NEAR(end.measures.energy / a.points.back().measures.energy, 1, 1e-8);
+  check_branch_found_below_the_end(coarse);
 }
 
 TEST(Backbone, ARunEndingWhileClimbingATongueFindsTheBranchBelowWithMoreContact)
 {
   // The seed bar on FE_Q(10) x 10 to W = 2.2. With steps of 1e-4 the run
   // reaches 2.2 climbing a tongue (w_27 / 38), 3.7 times above the branch,
-  // which the labels called main. Searching every end without a contact
-  // condition puts the uniform bar's ends on branches 38 to 80 % below its
-  // exact energy (MainBranch.UniformBar* fail); those have a third of the
-  // end's contact fraction. Measured here: flank 0.208, branch below 0.341.
-  auto coarse = seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
+  // which the labels called main; steps of 1e-3 end on the branch. Searching
+  // every end without a contact condition puts the uniform bar's ends on
+  // branches 38 to 80 % below its exact energy (MainBranch.UniformBar* fail);
+  // those have a third of the end's contact fraction. Measured here: flank
+  // 0.208, branch below 0.341.
+  auto coarse                      = seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
   coarse.continuation.initial_step = coarse.continuation.max_step = 1e-3;
-  auto fine                                                     = coarse;
-  fine.continuation.initial_step = fine.continuation.max_step = 1e-4;
-  fine.continuation.max_steps                                 = 10000;
-  HbModel     coarse_model(coarse), fine_model(fine);
-  const auto  a = coarse_model.backbone(), b = fine_model.backbone();
-  const auto &p = b.points;
+  const auto p                     = check_branch_found_below_the_end(coarse);
   ASSERT_GE(p.size(), 3u);
   const auto &end = p.back(), &flank = p[p.size() - 2];
-  ASSERT_EQ(end.omega, 2.2);
-  ASSERT_EQ(flank.omega, 2.2) << "the run did not look below the flank it ended on";
   // The flank climbed to the end: its segment's points before it lie lower.
   const auto before = std::find_if(p.rbegin() + 2, p.rend(), [&](const auto &q) { return q.segment != flank.segment; });
   const auto least  = std::min_element(before.base(), p.end() - 1, [](const auto &x, const auto &y) {
     return x.measures.energy < y.measures.energy;
   });
-  EXPECT_GT(flank.measures.energy, (1 + fine.continuation.tongue_share) * least->measures.energy);
-  EXPECT_EQ(end.branch, nsm::Branch::main);
-  EXPECT_EQ(flank.branch, nsm::Branch::tongue);
+  EXPECT_GT(flank.measures.energy, (1 + coarse.continuation.tongue_share) * least->measures.energy);
   EXPECT_GT(end.measures.contact_fraction, flank.measures.contact_fraction);
-  // One branch at the end whatever the path, to the Newton tolerance.
-  ASSERT_EQ(a.points.back().omega, 2.2);
-  EXPECT_EQ(a.points.back().branch, nsm::Branch::main);
-  EXPECT_NEAR(end.measures.energy / a.points.back().measures.energy, 1, 1e-8);
 }
 
 TEST(Backbone, ArclengthGoesRoundAFoldAtAnInternalResonance)
