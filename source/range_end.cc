@@ -30,10 +30,10 @@ namespace nsm
     /// The last segment climbed to the end (its last point lies more than
     /// Tongue share above `bottom`) and has less contact than the branch
     /// behind it: more than Max contact change below the most contact written
-    /// within Search reach. The main branch's contact grows along it, so an
-    /// end on it that climbs (every hardening run's) is not searched.
+    /// within `reach`. The main branch's contact grows along it, so an end on
+    /// it that climbs (every hardening run's) is not searched.
     bool climbed_with_less_contact(const BranchContext &context, const Backbone &backbone,
-                                   const BackbonePoint &bottom)
+                                   const BackbonePoint &bottom, const double reach)
     {
       const auto          &c    = context.scene.continuation;
       const BackbonePoint &last = backbone.points.back();
@@ -41,7 +41,7 @@ namespace nsm
         return false;
       double most = 0;
       for (const BackbonePoint &p : backbone.points)
-        if (std::abs(p.omega - last.omega) <= c.search_reach * last.omega)
+        if (std::abs(p.omega - last.omega) <= reach)
           most = std::max(most, p.measures.contact_fraction);
       return last.measures.contact_fraction < most - c.max_contact_change;
     }
@@ -58,7 +58,7 @@ namespace nsm
                                                      return a.measures.energy < b.measures.energy;
                                                    });
     const bool descended = top->measures.energy > (1 + c.tongue_share) * last.measures.energy;
-    if (!descended && !climbed_with_less_contact(context, backbone, *bottom))
+    if (!descended && !climbed_with_less_contact(context, backbone, *bottom, reach))
       return false;
     const double least = least_energy_behind(context, backbone, last.omega, reach);
 

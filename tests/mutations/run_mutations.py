@@ -84,7 +84,7 @@ MUTATIONS = [
     ("the search at the range's end without the main points' guesses", "source/range_end.cc",
      "if (!above[i] && std::abs(", "if (false && std::abs("),
     ("a range's end climbing a tongue not searched", "source/range_end.cc",
-     "if (!descended && !climbed_with_less_contact(context, backbone, *bottom))", "if (!descended)"),
+     "if (!descended && !climbed_with_less_contact(context, backbone, *bottom, reach))", "if (!descended)"),
     ("the branch below the range's end may have less contact", "source/range_end.cc",
      "point.measures.contact_fraction >= last.measures.contact_fraction &&", "true &&"),
     ("contacts shorter than a sample spacing missed", "source/active_set.cc",

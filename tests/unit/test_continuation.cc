@@ -257,26 +257,25 @@ namespace
   /// Runs the seed bar to W = 2.2 with `coarse` steps and with steps of 1e-4,
   /// which end on a tongue's flank; checks that the fine run looked below the
   /// flank at 2.2 and found the coarse run's end (one branch whatever the
-  /// path, to the Newton tolerance). Returns the fine run's points.
-  std::vector<nsm::BackbonePoint> check_branch_found_below_the_end(const nsm::Scene &coarse)
+  /// path, to the Newton tolerance). The fine run's points go to `p`.
+  void check_branch_found_below_the_end(const nsm::Scene &coarse, std::vector<nsm::BackbonePoint> &p)
   {
     auto fine                      = coarse;
     fine.continuation.initial_step = fine.continuation.max_step = 1e-4;
     fine.continuation.max_steps    = 10000;
     HbModel    coarse_model(coarse), fine_model(fine);
-    const auto a = coarse_model.backbone(), b = fine_model.backbone();
-    const auto p = b.points;
-    EXPECT_GE(p.size(), 3u);
+    const auto a = coarse_model.backbone();
+    p            = fine_model.backbone().points;
+    ASSERT_GE(p.size(), 3u);
     const auto &end = p.back(), &flank = p[p.size() - 2];
-    EXPECT_EQ(end.omega, 2.2);
-    EXPECT_EQ(flank.omega, 2.2) << "the run did not look below the flank it ended on";
+    ASSERT_EQ(end.omega, 2.2);
+    ASSERT_EQ(flank.omega, 2.2) << "the run did not look below the flank it ended on";
     EXPECT_EQ(end.branch, nsm::Branch::main);
     EXPECT_EQ(flank.branch, nsm::Branch::tongue);
     EXPECT_GT(flank.measures.energy, (1 + fine.continuation.tongue_share) * end.measures.energy);
-    EXPECT_EQ(a.points.back().omega, 2.2);
+    ASSERT_EQ(a.points.back().omega, 2.2);
     EXPECT_EQ(a.points.back().branch, nsm::Branch::main);
     EXPECT_NEAR(end.measures.energy / a.points.back().measures.energy, 1, 1e-8);
-    return p;
   }
 } // namespace
 
@@ -290,7 +289,8 @@ TEST(Backbone, ARunEndingOnATonguesFlankFindsTheBranchBelowAtOmegaMax)
   // (8 % above it when only the segments' first points were guesses).
   auto coarse                 = seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
   coarse.discretisation.cells = 7;
-  check_branch_found_below_the_end(coarse);
+  std::vector<nsm::BackbonePoint> p;
+  check_branch_found_below_the_end(coarse, p);
 }
 
 TEST(Backbone, ARunEndingWhileClimbingATongueFindsTheBranchBelowWithMoreContact)
@@ -304,8 +304,10 @@ TEST(Backbone, ARunEndingWhileClimbingATongueFindsTheBranchBelowWithMoreContact)
   // 0.208, branch below 0.341.
   auto coarse                      = seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
   coarse.continuation.initial_step = coarse.continuation.max_step = 1e-3;
-  const auto p                     = check_branch_found_below_the_end(coarse);
-  ASSERT_GE(p.size(), 3u);
+  std::vector<nsm::BackbonePoint> p;
+  check_branch_found_below_the_end(coarse, p);
+  if (HasFatalFailure())
+    return;
   const auto &end = p.back(), &flank = p[p.size() - 2];
   // The flank climbed to the end: its segment's points before it lie lower.
   const auto before = std::find_if(p.rbegin() + 2, p.rend(), [&](const auto &q) { return q.segment != flank.segment; });
