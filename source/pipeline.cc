@@ -7,21 +7,15 @@
 #include <nsm/output_directory.h>
 #include <nsm/discretisation.h>
 #include <nsm/pipeline.h>
+#include <nsm/plots.h>
 #include <nsm/progress.h>
 #include <nsm/receptance.h>
-#include <nsm/spectrum.h>
+#include <nsm/result_tables.h>
 #include <nsm/time_verification.h>
-
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <ctime>
-#include <fstream>
 #include <iomanip>
 #include <memory>
 #include <ostream>
@@ -51,70 +45,6 @@ namespace nsm
         << " cells, " << d.n_dofs() << " DoFs, h in [" << d.min_cell_size()
         << ", " << d.max_cell_size() << "]";
       return s.str();
-    }
-
-    CsvTable spectrum_table(const Discretisation &d, const unsigned int modes)
-    {
-      const ModalData free =
-        compute_spectrum(d, EndCondition::clamped_free, modes, false);
-      const ModalData clamped =
-        compute_spectrum(d, EndCondition::clamped_clamped, modes, false);
-      const std::size_t n = std::min(free.eigenvalues.size(), clamped.eigenvalues.size());
-      CsvTable table{"spectrum.csv",
-                     {"j", "omega_clamped_free", "omega_clamped_clamped"},
-                     {}};
-      for (std::size_t j = 0; j < n; ++j)
-        table.rows.push_back({double(j + 1),
-                              std::sqrt(free.eigenvalues[j]),
-                              std::sqrt(clamped.eigenvalues[j])});
-      return table;
-    }
-
-    CsvTable receptance_table(const Receptance &receptance, const Scene &scene)
-    {
-      CsvTable table{"receptance.csv", {"omega", "gamma", "dgamma_domega2"}, {}};
-      for (const double w : scene.output.receptance_frequencies)
-        {
-          const ReceptanceValue v = receptance(w);
-          table.rows.push_back({w, v.gamma, v.dgamma_domega2});
-        }
-      return table;
-    }
-    using Verifications = std::vector<std::optional<PointVerification>>;
-
-    /// The verification columns of one row; empty cells for a point not verified.
-    std::vector<CsvCell> verification_cells(const std::optional<PointVerification> &v)
-    {
-      if (!v)
-        return std::vector<CsvCell>(6, std::string());
-      return {v->verified ? "true" : "false", v->time.periodicity_defect, v->time.periodicity_defect_end,
-              v->time.energy_drift, v->impulse_ratio, v->time.contact_fraction};
-    }
-
-    CsvTable backbone_table(const Backbone &backbone, const Verifications &verifications)
-    {
-      CsvTable table{"backbone.csv",
-                     {"segment", "Omega", "energy", "energy_spread", "max_contact_force",
-                      "contact_fraction", "newton_iterations", "residual", "branch",
-                      "resonance_mode", "resonance_harmonic"},
-                     {}};
-      if (!verifications.empty())
-        for (const char *c : {"verified", "periodicity_defect", "periodicity_defect_end", "energy_drift",
-                              "impulse_ratio", "verified_contact_fraction"})
-          table.columns.push_back(c);
-      for (std::size_t i = 0; i < backbone.points.size(); ++i)
-        {
-          const BackbonePoint &p = backbone.points[i];
-          table.rows.push_back({double(p.segment), p.omega, p.measures.energy,
-                                p.measures.energy_spread, p.measures.max_contact_force,
-                                p.measures.contact_fraction, double(p.newton_iterations),
-                                p.residual, branch_name(p.branch),
-                                double(p.resonance.mode), double(p.resonance.harmonic)});
-          if (!verifications.empty())
-            for (CsvCell &cell : verification_cells(verifications[i]))
-              table.rows.back().push_back(std::move(cell));
-        }
-      return table;
     }
 
     /// A field asked for at an Omega where the computed branch is a tongue.
@@ -161,64 +91,158 @@ namespace nsm
       return s.str();
     }
 
-    CsvTable tongue_table(const Backbone &backbone)
+    /// The stages of one run, in order; each is timed into the report and
+    /// adds its tables, fields and notes for the output stage.
+    class SceneRun
     {
-      CsvTable table{"tongues.csv",
-                     {"mode", "harmonic", "omega_resonance", "foot_omega_begin",
-                      "foot_omega_end", "max_energy", "points"},
-                     {}};
-      for (const Tongue &t : backbone.tongues)
-        table.rows.push_back({double(t.resonance.mode), double(t.resonance.harmonic),
-                              t.resonance.omega, t.foot_begin, t.foot_end, t.max_energy,
-                              double(t.points)});
-      return table;
-    }
+    public:
+      SceneRun(const Scene &scene, RunReport &report)
+        : scene_(scene)
+        , report_(report)
+      {}
 
-    CsvTable resonance_table(const std::vector<InternalResonance> &resonances)
-    {
-      CsvTable table{"resonances.csv", {"omega", "mode", "harmonic"}, {}};
-      for (const InternalResonance &r : resonances)
-        table.rows.push_back({r.omega, double(r.mode), double(r.harmonic)});
-      return table;
-    }
-    /// Runs a program with these arguments, without a shell (no character of
-    /// an argument is interpreted), its output to `log`; returns whether it
-    /// exited with status 0.
-    bool run_program(const std::vector<std::string> &arguments, const std::string &log)
-    {
-      std::vector<char *> argv;
-      for (const std::string &a : arguments)
-        argv.push_back(const_cast<char *>(a.c_str()));
-      argv.push_back(nullptr);
-      posix_spawn_file_actions_t actions;
-      posix_spawn_file_actions_init(&actions);
-      posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
-                                       O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-      pid_t      pid;
-      const bool spawned =
-        posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ) == 0;
-      posix_spawn_file_actions_destroy(&actions);
-      int status = 0;
-      return spawned && waitpid(pid, &status, 0) == pid && WIFEXITED(status) &&
-             WEXITSTATUS(status) == 0;
-    }
+      void mesh(const BarModel &bar)
+      {
+        timed(report_, "mesh and assembly", [&] {
+          discretisation_ = std::make_unique<Discretisation>(bar, scene_.discretisation);
+        });
+        if (scene_.discretisation.refinement == Refinement::adaptive)
+          timed(report_, "adaptive refinement", [&] {
+            Progress progress("adaptive refinement", scene_.output.progress_every);
+            for (std::string &note :
+                 refine_adaptively(*discretisation_, scene_.discretisation, scene_.refinement_band(), &progress))
+              report_.notes.push_back(std::move(note));
+          });
+        report_.notes.push_back(describe(*discretisation_));
+      }
 
+      void spectrum()
+      {
+        timed(report_, "spectrum", [&] {
+          tables_.push_back(spectrum_table(*discretisation_, scene_.output.spectrum_modes));
+        });
+      }
+
+      void set_up_receptance()
+      {
+        timed(report_, "receptance set-up", [&] {
+          receptance_ = std::make_unique<Receptance>(*discretisation_, scene_.receptance, scene_.receptance_band());
+        });
+      }
+
+      void receptance()
+      {
+        timed(report_, "receptance", [&] { tables_.push_back(receptance_table(*receptance_, scene_)); });
+      }
+
+      void harmonic_balance()
+      {
+        timed(report_, "harmonic balance", [&] {
+          hb_         = std::make_unique<HarmonicBalance>(scene_, *receptance_);
+          resonances_ = internal_resonances(*receptance_, scene_);
+          backbone_   = compute_backbone(*hb_, scene_, resonances_);
+          report_.notes.push_back(backbone_note());
+          for (const std::string &event : backbone_.events)
+            report_.notes.push_back("  " + event);
+        });
+      }
+
+      void verify_in_time()
+      {
+        timed(report_, "verification in time", [&] {
+          Progress progress("verification in time", scene_.output.progress_every);
+          verifications_ = verify_backbone(*hb_, *discretisation_, backbone_, scene_, progress);
+          report_.notes.push_back(verification_summary(verifications_, scene_));
+        });
+      }
+
+      void backbone_tables()
+      {
+        tables_.push_back(backbone_table(backbone_, verifications_));
+        tables_.push_back(tongue_table(backbone_));
+        tables_.push_back(resonance_table(resonances_));
+      }
+
+      void fields()
+      {
+        timed(report_, "fields", [&] {
+          const auto &o = scene_.output;
+          Progress    progress("fields", o.progress_every);
+          const auto  report_count = [&] { return std::to_string(fields_.size()) + " fields"; };
+          for (const double omega : o.fields_at)
+            {
+              fields_.emplace_back(*hb_, *discretisation_, solve_on_branch(*hb_, scene_, backbone_, omega),
+                                   scene_.contact.sign);
+              if (const BackbonePoint &p = fields_.back().point(); p.branch == Branch::tongue)
+                report_.notes.push_back(tongue_field_note(p));
+              if (o.verify_in_time)
+                report_.notes.push_back(field_verification(fields_.back(), *discretisation_, scene_));
+              progress.update(report_count);
+            }
+          for (std::size_t i = 0; o.fields_every > 0 && i < backbone_.points.size(); i += o.fields_every)
+            {
+              fields_.emplace_back(*hb_, *discretisation_, backbone_.points[i], scene_.contact.sign);
+              progress.update(report_count);
+            }
+        });
+      }
+
+      /// Writes the tables and fields into the directory's staging area.
+      void write(const std::string &directory)
+      {
+        timed(report_, "output", [&] {
+          for (const CsvTable &table : tables_)
+            report_.files.push_back(write_csv(directory, table));
+          const FieldOutputOptions options{scene_.field_time_samples(), scene_.output.vtk, scene_.output.plots};
+          Progress progress("output", scene_.output.progress_every);
+          for (std::size_t i = 0; i < fields_.size(); ++i)
+            {
+              for (std::string &f : write_field(directory, i, fields_[i], *discretisation_, options))
+                report_.files.push_back(std::move(f));
+              progress.update([&] {
+                return std::to_string(i + 1) + " of " + std::to_string(fields_.size()) + " fields written";
+              });
+            }
+          if (!fields_.empty())
+            for (std::string &f : write_field_collection(directory, fields_, scene_.output.vtk))
+              report_.files.push_back(std::move(f));
+        });
+      }
+
+    private:
+      std::string backbone_note() const
+      {
+        std::ostringstream s;
+        s << "backbone: " << backbone_.points.size() << " points (" << backbone_.main_points() << " main, "
+          << backbone_.points.size() - backbone_.main_points() << " on " << backbone_.tongues.size()
+          << " tongues), " << backbone_.leaps << " leaps, " << backbone_.folds.size() << " folds, "
+          << hb_->n_unknowns() << " unknowns";
+        return s.str();
+      }
+
+      const Scene                    &scene_;
+      RunReport                      &report_;
+      std::vector<CsvTable>           tables_;
+      std::unique_ptr<Discretisation> discretisation_;
+      std::unique_ptr<Receptance>     receptance_;
+      std::unique_ptr<HarmonicBalance> hb_;
+      std::vector<InternalResonance>  resonances_;
+      Backbone                        backbone_;
+      Verifications                   verifications_;
+      std::vector<PeriodicField>      fields_;
+    };
   } // namespace
 
   RunReport run_scene(const Scene &scene)
   {
-    RunReport             report;
-    std::vector<CsvTable> tables;
-
     const bool needs_spectrum   = scene.output.spectrum_modes > 0;
     const bool needs_receptance = !scene.output.receptance_frequencies.empty();
     const bool needs_fields     = scene.output.fields();
     const bool needs_backbone   = scene.output.backbone || needs_fields;
-    const bool needs_mesh       = needs_spectrum || needs_receptance || needs_backbone;
+    RunReport  report;
     // The cross-section is checked even when nothing else is to be done.
     const BarModel bar(scene.bar);
-    if (!needs_mesh)
+    if (!needs_spectrum && !needs_receptance && !needs_backbone)
       {
         report.notes.push_back("the scene requests no output: nothing to do");
         return report;
@@ -226,103 +250,23 @@ namespace nsm
 
     // Checked before any work: an unwritable directory is known now.
     OutputDirectory output(scene.output.directory);
-    std::unique_ptr<Discretisation> discretisation;
-    timed(report, "mesh and assembly", [&] {
-      discretisation = std::make_unique<Discretisation>(bar, scene.discretisation);
-    });
-    if (scene.discretisation.refinement == Refinement::adaptive)
-      timed(report, "adaptive refinement", [&] {
-        Progress progress("adaptive refinement", scene.output.progress_every);
-        for (std::string &note :
-             refine_adaptively(*discretisation, scene.discretisation, scene.refinement_band(), &progress))
-          report.notes.push_back(std::move(note));
-      });
-    report.notes.push_back(describe(*discretisation));
-
+    SceneRun        run(scene, report);
+    run.mesh(bar);
     if (needs_spectrum)
-      timed(report, "spectrum", [&] {
-        tables.push_back(spectrum_table(*discretisation, scene.output.spectrum_modes));
-      });
-    std::unique_ptr<Receptance> receptance;
+      run.spectrum();
     if (needs_receptance || needs_backbone)
-      timed(report, "receptance set-up", [&] {
-        receptance = std::make_unique<Receptance>(*discretisation, scene.receptance, scene.receptance_band());
-      });
+      run.set_up_receptance();
     if (needs_receptance)
-      timed(report, "receptance", [&] { tables.push_back(receptance_table(*receptance, scene)); });
-    std::unique_ptr<HarmonicBalance> hb;
-    Backbone                         backbone;
-    std::vector<InternalResonance>   resonances;
+      run.receptance();
     if (needs_backbone)
-      timed(report, "harmonic balance", [&] {
-        hb         = std::make_unique<HarmonicBalance>(scene, *receptance);
-        resonances = internal_resonances(*receptance, scene);
-        backbone   = compute_backbone(*hb, scene, resonances);
-        std::ostringstream s;
-        s << "backbone: " << backbone.points.size() << " points (" << backbone.main_points()
-          << " main, " << backbone.points.size() - backbone.main_points() << " on "
-          << backbone.tongues.size() << " tongues), " << backbone.leaps << " leaps, "
-          << backbone.folds.size() << " folds, " << hb->n_unknowns() << " unknowns";
-        report.notes.push_back(s.str());
-        for (const std::string &event : backbone.events)
-          report.notes.push_back("  " + event);
-      });
-
-    Verifications verifications;
+      run.harmonic_balance();
     if (scene.output.verify_in_time)
-      timed(report, "verification in time", [&] {
-        Progress progress("verification in time", scene.output.progress_every);
-        verifications = verify_backbone(*hb, *discretisation, backbone, scene, progress);
-        report.notes.push_back(verification_summary(verifications, scene));
-      });
+      run.verify_in_time();
     if (scene.output.backbone)
-      {
-        tables.push_back(backbone_table(backbone, verifications));
-        tables.push_back(tongue_table(backbone));
-        tables.push_back(resonance_table(resonances));
-      }
-
-    std::vector<PeriodicField> fields;
+      run.backbone_tables();
     if (needs_fields)
-      timed(report, "fields", [&] {
-        const auto &o = scene.output;
-        Progress    progress("fields", o.progress_every);
-        const auto  report_count = [&] { return std::to_string(fields.size()) + " fields"; };
-        for (const double omega : o.fields_at)
-          {
-            fields.emplace_back(*hb, *discretisation, solve_on_branch(*hb, scene, backbone, omega),
-                                scene.contact.sign);
-            if (const BackbonePoint &p = fields.back().point(); p.branch == Branch::tongue)
-              report.notes.push_back(tongue_field_note(p));
-            if (o.verify_in_time)
-              report.notes.push_back(field_verification(fields.back(), *discretisation, scene));
-            progress.update(report_count);
-          }
-        for (std::size_t i = 0; o.fields_every > 0 && i < backbone.points.size(); i += o.fields_every)
-          {
-            fields.emplace_back(*hb, *discretisation, backbone.points[i], scene.contact.sign);
-            progress.update(report_count);
-          }
-      });
-
-    timed(report, "output", [&] {
-      const std::string &directory = output.staging();
-      for (const CsvTable &table : tables)
-        report.files.push_back(write_csv(directory, table));
-      const FieldOutputOptions options{scene.field_time_samples(), scene.output.vtk, scene.output.plots};
-      Progress progress("output", scene.output.progress_every);
-      for (std::size_t i = 0; i < fields.size(); ++i)
-        {
-          for (std::string &f : write_field(directory, i, fields[i], *discretisation, options))
-            report.files.push_back(std::move(f));
-          progress.update([&] {
-            return std::to_string(i + 1) + " of " + std::to_string(fields.size()) + " fields written";
-          });
-        }
-      if (!fields.empty())
-        for (std::string &f : write_field_collection(directory, fields, scene.output.vtk))
-          report.files.push_back(std::move(f));
-    });
+      run.fields();
+    run.write(output.staging());
     if (scene.output.plots)
       timed(report, "plots", [&] {
         for (std::string &f : make_plots(scene, output.staging()))
@@ -330,26 +274,6 @@ namespace nsm
       });
     report.files = output.commit(report.files);
     return report;
-  }
-
-  std::vector<std::string> make_plots(const Scene &scene, const std::string &directory)
-  {
-    std::ostringstream gap;
-    gap.precision(17);
-    gap << scene.contact.gap;
-    const std::string log_path = directory + "/plots.log";
-    const bool ok = run_program({NSM_PYTHON, NSM_PLOT_SCRIPT, directory, "--gap", gap.str()}, log_path);
-    std::vector<std::string> files;
-    std::string              last;
-    std::ifstream            log(log_path);
-    for (std::string line; std::getline(log, line); last = line)
-      if (line.rfind("wrote ", 0) == 0)
-        files.push_back(line.substr(6));
-    // The log goes with the failed run's staging directory: its last line is kept.
-    if (!ok)
-      throw NumericalError("the plotting script failed: " + last);
-    files.push_back(log_path);
-    return files;
   }
 
   void print_report(const RunReport &report, std::ostream &out)

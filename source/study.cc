@@ -1,12 +1,11 @@
 #include <nsm/output.h>
+#include <nsm/plots.h>
 #include <nsm/progress.h>
-#include <nsm/scene_file.h>
 #include <nsm/study.h>
 #include <nsm/study_reference.h>
 #include <nsm/study_row.h>
 
 #include <deal.II/base/mpi.h>
-#include <deal.II/base/parameter_handler.h>
 
 #include <algorithm>
 #include <chrono>
@@ -16,7 +15,6 @@
 #include <limits>
 #include <map>
 #include <optional>
-#include <set>
 #include <sstream>
 
 namespace nsm
@@ -24,67 +22,6 @@ namespace nsm
   namespace
   {
     namespace fs = std::filesystem;
-
-    /// Calls `action` with `prm` inside subsection "A/B".
-    template <typename Action>
-    auto in_subsection(dealii::ParameterHandler &prm, const std::string &subsection, const Action &action)
-    {
-      std::stringstream parts(subsection);
-      unsigned int      depth = 0;
-      for (std::string part; std::getline(parts, part, '/'); ++depth)
-        prm.enter_subsection(part);
-      const auto result = action();
-      for (; depth > 0; --depth)
-        prm.leave_subsection();
-      return result;
-    }
-
-    void set_entry(dealii::ParameterHandler &prm, const std::string &subsection, const std::string &name,
-                   const std::string &value)
-    {
-      in_subsection(prm, subsection, [&] {
-        prm.set(name, value);
-        return 0;
-      });
-    }
-
-    /// A row's outputs are the study's measures: the receptance band and
-    /// the backbone follow from them, and no file output is asked for.
-    void set_row_outputs(dealii::ParameterHandler &prm, const StudyParameters &study)
-    {
-      set_entry(prm, "Output", "Receptance frequencies", study.receptance_frequencies);
-      set_entry(prm, "Output", "Backbone", study.backbone_omega_values.empty() ? "false" : "true");
-      set_entry(prm, "Output", "Spectrum modes", "0");
-      set_entry(prm, "Output", "Fields at", "");
-      set_entry(prm, "Output", "Fields every", "0");
-      set_entry(prm, "Output", "VTK", "false");
-      set_entry(prm, "Output", "Plots", "false");
-      set_entry(prm, "Output", "Verify in time", "false");
-    }
-
-    dealii::ParameterHandler &read(dealii::ParameterHandler &prm, const std::string &path)
-    {
-      Scene::declare(prm);
-      read_scene_file(path, prm);
-      return prm;
-    }
-
-    /// The base scene as text, without what a rerun may change: the swept
-    /// lists, the repeats, where the output goes and how it is shown.
-    std::string fingerprint(const std::string &path, const Scene &base)
-    {
-      dealii::ParameterHandler prm;
-      read(prm, path);
-      for (const StudyParameters::Sweep &s : base.study.sweeps)
-        set_entry(prm, "Study", s.study_entry, "");
-      set_entry(prm, "Study", "Repeats", "1");
-      set_entry(prm, "Output", "Directory", "-");
-      set_entry(prm, "Output", "Progress every", "0");
-      set_entry(prm, "Output", "Plots", "false");
-      std::ostringstream text;
-      prm.print_parameters(text, dealii::ParameterHandler::ShortPRM);
-      return text.str();
-    }
 
     std::string file_text(const std::string &path)
     {
@@ -192,85 +129,6 @@ namespace nsm
 
   namespace
   {
-    /// The combination's values with those its run does not use written "-"
-    /// (Sweep::used_if_column: Time samples under exact integration, the
-    /// graded and adaptive parameters under another refinement).
-    std::vector<std::string> used_values(const std::vector<StudyParameters::Sweep> &sweeps,
-                                         std::vector<std::string>                    key)
-    {
-      const std::vector<std::string> as_set = key;
-      for (std::size_t i = 0; i < sweeps.size(); ++i)
-        if (!sweeps[i].used_if_column.empty())
-          {
-            const auto condition = std::find_if(sweeps.begin(), sweeps.end(), [&](const auto &w) {
-              return w.column == sweeps[i].used_if_column;
-            });
-            if (as_set[condition - sweeps.begin()] != sweeps[i].used_if_value)
-              key[i] = "-";
-          }
-      return key;
-    }
-  } // namespace
-
-  std::vector<StudyCombination> study_combinations(const std::string &path, const Scene &base)
-  {
-    dealii::ParameterHandler prm;
-    read(prm, path);
-    set_row_outputs(prm, base.study);
-    std::vector<std::vector<std::string>> values;
-    for (const StudyParameters::Sweep &s : base.study.sweeps)
-      values.push_back(s.values.empty() ?
-                         std::vector<std::string>{in_subsection(prm, s.subsection, [&] { return prm.get(s.name); })} :
-                         s.values);
-    std::vector<StudyCombination>      combinations;
-    std::set<std::vector<std::string>> used;
-    std::vector<std::size_t>           digit(values.size(), 0);
-    for (bool more = true; more;)
-      {
-        StudyCombination c;
-        for (std::size_t i = 0; i < values.size(); ++i)
-          {
-            set_entry(prm, base.study.sweeps[i].subsection, base.study.sweeps[i].name, values[i][digit[i]]);
-            c.key.push_back(values[i][digit[i]]);
-          }
-        // A combination that differs from an earlier one only in values its
-        // run does not use would repeat that run: it is left out.
-        c.key = used_values(base.study.sweeps, std::move(c.key));
-        if (used.insert(c.key).second)
-          {
-            c.scene = Scene::from_parameters(prm, path + ", study row " + std::to_string(combinations.size() + 1));
-            combinations.push_back(std::move(c));
-          }
-        // The last sweep varies fastest.
-        more = false;
-        for (std::size_t i = values.size(); i-- > 0 && !more;)
-          if (++digit[i] < values[i].size())
-            more = true;
-          else
-            digit[i] = 0;
-      }
-    return combinations;
-  }
-
-  std::vector<Scene> reference_levels(const std::string &path, const Scene &base)
-  {
-    dealii::ParameterHandler prm;
-    read(prm, path);
-    set_row_outputs(prm, base.study);
-    if (!base.study.reference_degree.empty())
-      set_entry(prm, "Discretisation", "Degree", base.study.reference_degree);
-    set_entry(prm, "Discretisation", "Refinement", "none");
-    std::vector<Scene> levels;
-    for (const std::string &cells : base.study.reference_cells)
-      {
-        set_entry(prm, "Discretisation", "Cells", cells);
-        levels.push_back(Scene::from_parameters(prm, path + ", reference with " + cells + " cells"));
-      }
-    return levels;
-  }
-
-  namespace
-  {
     /// "; n combinations left out: ..." if study_combinations left any out.
     std::string left_out_note(const StudyParameters &study, const std::size_t rows)
     {
@@ -313,110 +171,158 @@ namespace nsm
         notes = fine_reference_notes(table, levels, origin);
       return read_fine_reference(table, levels);
     }
-  } // namespace
-
-  RunReport run_study(const std::string &path, const Scene &base)
-  {
-    const MPI_Comm     comm  = MPI_COMM_WORLD;
-    const unsigned int ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
-    const bool         root  = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
-    const auto         start = std::chrono::steady_clock::now();
-    const clock_t      cpu_start = std::clock();
-
-    const std::vector<StudyCombination> combinations = study_combinations(path, base);
-    CsvTable                            table{"study.csv", {}, {}};
-    for (const StudyParameters::Sweep &s : base.study.sweeps)
-      table.columns.push_back(s.column);
-    const std::size_t key_size = table.columns.size();
-    for (const std::string &c : study_row_columns(base.study))
-      table.columns.push_back(c);
-
-    const std::string directory  = base.output.directory;
-    const std::string scene_text = fingerprint(path, base);
-    auto              rows       = earlier_rows(directory, scene_text, table.columns, key_size);
-    std::vector<std::size_t> missing;
-    for (std::size_t i = 0; i < combinations.size(); ++i)
-      if (rows.count(combinations[i].key) == 0)
-        missing.push_back(i);
-    const std::size_t resumed = combinations.size() - missing.size();
-    // study.csv holds the rows computed so far, in combination order.
-    const auto in_combination_order = [&] {
-      table.rows.clear();
-      for (const StudyCombination &c : combinations)
-        if (const auto row = rows.find(c.key); row != rows.end())
-          table.rows.push_back(row->second);
-    };
-
-    // Every rank has checked the same input; only rank 0 writes.
-    if (root)
+    /// A study's rows on this rank: those study.csv already holds, those
+    /// missing, and the rounds over the ranks that compute them.
+    class StudyRun
+    {
+    public:
+      StudyRun(const std::string &path, const Scene &base)
+        : base_(base)
+        , combinations_(study_combinations(path, base))
+        , scene_text_(study_fingerprint(path, base))
       {
-        std::error_code error;
-        fs::create_directories(directory, error);
-        if (error)
-          throw InputError("parameter 'Output/Directory' = " + directory + " cannot be created: " +
-                           error.message() + "; allowed: a new or empty directory, or this study's");
-        write_atomically(directory + "/study.scene", [&](std::ostream &out) { out << scene_text; });
+        for (const StudyParameters::Sweep &s : base.study.sweeps)
+          table_.columns.push_back(s.column);
+        key_size_ = table_.columns.size();
+        for (const std::string &c : study_row_columns(base.study))
+          table_.columns.push_back(c);
+        rows_ = earlier_rows(directory(), scene_text_, table_.columns, key_size_);
+        for (std::size_t i = 0; i < combinations_.size(); ++i)
+          if (rows_.count(combinations_[i].key) == 0)
+            missing_.push_back(i);
       }
-    std::vector<std::string>           reference_notes;
-    const std::optional<FineReference> fine = shared_fine_reference(path, base, comm, reference_notes);
-    unsigned int failed = 0;
-    Progress     progress("study", base.output.progress_every);
-    for (std::size_t round = 0; round < missing.size(); round += ranks)
+
+      bool root() const { return rank_ == 0; }
+
+      const std::string &directory() const { return base_.output.directory; }
+
+      double elapsed() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+
+      /// Rank 0 creates the directory and records the base scene: every
+      /// rank has checked the same input, and only rank 0 writes.
+      void prepare_directory() const
       {
-        const std::size_t mine = round + dealii::Utilities::MPI::this_mpi_process(comm);
-        std::string       packed;
-        if (mine < missing.size())
+        if (!root())
+          return;
+        std::error_code error;
+        fs::create_directories(directory(), error);
+        if (error)
+          throw InputError("parameter 'Output/Directory' = " + directory() + " cannot be created: " +
+                           error.message() + "; allowed: a new or empty directory, or this study's");
+        write_atomically(directory() + "/study.scene", [&](std::ostream &out) { out << scene_text_; });
+      }
+
+      /// Deals the missing rows out over the ranks in rounds; after each,
+      /// rank 0 rewrites study.csv and prints the progress.
+      void run_missing_rows(const FineReference *fine)
+      {
+        Progress progress("study", base_.output.progress_every);
+        for (std::size_t round = 0; round < missing_.size(); round += ranks_)
           {
-            const StudyCombination  &c     = combinations[missing[mine]];
-            std::vector<std::string> cells = c.key;
-            for (std::string &cell : measure_study_row(c.scene, fine ? &*fine : nullptr))
-              cells.push_back(std::move(cell));
-            packed = pack_row(missing[mine], cells);
+            const std::size_t mine = round + rank_;
+            std::string       packed;
+            if (mine < missing_.size())
+              {
+                const StudyCombination  &c     = combinations_[missing_[mine]];
+                std::vector<std::string> cells = c.key;
+                for (std::string &cell : measure_study_row(c.scene, fine))
+                  cells.push_back(std::move(cell));
+                packed = pack_row(missing_[mine], cells);
+              }
+            const std::vector<std::string> gathered = dealii::Utilities::MPI::gather(comm_, packed, 0);
+            if (!root())
+              continue;
+            keep_rows(gathered);
+            write_csv(directory(), table_);
+            progress.update([&] { return progress_line(std::min(missing_.size(), round + ranks_)); });
           }
-        const std::vector<std::string> gathered = dealii::Utilities::MPI::gather(comm, packed, 0);
-        if (!root)
-          continue;
+      }
+
+      /// The summary's lines (rank 0): rows, the fine reference's lines,
+      /// then the Pareto front.
+      std::vector<std::string> notes(const std::vector<std::string> &reference_notes)
+      {
+        std::ostringstream note;
+        note << "study: " << combinations_.size() << " rows, " << missing_.size() << " run now on " << ranks_
+             << (ranks_ == 1 ? " rank, " : " ranks, ") << resumed() << " from an earlier run, " << failed_
+             << " failed" << left_out_note(base_.study, combinations_.size());
+        std::vector<std::string> lines{note.str()};
+        lines.insert(lines.end(), reference_notes.begin(), reference_notes.end());
+        in_combination_order();
+        for (std::string &line : pareto_notes(table_, key_size_))
+          lines.push_back(std::move(line));
+        return lines;
+      }
+
+    private:
+      std::size_t resumed() const { return combinations_.size() - missing_.size(); }
+
+      /// Rank 0 keeps the gathered rows of one round.
+      void keep_rows(const std::vector<std::string> &gathered)
+      {
         for (const std::string &p : gathered)
           if (!p.empty())
             {
               std::vector<std::string> cells = split_fields(p, '\x1f');
               cells.erase(cells.begin());
-              failed += cells[key_size] != "ok";
-              std::vector<std::string> key(cells.begin(), cells.begin() + key_size);
-              rows[key] = std::vector<CsvCell>(cells.begin(), cells.end());
+              failed_ += cells[key_size_] != "ok";
+              std::vector<std::string> key(cells.begin(), cells.begin() + key_size_);
+              rows_[key] = std::vector<CsvCell>(cells.begin(), cells.end());
             }
         in_combination_order();
-        write_csv(directory, table);
-        const std::size_t done    = std::min(missing.size(), round + ranks);
-        const double      elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        progress.update([&] {
-          return std::to_string(resumed + done) + " of " + std::to_string(combinations.size()) + " rows (" +
-                 std::to_string(resumed) + " from an earlier run), " + seconds(elapsed) + " elapsed, about " +
-                 seconds(elapsed / done * (missing.size() - done)) + " left";
-        });
       }
 
+      /// study.csv holds the rows computed so far, in combination order.
+      void in_combination_order()
+      {
+        table_.rows.clear();
+        for (const StudyCombination &c : combinations_)
+          if (const auto row = rows_.find(c.key); row != rows_.end())
+            table_.rows.push_back(row->second);
+      }
+
+      std::string progress_line(const std::size_t done) const
+      {
+        const double t = elapsed();
+        return std::to_string(resumed() + done) + " of " + std::to_string(combinations_.size()) + " rows (" +
+               std::to_string(resumed()) + " from an earlier run), " + seconds(t) + " elapsed, about " +
+               seconds(t / done * (missing_.size() - done)) + " left";
+      }
+
+      const MPI_Comm                      comm_  = MPI_COMM_WORLD;
+      const unsigned int                  ranks_ = dealii::Utilities::MPI::n_mpi_processes(comm_);
+      const unsigned int                  rank_  = dealii::Utilities::MPI::this_mpi_process(comm_);
+      const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+      const Scene                        &base_;
+      const std::vector<StudyCombination> combinations_;
+      const std::string                   scene_text_;
+      CsvTable                            table_{"study.csv", {}, {}};
+      std::size_t                         key_size_ = 0;
+      std::map<std::vector<std::string>, std::vector<CsvCell>> rows_;
+      std::vector<std::size_t>            missing_;
+      unsigned int                        failed_ = 0;
+    };
+  } // namespace
+
+  RunReport run_study(const std::string &path, const Scene &base)
+  {
+    const clock_t cpu_start = std::clock();
+    StudyRun      study(path, base);
+    study.prepare_directory();
+    std::vector<std::string>           reference_notes;
+    const std::optional<FineReference> fine = shared_fine_reference(path, base, MPI_COMM_WORLD, reference_notes);
+    study.run_missing_rows(fine ? &*fine : nullptr);
+
     RunReport report;
-    report.stages.push_back({"study",
-                             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                             double(std::clock() - cpu_start) / CLOCKS_PER_SEC});
-    if (!root)
+    report.stages.push_back({"study", study.elapsed(), double(std::clock() - cpu_start) / CLOCKS_PER_SEC});
+    if (!study.root())
       return report;
-    std::ostringstream note;
-    note << "study: " << combinations.size() << " rows, " << missing.size() << " run now on " << ranks
-         << (ranks == 1 ? " rank, " : " ranks, ") << resumed << " from an earlier run, " << failed
-         << " failed" << left_out_note(base.study, combinations.size());
-    report.notes.push_back(note.str());
-    for (std::string &line : reference_notes)
-      report.notes.push_back(std::move(line));
-    in_combination_order();
-    for (std::string &line : pareto_notes(table, key_size))
-      report.notes.push_back(std::move(line));
-    report.files = {directory + "/study.csv", directory + "/study.scene"};
+    report.notes = study.notes(reference_notes);
+    report.files = {study.directory() + "/study.csv", study.directory() + "/study.scene"};
     if (fine)
-      report.files.push_back(directory + "/reference.csv");
+      report.files.push_back(study.directory() + "/reference.csv");
     if (base.output.plots)
-      for (std::string &f : make_plots(base, directory))
+      for (std::string &f : make_plots(base, study.directory()))
         report.files.push_back(std::move(f));
     return report;
   }

@@ -30,9 +30,4 @@ namespace nsm
   RunReport run_scene(const Scene &scene);
 
   void print_report(const RunReport &report, std::ostream &out);
-
-  /// Runs the shipped plotting script on the files in `directory`, with
-  /// its log in directory/plots.log; returns the files it wrote and the log.
-  /// Throws NumericalError with the log's last line if it fails.
-  std::vector<std::string> make_plots(const Scene &scene, const std::string &directory);
 } // namespace nsm
