@@ -261,6 +261,44 @@ namespace nsm
       nox.sublist("Line Search").set("Method", params.line_search);
       nox.sublist("Printing").set("Output Information", NOX::Utils::Error);
     }
+
+    /// LOCA's parameters: pseudo-arclength in Omega from `start` over the
+    /// scene's range and step bounds, Newton as at fixed Omega, and LOCA's
+    /// own messages discarded.
+    Teuchos::RCP<Teuchos::ParameterList>
+    arclength_parameters(const Scene &scene, const BackbonePoint &start, const double initial_step)
+    {
+      const auto  &c         = scene.continuation;
+      const double direction = branch_direction(scene);
+      auto         params    = Teuchos::rcp(new Teuchos::ParameterList);
+      auto       &stepper   = params->sublist("LOCA").sublist("Stepper");
+      stepper.set("Continuation Method", "Arc Length");
+      stepper.set("Continuation Parameter", "Omega");
+      stepper.set("Initial Value", start.omega);
+      stepper.set("Max Value", c.omega_max);
+      stepper.set("Min Value", c.omega_min);
+      stepper.set("Max Steps", static_cast<int>(c.max_steps));
+      stepper.set("Max Nonlinear Iterations", static_cast<int>(scene.harmonic_balance.max_iterations));
+      stepper.set("Compute Eigenvalues", false);
+      params->sublist("LOCA").sublist("Predictor").set("Method", "Tangent");
+      // Unscaled arclength: a step of length ds changes Omega by at most ds,
+      // so Max step bounds the Omega increments as in sequential stepping.
+      stepper.set("Enable Arc Length Scaling", false);
+      auto &step = params->sublist("LOCA").sublist("Step Size");
+      step.set("Method", "Adaptive");
+      step.set("Aggressiveness", 1.0);
+      step.set("Initial Step Size", direction * initial_step);
+      step.set("Min Step Size", c.min_step);
+      step.set("Max Step Size", c.max_step);
+      set_newton_parameters(params->sublist("NOX"), scene.harmonic_balance);
+      params->sublist("NOX").sublist("Printing").set("Output Information", NOX::Utils::Error);
+      params->sublist("LOCA").sublist("Utilities").set("Output Information", NOX::Utils::Error);
+      // LOCA always writes a failed step (Min step reached) to its error stream;
+      // the run handles it as a fold and says so in its summary.
+      const Teuchos::RCP<std::ostream> discard = Teuchos::rcp(new Teuchos::oblackholestream);
+      params->sublist("NOX").sublist("Printing").set("Error Stream", discard);
+      return params;
+    }
   } // namespace
 
   struct NewtonSolver::Impl
@@ -313,38 +351,9 @@ namespace nsm
                      const double                                      initial_step,
                      const std::function<bool(const BackbonePoint &)> &accept)
   {
-    const auto &c         = scene.continuation;
-    const double direction = branch_direction(scene);
-    auto        params    = Teuchos::rcp(new Teuchos::ParameterList);
-    auto       &stepper   = params->sublist("LOCA").sublist("Stepper");
-    stepper.set("Continuation Method", "Arc Length");
-    stepper.set("Continuation Parameter", "Omega");
-    stepper.set("Initial Value", start.omega);
-    stepper.set("Max Value", c.omega_max);
-    stepper.set("Min Value", c.omega_min);
-    stepper.set("Max Steps", static_cast<int>(c.max_steps));
-    stepper.set("Max Nonlinear Iterations", static_cast<int>(scene.harmonic_balance.max_iterations));
-    stepper.set("Compute Eigenvalues", false);
-    params->sublist("LOCA").sublist("Predictor").set("Method", "Tangent");
-    // Unscaled arclength: a step of length ds changes Omega by at most ds,
-    // so Max step bounds the Omega increments as in sequential stepping.
-    stepper.set("Enable Arc Length Scaling", false);
-    auto &step = params->sublist("LOCA").sublist("Step Size");
-    step.set("Method", "Adaptive");
-    step.set("Aggressiveness", 1.0);
-    step.set("Initial Step Size", direction * initial_step);
-    step.set("Min Step Size", c.min_step);
-    step.set("Max Step Size", c.max_step);
-    set_newton_parameters(params->sublist("NOX"), scene.harmonic_balance);
-    params->sublist("NOX").sublist("Printing").set("Output Information", NOX::Utils::Error);
-    params->sublist("LOCA").sublist("Utilities").set("Output Information", NOX::Utils::Error);
-    // LOCA always writes a failed step (Min step reached) to its error stream;
-    // the run handles it as a fold and says so in its summary.
-    const Teuchos::RCP<std::ostream> discard = Teuchos::rcp(new Teuchos::oblackholestream);
-    params->sublist("NOX").sublist("Printing").set("Error Stream", discard);
-
-    auto data     = LOCA::createGlobalData(params);
-    bool finished = true;
+    const auto params   = arclength_parameters(scene, start, initial_step);
+    auto       data     = LOCA::createGlobalData(params);
+    bool       finished = true;
     {
       HbInterface interface(hb, start.x);
       interface.set_omega(start.omega);
