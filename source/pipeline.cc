@@ -13,9 +13,9 @@
 #include <nsm/result_tables.h>
 #include <nsm/time_verification.h>
 
+#include <deal.II/base/timer.h>
+
 #include <algorithm>
-#include <chrono>
-#include <ctime>
 #include <iomanip>
 #include <memory>
 #include <ostream>
@@ -25,19 +25,6 @@ namespace nsm
 {
   namespace
   {
-    /// Times one stage (wall and process CPU) into the report.
-    template <typename Work>
-    void timed(RunReport &report, const std::string &name, Work &&work)
-    {
-      const auto    wall0 = std::chrono::steady_clock::now();
-      const clock_t cpu0  = std::clock();
-      work();
-      report.stages.push_back(
-        {name,
-         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count(),
-         double(std::clock() - cpu0) / CLOCKS_PER_SEC});
-    }
-
     std::string describe(const Discretisation &d)
     {
       std::ostringstream s;
@@ -99,15 +86,16 @@ namespace nsm
       SceneRun(const Scene &scene, RunReport &report)
         : scene_(scene)
         , report_(report)
+        , timer_(quiet_, dealii::TimerOutput::never, dealii::TimerOutput::cpu_and_wall_times)
       {}
 
       void mesh(const BarModel &bar)
       {
-        timed(report_, "mesh and assembly", [&] {
+        timed("mesh and assembly", [&] {
           discretisation_ = std::make_unique<Discretisation>(bar, scene_.discretisation);
         });
         if (scene_.discretisation.refinement == Refinement::adaptive)
-          timed(report_, "adaptive refinement", [&] {
+          timed("adaptive refinement", [&] {
             Progress progress("adaptive refinement", scene_.output.progress_every);
             for (std::string &note :
                  refine_adaptively(*discretisation_, scene_.discretisation, scene_.refinement_band(), &progress))
@@ -118,26 +106,26 @@ namespace nsm
 
       void spectrum()
       {
-        timed(report_, "spectrum", [&] {
+        timed("spectrum", [&] {
           tables_.push_back(spectrum_table(*discretisation_, scene_.output.spectrum_modes));
         });
       }
 
       void set_up_receptance()
       {
-        timed(report_, "receptance set-up", [&] {
+        timed("receptance set-up", [&] {
           receptance_ = std::make_unique<Receptance>(*discretisation_, scene_.receptance, scene_.receptance_band());
         });
       }
 
       void receptance()
       {
-        timed(report_, "receptance", [&] { tables_.push_back(receptance_table(*receptance_, scene_)); });
+        timed("receptance", [&] { tables_.push_back(receptance_table(*receptance_, scene_)); });
       }
 
       void harmonic_balance()
       {
-        timed(report_, "harmonic balance", [&] {
+        timed("harmonic balance", [&] {
           hb_         = std::make_unique<HarmonicBalance>(scene_, *receptance_);
           resonances_ = internal_resonances(*receptance_, scene_);
           backbone_   = compute_backbone(*hb_, scene_, resonances_);
@@ -149,7 +137,7 @@ namespace nsm
 
       void verify_in_time()
       {
-        timed(report_, "verification in time", [&] {
+        timed("verification in time", [&] {
           Progress progress("verification in time", scene_.output.progress_every);
           verifications_ = verify_backbone(*hb_, *discretisation_, backbone_, scene_, progress);
           report_.notes.push_back(verification_summary(verifications_, scene_));
@@ -165,7 +153,7 @@ namespace nsm
 
       void fields()
       {
-        timed(report_, "fields", [&] {
+        timed("fields", [&] {
           const auto &o = scene_.output;
           Progress    progress("fields", o.progress_every);
           const auto  report_count = [&] { return std::to_string(fields_.size()) + " fields"; };
@@ -190,7 +178,7 @@ namespace nsm
       /// Writes the tables and fields into the directory's staging area.
       void write(const std::string &directory)
       {
-        timed(report_, "output", [&] {
+        timed("output", [&] {
           for (const CsvTable &table : tables_)
             report_.files.push_back(write_csv(directory, table));
           const FieldOutputOptions options{scene_.field_time_samples(), scene_.output.vtk, scene_.output.plots};
@@ -209,7 +197,36 @@ namespace nsm
         });
       }
 
+      void plots(const std::string &directory)
+      {
+        timed("plots", [&] {
+          for (std::string &f : make_plots(scene_, directory))
+            report_.files.push_back(std::move(f));
+        });
+      }
+
+      /// The stages' wall and CPU times, in the order they ran.
+      std::vector<StageTiming> stage_timings() const
+      {
+        const auto walls = timer_.get_summary_data(dealii::TimerOutput::total_wall_time);
+        const auto cpus  = timer_.get_summary_data(dealii::TimerOutput::total_cpu_time);
+        std::vector<StageTiming> stages;
+        for (const std::string &name : stage_order_)
+          stages.push_back({name, walls.at(name), cpus.at(name)});
+        return stages;
+      }
+
     private:
+      template <typename Work>
+      void timed(const std::string &name, Work &&work)
+      {
+        {
+          dealii::TimerOutput::Scope scope(timer_, name);
+          work();
+        }
+        stage_order_.push_back(name);
+      }
+
       std::string backbone_note() const
       {
         std::ostringstream s;
@@ -222,6 +239,9 @@ namespace nsm
 
       const Scene                    &scene_;
       RunReport                      &report_;
+      std::ostringstream              quiet_;
+      dealii::TimerOutput             timer_;
+      std::vector<std::string>        stage_order_;
       std::vector<CsvTable>           tables_;
       std::unique_ptr<Discretisation> discretisation_;
       std::unique_ptr<Receptance>     receptance_;
@@ -268,11 +288,9 @@ namespace nsm
       run.fields();
     run.write(output.staging());
     if (scene.output.plots)
-      timed(report, "plots", [&] {
-        for (std::string &f : make_plots(scene, output.staging()))
-          report.files.push_back(std::move(f));
-      });
-    report.files = output.commit(report.files);
+      run.plots(output.staging());
+    report.stages = run.stage_timings();
+    report.files  = output.commit(report.files);
     return report;
   }
 

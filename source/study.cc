@@ -6,10 +6,10 @@
 #include <nsm/study_row.h>
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/timer.h>
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -306,15 +306,19 @@ namespace nsm
 
   RunReport run_study(const std::string &path, const Scene &base)
   {
-    const clock_t cpu_start = std::clock();
-    StudyRun      study(path, base);
+    std::ostringstream  quiet;
+    dealii::TimerOutput timer(quiet, dealii::TimerOutput::never, dealii::TimerOutput::cpu_and_wall_times);
+    std::optional<dealii::TimerOutput::Scope> scope(std::in_place, timer, "study");
+    StudyRun                                  study(path, base);
     study.prepare_directory();
     std::vector<std::string>           reference_notes;
     const std::optional<FineReference> fine = shared_fine_reference(path, base, MPI_COMM_WORLD, reference_notes);
     study.run_missing_rows(fine ? &*fine : nullptr);
+    scope.reset();
 
     RunReport report;
-    report.stages.push_back({"study", study.elapsed(), double(std::clock() - cpu_start) / CLOCKS_PER_SEC});
+    report.stages.push_back({"study", timer.get_summary_data(dealii::TimerOutput::total_wall_time).at("study"),
+                             timer.get_summary_data(dealii::TimerOutput::total_cpu_time).at("study")});
     if (!study.root())
       return report;
     report.notes = study.notes(reference_notes);
