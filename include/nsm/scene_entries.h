@@ -1,0 +1,63 @@
+// What the scene's subsections share to declare and parse their entries:
+// values as text, range checks with one-line messages, and named options.
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace nsm::scene_entries
+{
+  /// The shortest text that reads back as the same double.
+  std::string format_value(double value);
+
+  inline std::string text(const double value) { return format_value(value); }
+  inline std::string text(const unsigned int value) { return std::to_string(value); }
+  inline std::string text(const bool value) { return value ? "true" : "false"; }
+
+  /// Throws InputError "parameter 'P' = value is out of range: allowed A"
+  /// unless `ok`.
+  void require(bool ok, const std::string &parameter, const std::string &allowed, const std::string &value);
+
+  /// `s` without its leading and trailing blanks and tabs.
+  std::string trim(const std::string &s);
+
+  /// A finite number, all of `text`; else an InputError naming `parameter`.
+  double parse_double(const std::string &text, const std::string &parameter);
+
+  unsigned int get_unsigned(dealii::ParameterHandler &prm, const std::string &name);
+
+  /// The names of an enumeration's values in a Selection pattern.
+  template <typename Enum>
+  using Options = std::vector<std::pair<std::string, Enum>>;
+
+  template <typename Enum>
+  dealii::Patterns::Selection selection(const Options<Enum> &options)
+  {
+    std::string names;
+    for (const auto &[name, value] : options)
+      names += (names.empty() ? "" : "|") + name;
+    return dealii::Patterns::Selection(names);
+  }
+
+  template <typename Enum>
+  std::string name_of(const Enum value, const Options<Enum> &options)
+  {
+    for (const auto &[name, v] : options)
+      if (v == value)
+        return name;
+    return options.front().first;
+  }
+
+  /// A Selection value (already checked against its pattern).
+  template <typename Enum>
+  Enum selected(const std::string &name, const Options<Enum> &options)
+  {
+    for (const auto &[n, value] : options)
+      if (n == name)
+        return value;
+    return options.front().second;
+  }
+} // namespace nsm::scene_entries
