@@ -78,8 +78,8 @@ namespace nsm
       return s.str();
     }
 
-    /// The stages of one run, in order; each is timed into the report and
-    /// adds its tables, fields and notes for the output stage.
+    /// The stages of one run, in order; each is timed by a TimerOutput and
+    /// adds its tables, fields and notes to the report or the output stage.
     class SceneRun
     {
     public:
