@@ -4,6 +4,7 @@
 #include <nsm/bar_model.h>
 #include <nsm/discretisation.h>
 #include <nsm/scene.h>
+#include <nsm/scene_entries.h>
 
 #include <gtest/gtest.h>
 
@@ -101,6 +102,7 @@ TEST(Scene, DeclaredDefaultsAreTheStructDefaults)
   EXPECT_EQ(pd.degree, dd.degree);
   EXPECT_EQ(pd.cells, dd.cells);
   EXPECT_EQ(pd.quadrature_points, dd.quadrature_points);
+  EXPECT_EQ(pd.roundoff_limit, dd.roundoff_limit);
   EXPECT_EQ(pd.refinement, dd.refinement);
   EXPECT_EQ(pd.graded_ratio, dd.graded_ratio);
   EXPECT_EQ(pd.graded_layers, dd.graded_layers);
@@ -130,6 +132,11 @@ TEST(Scene, DeclaredDefaultsAreTheStructDefaults)
   EXPECT_EQ(pc.max_steps, dc.max_steps);
   EXPECT_EQ(pc.grazing_offset, dc.grazing_offset);
   EXPECT_EQ(pc.tongue_share, dc.tongue_share);
+  EXPECT_EQ(pc.tongue_energy_ratio, dc.tongue_energy_ratio);
+  EXPECT_EQ(pc.max_contact_change, dc.max_contact_change);
+  EXPECT_EQ(pc.max_solution_change, dc.max_solution_change);
+  EXPECT_EQ(pc.leap_energy_ratio, dc.leap_energy_ratio);
+  EXPECT_EQ(pc.search_reach, dc.search_reach);
   const auto &po = parsed.output, &dout = d.output;
   EXPECT_EQ(po.directory, dout.directory);
   EXPECT_EQ(po.spectrum_modes, dout.spectrum_modes);
@@ -140,6 +147,43 @@ TEST(Scene, DeclaredDefaultsAreTheStructDefaults)
   EXPECT_EQ(po.field_time_samples, dout.field_time_samples);
   EXPECT_EQ(po.vtk, dout.vtk);
   EXPECT_EQ(po.plots, dout.plots);
+  EXPECT_EQ(po.progress_every, dout.progress_every);
+  EXPECT_EQ(po.verify_in_time, dout.verify_in_time);
+  EXPECT_EQ(po.verify_every, dout.verify_every);
+  EXPECT_EQ(po.verify_periods, dout.verify_periods);
+  EXPECT_EQ(po.verify_steps, dout.verify_steps);
+  EXPECT_EQ(po.verify_tolerance, dout.verify_tolerance);
+}
+
+TEST(Scene, ValuesAreWrittenShortestAndReadBackExactly)
+{
+  // Declared defaults and messages show values as the shortest text that
+  // reads back as the same double.
+  using nsm::scene_entries::format_value;
+  EXPECT_EQ(format_value(0.1), "0.1");
+  EXPECT_EQ(format_value(1e-5), "1e-05");
+  EXPECT_EQ(format_value(2.2), "2.2");
+  EXPECT_EQ(format_value(1.0 / 3.0), "0.3333333333333333");
+  EXPECT_EQ(format_value(0.1 + 0.2), "0.30000000000000004");
+  for (const double v : {1.0 / 3.0, 2.0 / 3e7, 1e-300, 1.9191371161601687, 0.1 + 0.2})
+    EXPECT_EQ(std::stod(format_value(v)), v) << format_value(v);
+}
+
+TEST(Scene, NumbersInListsMustBeWholeAndFinite)
+{
+  using nsm::scene_entries::parse_double;
+  EXPECT_EQ(parse_double(" 2.5 ", "p"), 2.5);
+  EXPECT_EQ(parse_double("-1e-3", "p"), -1e-3);
+  for (const char *bad : {"", "x", "2.5x", "2.5 3", "nan", "inf", "1e999"})
+    EXPECT_THROW(parse_double(bad, "Output/Fields at"), nsm::InputError) << "'" << bad << "'";
+  try
+    {
+      parse_double("2.5x", "Output/Fields at");
+    }
+  catch (const nsm::InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("Output/Fields at"), std::string::npos) << e.what();
+    }
 }
 
 TEST(Scene, FrequencyListsAndRanges)
