@@ -19,6 +19,38 @@ namespace nsm
           q[t] += v[i] * table[std::size_t(i) * samples + t];
     }
 
+    /// Safeguarded Newton on a bracket [a, b] where f changes sign, from the
+    /// regula falsi point; 1e-13 in tau leaves the Gram integrals exact to
+    /// far below any Newton tolerance. f(x, &slope) returns f and sets f'.
+    template <typename F>
+    double bracketed_root(double a, double b, double fa, const double fb, const F &f)
+    {
+      double x = fb != fa ? a - fa * (b - a) / (fb - fa) : 0.5 * (a + b);
+      if (!(x > a && x < b))
+        x = 0.5 * (a + b);
+      for (int it = 0; it < 60; ++it)
+        {
+          double       slope;
+          const double fx = f(x, &slope);
+          if (fx == 0)
+            return x;
+          if ((fx < 0) == (fa < 0))
+            a = x, fa = fx;
+          else
+            b = x;
+          const double newton = x - fx / slope;
+          // Converged: x is then a bracket end itself, so the last step may
+          // leave the bracket by a rounding error (testing for inside first
+          // bisected it down to 1e-13, about 10 more evaluations per root).
+          if (slope != 0 && std::abs(newton - x) <= 1e-13)
+            return std::clamp(newton, a, b);
+          const bool inside = slope != 0 && newton > a && newton < b;
+          x                 = inside ? newton : 0.5 * (a + b);
+          if (b - a <= 1e-13)
+            return x;
+        }
+      return x;
+    }
   } // namespace
 
   ActiveSet::ActiveSet(TrigonometricBasis basis, const Integration integration, const unsigned int samples)
@@ -68,37 +100,56 @@ namespace nsm
     std::vector<double> q(samples_, 0.0);
     sample_series(basis_.size(), samples_, v.data(), table_.data(), q.data());
 
-    const double h = two_pi / samples_;
-    // Safeguarded Newton on a bracket [a, b] where f changes sign, from the
-    // regula falsi point; 1e-13 in tau leaves the Gram integrals exact to
-    // far below any Newton tolerance.
-    const auto refine = [&](double a, double b, double fa, const double fb, const auto &f) {
-      double x = fb != fa ? a - fa * (b - a) / (fb - fa) : 0.5 * (a + b);
-      if (!(x > a && x < b))
-        x = 0.5 * (a + b);
-      for (int it = 0; it < 60; ++it)
-        {
-          double       slope;
-          const double fx = f(x, &slope);
-          if (fx == 0)
-            return x;
-          if ((fx < 0) == (fa < 0))
-            a = x, fa = fx;
-          else
-            b = x;
-          const double newton = x - fx / slope;
-          // Converged: x is then a bracket end itself, so the last step may
-          // leave the bracket by a rounding error (testing for inside first
-          // bisected it down to 1e-13, about 10 more evaluations per root).
-          if (slope != 0 && std::abs(newton - x) <= 1e-13)
-            return std::clamp(newton, a, b);
-          const bool inside = slope != 0 && newton > a && newton < b;
-          x                 = inside ? newton : 0.5 * (a + b);
-          if (b - a <= 1e-13)
-            return x;
-        }
-      return x;
-    };
+    // Between samples q departs from a sampled extremum by at most
+    // |q''|max h^2 / 2 <= h^2 / 2 sum |v_i| k_i^2: only extrema closer to zero
+    // than that can hide a crossing.
+    const double h         = two_pi / samples_;
+    double       curvature = 0;
+    for (unsigned int i = 0; i < basis_.size(); ++i)
+      curvature += std::abs(v[i]) * basis_.order[i] * basis_.order[i];
+    const double reach = 0.5 * h * h * curvature;
+
+    const auto          q_of = [&](double tau, double *slope) { return value(v, tau, slope); };
+    std::vector<double> found;
+    for (unsigned int t = 0; t < samples_; ++t)
+      {
+        const unsigned int next = (t + 1) % samples_;
+        if ((q[t] > 0) != (q[next] > 0))
+          found.push_back(bracketed_root(t * h, t * h + h, q[t], q[next], q_of));
+        crossings_near_extremum(v, q, t, reach, found);
+      }
+    for (double &r : found)
+      r = std::fmod(r + two_pi, two_pi);
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end(),
+                            [](double x, double y) { return std::abs(x - y) < 1e-13; }),
+                found.end());
+    return found;
+  }
+
+  void ActiveSet::crossings_near_extremum(const std::vector<double> &v, const std::vector<double> &q,
+                                          const unsigned int t, const double reach,
+                                          std::vector<double> &found) const
+  {
+    // An extremum towards zero between sign-consistent samples may still
+    // cross zero (a contact shorter than a sample spacing).
+    const unsigned int next = (t + 1) % samples_, prev = (t + samples_ - 1) % samples_;
+    const bool peak   = q[t] <= 0 && q[prev] <= 0 && q[next] <= 0 && q[t] >= q[prev] && q[t] >= q[next];
+    const bool trough = q[t] > 0 && q[prev] > 0 && q[next] > 0 && q[t] <= q[prev] && q[t] <= q[next];
+    if (!(peak || trough) || std::abs(q[t]) > reach)
+      return;
+    // The parabola through the three samples estimates the extremum; only
+    // one that comes within half of |q_t| of zero is searched exactly.
+    const double curve = q[prev] - 2 * q[t] + q[next];
+    const double apex  = curve != 0 ? q[t] - (q[next] - q[prev]) * (q[next] - q[prev]) / (8 * curve) : q[t];
+    if (std::abs(apex) > 0.5 * std::abs(q[t]) && (apex > 0) == (q[t] > 0))
+      return;
+    const double h  = two_pi / samples_;
+    double       lo = t * h - h, hi = t * h + h, s_lo, s_hi;
+    value(v, lo, &s_lo);
+    value(v, hi, &s_hi);
+    if ((s_lo > 0) == (s_hi > 0))
+      return;
     const auto q_of = [&](double tau, double *slope) { return value(v, tau, slope); };
     // q' with its own slope q'', for the extremum between samples.
     const auto dq_of = [&](double tau, double *slope) {
@@ -113,54 +164,12 @@ namespace nsm
         }
       return d0;
     };
-
-    // Between samples q departs from a sampled extremum by at most
-    // |q''|max h^2 / 2 <= h^2 / 2 sum |v_i| k_i^2: only extrema closer to zero
-    // than that can hide a crossing.
-    double curvature = 0;
-    for (unsigned int i = 0; i < basis_.size(); ++i)
-      curvature += std::abs(v[i]) * basis_.order[i] * basis_.order[i];
-    const double reach = 0.5 * h * h * curvature;
-
-    std::vector<double> found;
-    for (unsigned int t = 0; t < samples_; ++t)
-      {
-        const unsigned int next = (t + 1) % samples_, prev = (t + samples_ - 1) % samples_;
-        const double       a = t * h, b = a + h;
-        if ((q[t] > 0) != (q[next] > 0))
-          found.push_back(refine(a, b, q[t], q[next], q_of));
-        // An extremum towards zero between sign-consistent samples may still
-        // cross zero (a contact shorter than a sample spacing).
-        const bool peak   = q[t] <= 0 && q[prev] <= 0 && q[next] <= 0 && q[t] >= q[prev] && q[t] >= q[next];
-        const bool trough = q[t] > 0 && q[prev] > 0 && q[next] > 0 && q[t] <= q[prev] && q[t] <= q[next];
-        if (!(peak || trough) || std::abs(q[t]) > reach)
-          continue;
-        // The parabola through the three samples estimates the extremum; only
-        // one that comes within half of |q_t| of zero is searched exactly.
-        const double curve = q[prev] - 2 * q[t] + q[next];
-        const double apex  = curve != 0 ? q[t] - (q[next] - q[prev]) * (q[next] - q[prev]) / (8 * curve) : q[t];
-        if (std::abs(apex) > 0.5 * std::abs(q[t]) && (apex > 0) == (q[t] > 0))
-          continue;
-        double lo = a - h, hi = b, s_lo, s_hi;
-        value(v, lo, &s_lo);
-        value(v, hi, &s_hi);
-        if ((s_lo > 0) == (s_hi > 0))
-          continue;
-        const double extremum = refine(lo, hi, s_lo, s_hi, dq_of);
-        const double q_extremum = value(v, extremum, nullptr);
-        if ((q_extremum > 0) != (q[t] > 0))
-          {
-            found.push_back(refine(lo, extremum, q[prev], q_extremum, q_of));
-            found.push_back(refine(extremum, hi, q_extremum, q[next], q_of));
-          }
-      }
-    for (double &r : found)
-      r = std::fmod(r + two_pi, two_pi);
-    std::sort(found.begin(), found.end());
-    found.erase(std::unique(found.begin(), found.end(),
-                            [](double x, double y) { return std::abs(x - y) < 1e-13; }),
-                found.end());
-    return found;
+    const double extremum   = bracketed_root(lo, hi, s_lo, s_hi, dq_of);
+    const double q_extremum = value(v, extremum, nullptr);
+    if ((q_extremum > 0) == (q[t] > 0))
+      return;
+    found.push_back(bracketed_root(lo, extremum, q[prev], q_extremum, q_of));
+    found.push_back(bracketed_root(extremum, hi, q_extremum, q[next], q_of));
   }
 
   double ActiveSet::gram_exact(const std::vector<double> &v, std::vector<double> &gram) const

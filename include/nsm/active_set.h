@@ -38,6 +38,11 @@ namespace nsm
     std::vector<double> roots(const std::vector<double> &v) const;
 
   private:
+    /// Adds to `found` the two roots of q around sample t when q has an
+    /// extremum there towards zero that the samples q (of v) do not show
+    /// crossing it; `reach` bounds how far q departs between samples.
+    void crossings_near_extremum(const std::vector<double> &v, const std::vector<double> &q, unsigned int t,
+                                 double reach, std::vector<double> &found) const;
     double gram_exact(const std::vector<double> &v, std::vector<double> &gram) const;
     double gram_sampled(const std::vector<double> &v, std::vector<double> &gram) const;
 
