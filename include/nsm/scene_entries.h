@@ -27,6 +27,7 @@ namespace nsm::scene_entries
   /// A finite number, all of `text`; else an InputError naming `parameter`.
   double parse_double(const std::string &text, const std::string &parameter);
 
+  /// An Integer entry whose pattern allows no negative value.
   unsigned int get_unsigned(dealii::ParameterHandler &prm, const std::string &name);
 
   /// The names of an enumeration's values in a Selection pattern.
