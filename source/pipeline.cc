@@ -78,15 +78,15 @@ namespace nsm
       return s.str();
     }
 
-    /// The stages of one run, in order; each is timed by a TimerOutput and
-    /// adds its tables, fields and notes to the report or the output stage.
+    /// The stages of one run, in order; each adds its wall and CPU time
+    /// (deal.II's Timer) to the report, and its tables, fields and notes to
+    /// the report or the output stage.
     class SceneRun
     {
     public:
       SceneRun(const Scene &scene, RunReport &report)
         : scene_(scene)
         , report_(report)
-        , timer_(quiet_, dealii::TimerOutput::never, dealii::TimerOutput::cpu_and_wall_times)
       {}
 
       void mesh(const BarModel &bar)
@@ -205,26 +205,14 @@ namespace nsm
         });
       }
 
-      /// The stages' wall and CPU times, in the order they ran.
-      std::vector<StageTiming> stage_timings() const
-      {
-        const auto walls = timer_.get_summary_data(dealii::TimerOutput::total_wall_time);
-        const auto cpus  = timer_.get_summary_data(dealii::TimerOutput::total_cpu_time);
-        std::vector<StageTiming> stages;
-        for (const std::string &name : stage_order_)
-          stages.push_back({name, walls.at(name), cpus.at(name)});
-        return stages;
-      }
-
     private:
       template <typename Work>
       void timed(const std::string &name, Work &&work)
       {
-        {
-          dealii::TimerOutput::Scope scope(timer_, name);
-          work();
-        }
-        stage_order_.push_back(name);
+        dealii::Timer timer;
+        work();
+        timer.stop();
+        report_.stages.push_back({name, timer.wall_time(), timer.cpu_time()});
       }
 
       std::string backbone_note() const
@@ -239,9 +227,6 @@ namespace nsm
 
       const Scene                    &scene_;
       RunReport                      &report_;
-      std::ostringstream              quiet_;
-      dealii::TimerOutput             timer_;
-      std::vector<std::string>        stage_order_;
       std::vector<CsvTable>           tables_;
       std::unique_ptr<Discretisation> discretisation_;
       std::unique_ptr<Receptance>     receptance_;
@@ -289,8 +274,7 @@ namespace nsm
     run.write(output.staging());
     if (scene.output.plots)
       run.plots(output.staging());
-    report.stages = run.stage_timings();
-    report.files  = output.commit(report.files);
+    report.files = output.commit(report.files);
     return report;
   }
 

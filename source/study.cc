@@ -9,7 +9,6 @@
 #include <deal.II/base/timer.h>
 
 #include <algorithm>
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -190,13 +189,15 @@ namespace nsm
         for (std::size_t i = 0; i < combinations_.size(); ++i)
           if (rows_.count(combinations_[i].key) == 0)
             missing_.push_back(i);
+        in_combination_order();
       }
 
       bool root() const { return rank_ == 0; }
 
       const std::string &directory() const { return base_.output.directory; }
 
-      double elapsed() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+      /// The wall and CPU time since the study began (deal.II's Timer).
+      StageTiming timing() const { return {"study", timer_.wall_time(), timer_.cpu_time()}; }
 
       /// Rank 0 creates the directory and records the base scene: every
       /// rank has checked the same input, and only rank 0 writes.
@@ -240,7 +241,7 @@ namespace nsm
 
       /// The summary's lines (rank 0): rows, the fine reference's lines,
       /// then the Pareto front.
-      std::vector<std::string> notes(const std::vector<std::string> &reference_notes)
+      std::vector<std::string> notes(const std::vector<std::string> &reference_notes) const
       {
         std::ostringstream note;
         note << "study: " << combinations_.size() << " rows, " << missing_.size() << " run now on " << ranks_
@@ -248,7 +249,6 @@ namespace nsm
              << " failed" << left_out_note(base_.study, combinations_.size());
         std::vector<std::string> lines{note.str()};
         lines.insert(lines.end(), reference_notes.begin(), reference_notes.end());
-        in_combination_order();
         for (std::string &line : pareto_notes(table_, key_size_))
           lines.push_back(std::move(line));
         return lines;
@@ -272,7 +272,8 @@ namespace nsm
         in_combination_order();
       }
 
-      /// study.csv holds the rows computed so far, in combination order.
+      /// study.csv holds the rows computed so far (earlier runs' too), in
+      /// combination order.
       void in_combination_order()
       {
         table_.rows.clear();
@@ -283,7 +284,7 @@ namespace nsm
 
       std::string progress_line(const std::size_t done) const
       {
-        const double t = elapsed();
+        const double t = timer_.wall_time();
         return std::to_string(resumed() + done) + " of " + std::to_string(combinations_.size()) + " rows (" +
                std::to_string(resumed()) + " from an earlier run), " + seconds(t) + " elapsed, about " +
                seconds(t / done * (missing_.size() - done)) + " left";
@@ -292,7 +293,7 @@ namespace nsm
       const MPI_Comm                      comm_  = MPI_COMM_WORLD;
       const unsigned int                  ranks_ = dealii::Utilities::MPI::n_mpi_processes(comm_);
       const unsigned int                  rank_  = dealii::Utilities::MPI::this_mpi_process(comm_);
-      const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+      const dealii::Timer                 timer_; ///< started first, so it counts the set-up too
       const Scene                        &base_;
       const std::vector<StudyCombination> combinations_;
       const std::string                   scene_text_;
@@ -306,19 +307,14 @@ namespace nsm
 
   RunReport run_study(const std::string &path, const Scene &base)
   {
-    std::ostringstream  quiet;
-    dealii::TimerOutput timer(quiet, dealii::TimerOutput::never, dealii::TimerOutput::cpu_and_wall_times);
-    std::optional<dealii::TimerOutput::Scope> scope(std::in_place, timer, "study");
-    StudyRun                                  study(path, base);
+    StudyRun study(path, base);
     study.prepare_directory();
     std::vector<std::string>           reference_notes;
     const std::optional<FineReference> fine = shared_fine_reference(path, base, MPI_COMM_WORLD, reference_notes);
     study.run_missing_rows(fine ? &*fine : nullptr);
-    scope.reset();
 
     RunReport report;
-    report.stages.push_back({"study", timer.get_summary_data(dealii::TimerOutput::total_wall_time).at("study"),
-                             timer.get_summary_data(dealii::TimerOutput::total_cpu_time).at("study")});
+    report.stages.push_back(study.timing());
     if (!study.root())
       return report;
     report.notes = study.notes(reference_notes);
