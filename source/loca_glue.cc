@@ -271,7 +271,7 @@ namespace nsm
       const auto  &c         = scene.continuation;
       const double direction = branch_direction(scene);
       auto         params    = Teuchos::rcp(new Teuchos::ParameterList);
-      auto       &stepper   = params->sublist("LOCA").sublist("Stepper");
+      auto        &stepper   = params->sublist("LOCA").sublist("Stepper");
       stepper.set("Continuation Method", "Arc Length");
       stepper.set("Continuation Parameter", "Omega");
       stepper.set("Initial Value", start.omega);
