@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <string>
 
 namespace nsm
 {
@@ -20,6 +23,46 @@ namespace nsm
           front = i;
       return front;
     }
+
+    /// What the leap's Newton solves ended in. A lost branch says so, with
+    /// the two things a user can change: the energy bounds of a landing and
+    /// Max iterations (at M = 160 on the seed bar, Newton from these guesses
+    /// needs more than the default 12).
+    struct LeapTally
+    {
+      unsigned int solves = 0, outside = 0, at_limit = 0, stalled = 0, no_contact = 0;
+      double       furthest = 0;
+
+      void failed(const BranchContext::SolveFailure failure)
+      {
+        using F = BranchContext::SolveFailure;
+        ++(failure == F::iteration_limit ? at_limit : failure == F::stalled ? stalled : no_contact);
+      }
+
+      std::string text(const double lowest, const double highest, const unsigned int max_iterations) const
+      {
+        std::ostringstream s;
+        s << std::setprecision(8) << ": no landing from " << solves << " Newton solves up to Omega = " << furthest
+          << std::setprecision(3);
+        std::string separator = " (";
+        const auto  part      = [&](const unsigned int n) -> std::ostream & {
+          s << separator << n << ' ';
+          separator = ", ";
+          return s;
+        };
+        if (outside > 0)
+          part(outside) << "converged outside the landing energies " << lowest << " to " << highest;
+        if (at_limit > 0)
+          part(at_limit) << "stopped at Max iterations = " << max_iterations;
+        if (stalled > 0)
+          part(stalled) << "stalled or diverged";
+        if (no_contact > 0)
+          part(no_contact) << "converged to no contact";
+        if (separator == ", ")
+          s << ')';
+        return s.str();
+      }
+    };
   } // namespace
 
   bool leap(BranchContext &context, Backbone &backbone, const unsigned int segment)
@@ -36,6 +79,7 @@ namespace nsm
 
     // Newton from each guess at growing distances beyond the front; the first
     // landing within the energy bounds starts the new segment.
+    LeapTally  tally;
     const auto land = [&](const bool last_resort) {
       for (double distance = c.initial_step;
            distance <= reach && context.beyond(context.far_end, front.omega);
@@ -51,11 +95,18 @@ namespace nsm
                                                            context.hb.grazing_guess()};
           for (const std::vector<double> &guess : guesses)
             {
+              if (guess.empty())
+                continue;
               BackbonePoint point;
-              if (!guess.empty() && context.solve(omega, guess, segment, point, true) &&
-                  point.measures.energy <= c.energy_max &&
-                  point.measures.energy < c.leap_energy_ratio * energy &&
-                  point.measures.energy > least / c.leap_energy_ratio)
+              if (tally.solves++ == 0 || context.beyond(omega, tally.furthest))
+                tally.furthest = omega;
+              if (!context.solve(omega, guess, segment, point, true))
+                tally.failed(context.last_failure());
+              else if (!(point.measures.energy <= c.energy_max &&
+                         point.measures.energy < c.leap_energy_ratio * energy &&
+                         point.measures.energy > least / c.leap_energy_ratio))
+                ++tally.outside;
+              else
                 {
                   backbone.events.push_back(event_message(
                     last_resort ? "leapt to a new segment from the fold before the tongue" : "leapt to a new segment",
@@ -75,7 +126,10 @@ namespace nsm
     // tongue.
     if (land(false) || (first > 0 && land(true)))
       return true;
-    backbone.events.push_back(event_message("branch lost after the fold", front.omega));
+    backbone.events.push_back(
+      event_message("branch lost after the fold", front.omega) +
+      tally.text(least / c.leap_energy_ratio, std::min(c.energy_max, c.leap_energy_ratio * energy),
+                 context.scene.harmonic_balance.max_iterations));
     return false;
   }
 } // namespace nsm

@@ -308,6 +308,7 @@ namespace nsm
       , group(Teuchos::rcp(new TimedNewtonGroup(interface, hb)))
       , status(newton_status(params))
       , list(Teuchos::rcp(new Teuchos::ParameterList))
+      , max_iterations(params.max_iterations)
     {
       set_newton_parameters(*list, params);
       solver = NOX::Solver::buildSolver(group, status, list);
@@ -317,6 +318,7 @@ namespace nsm
     Teuchos::RCP<NOX::StatusTest::Generic> status;
     Teuchos::RCP<Teuchos::ParameterList>   list;
     Teuchos::RCP<NOX::Solver::Generic>     solver;
+    unsigned int                           max_iterations;
   };
 
   NewtonSolver::NewtonSolver(HarmonicBalance &hb, const Scene::HarmonicBalance &params)
@@ -334,10 +336,9 @@ namespace nsm
     const NOX::StatusTest::StatusType status = impl_->solver->solve();
     const auto &group = impl_->solver->getSolutionGroup();
     const auto &x = dynamic_cast<const NOX::LAPACK::Vector &>(group.getX());
-    NewtonResult result{status == NOX::StatusTest::Converged,
-                        static_cast<unsigned int>(impl_->solver->getNumIterations()),
-                        group.getNormF(),
-                        HbInterface::to_std(x)};
+    const auto   iterations = static_cast<unsigned int>(impl_->solver->getNumIterations());
+    NewtonResult result{status == NOX::StatusTest::Converged, iterations, group.getNormF(), HbInterface::to_std(x),
+                        status != NOX::StatusTest::Converged && iterations >= impl_->max_iterations};
     const double seconds = seconds_since(start);
     (result.converged ? cost_.converged_seconds : cost_.failed_seconds) += seconds;
     ++(result.converged ? cost_.converged_solves : cost_.failed_solves);

@@ -55,6 +55,17 @@ namespace nsm
     bool solve(double omega, const std::vector<double> &guess, unsigned int segment,
                BackbonePoint &point, bool leaping = false);
 
+    /// Why the last solve() gave no point: Newton stopped unconverged at Max
+    /// iterations (in either try; more iterations might converge), stalled or
+    /// diverged, or converged to no contact motion.
+    enum class SolveFailure
+    {
+      iteration_limit,
+      stalled,
+      no_contact
+    };
+    SolveFailure last_failure() const { return last_failure_; }
+
     /// Called after each point: Max steps reached? Also reports progress.
     bool full(const Backbone &backbone);
 
@@ -81,6 +92,7 @@ namespace nsm
     NewtonSolver newton_;
     NewtonSolver leap_newton_;
     Progress     progress_;
+    SolveFailure last_failure_ = SolveFailure::stalled;
   };
 
   /// The least energy written within `reach` of omega and not beyond it in

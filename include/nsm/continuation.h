@@ -128,6 +128,9 @@ namespace nsm
     unsigned int        iterations;
     double              residual;
     std::vector<double> x;
+    /// Stopped unconverged at Max iterations, rather than stalled or
+    /// diverged: more iterations might converge.
+    bool at_iteration_limit;
   };
 
   /// Newton on the HB system at fixed Omega, on NOX's LAPACK group.

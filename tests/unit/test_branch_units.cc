@@ -10,6 +10,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <regex>
+#include <sstream>
+#include <string>
 
 #include "hb_model.h"
 
@@ -148,4 +151,62 @@ TEST(Leap, LandsBeyondTheFoldNearTheFrontsEnergy)
   EXPECT_LE(landing.omega - front.omega, 0.05 * front.omega);
   EXPECT_GT(landing.measures.energy, front.measures.energy / 4);
   EXPECT_LT(landing.measures.energy, front.measures.energy * 4);
+}
+
+namespace
+{
+  /// The seed bar at M = 160 on FE_Q(10) x 40 (2874 internal resonances in
+  /// [1.5, 2.2]), with Max iterations Newton steps, for at most 300 points.
+  nsm::Backbone seed_at_m160(const unsigned int max_iterations)
+  {
+    auto scene                            = testing_helpers::seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
+    scene.discretisation.cells            = 40;
+    scene.harmonic_balance.harmonics      = 160;
+    scene.harmonic_balance.max_iterations = max_iterations;
+    scene.continuation.max_steps          = 300;
+    HbModel model(scene);
+    return model.backbone();
+  }
+} // namespace
+
+// With the default 12 iterations the leap after the fold at 1.9511 finds no
+// landing: 24 of its 27 solves stop at Max iterations and 3 converge on
+// tongues outside the landing energies. The message says so, its counts add
+// up, and the remedy it points to works: with 40 iterations the branch goes
+// on past that fold (to 1.962 in 300 points, and to 2.1485 in all).
+TEST(Leap, ALostBranchSaysWhatItsNewtonSolvesEndedIn)
+{
+  const nsm::Backbone lost = seed_at_m160(12);
+  ASSERT_FALSE(lost.events.empty());
+  const std::string &message = lost.events.back();
+  std::smatch        m;
+  ASSERT_TRUE(std::regex_search(message, m,
+                                std::regex("branch lost after the fold at Omega = ([0-9.]+): no landing from ([0-9]+) "
+                                           "Newton solves up to Omega = ([0-9.]+) \\((.*)\\)$")))
+    << message;
+  const double front = std::stod(m[1]), furthest = std::stod(m[3]);
+  EXPECT_LT(lost.points.size(), 300u);
+  EXPECT_NEAR(lost.points.back().omega, front, 1e-7);
+  // The leap tried up to Search reach (5 %) beyond the front.
+  EXPECT_GT(furthest, front);
+  EXPECT_LE(furthest, front * 1.05);
+  // Every solve is counted once, and most stopped at the iteration limit.
+  std::istringstream parts(m[4].str());
+  unsigned int       counted = 0, at_limit = 0;
+  for (std::string part; std::getline(parts >> std::ws, part, ',');)
+    {
+      const unsigned long n = std::stoul(part);
+      counted += n;
+      if (part.find("stopped at Max iterations") != std::string::npos)
+        at_limit = n;
+    }
+  EXPECT_EQ(counted, std::stoul(m[2])) << message;
+  EXPECT_GT(2 * at_limit, counted) << message;
+  EXPECT_NE(message.find("stopped at Max iterations = 12"), std::string::npos) << message;
+
+  const nsm::Backbone reached = seed_at_m160(40);
+  EXPECT_EQ(reached.points.size(), 300u);
+  EXPECT_GT(reached.points.back().omega, front);
+  for (const std::string &event : reached.events)
+    EXPECT_EQ(event.find("branch lost"), std::string::npos) << event;
 }
