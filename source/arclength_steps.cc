@@ -1,4 +1,5 @@
 #include <nsm/arclength_steps.h>
+#include <nsm/loca_arclength.h>
 #include <nsm/sequential_steps.h>
 
 #include <algorithm>

@@ -7,10 +7,9 @@
 #pragma once
 
 #include <nsm/harmonic_balance.h>
+#include <nsm/newton_solver.h>
 #include <nsm/scene.h>
 
-#include <functional>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -52,26 +51,6 @@ namespace nsm
     double            foot_end;   ///< Omega of the point after it
     double            max_energy; ///< highest energy written on it
     unsigned int      points;
-  };
-
-  /// Wall time and Newton iterations of the solves that converged and of
-  /// those that did not (folds and leap attempts), for benchmarks.
-  struct NewtonCost
-  {
-    double        converged_seconds = 0, failed_seconds = 0;
-    unsigned long converged_solves = 0, failed_solves = 0;
-    unsigned long converged_iterations = 0, failed_iterations = 0;
-
-    NewtonCost &operator+=(const NewtonCost &other)
-    {
-      converged_seconds += other.converged_seconds;
-      failed_seconds += other.failed_seconds;
-      converged_solves += other.converged_solves;
-      failed_solves += other.failed_solves;
-      converged_iterations += other.converged_iterations;
-      failed_iterations += other.failed_iterations;
-      return *this;
-    }
   };
 
   struct Backbone
@@ -121,42 +100,4 @@ namespace nsm
                                 double           omega,
                                 bool             main_only = false);
 
-  /// Outcome of one Newton solve at fixed Omega (NOX).
-  struct NewtonResult
-  {
-    bool                converged;
-    unsigned int        iterations;
-    double              residual;
-    std::vector<double> x;
-    /// Stopped unconverged at Max iterations, rather than stalled or
-    /// diverged: more iterations might converge.
-    bool at_iteration_limit;
-  };
-
-  /// Newton on the HB system at fixed Omega, on NOX's LAPACK group.
-  class NewtonSolver
-  {
-  public:
-    NewtonSolver(HarmonicBalance &hb, const Scene::HarmonicBalance &params);
-    ~NewtonSolver();
-    NewtonResult solve(double omega, const std::vector<double> &guess);
-
-    const NewtonCost &cost() const { return cost_; }
-
-  private:
-    NewtonCost cost_;
-    struct Impl;
-    std::unique_ptr<Impl> impl_;
-  };
-
-  /// Pseudo-arclength from a converged start point with LOCA::Stepper, first
-  /// step of length initial_step. `accept` is called for every converged
-  /// step and returns false to stop.
-  /// Returns true if LOCA finished its run (it reached Omega min or max, or
-  /// accept stopped it), false if it failed to converge a step.
-  bool run_arclength(HarmonicBalance                                &hb,
-                     const Scene                                    &scene,
-                     const BackbonePoint                            &start,
-                     double                                          initial_step,
-                     const std::function<bool(const BackbonePoint &)> &accept);
 } // namespace nsm

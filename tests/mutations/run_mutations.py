@@ -89,7 +89,7 @@ MUTATIONS = [
      "point.measures.contact_fraction >= last.measures.contact_fraction &&", "true &&"),
     ("contacts shorter than a sample spacing missed", "source/active_set.cc",
      "if (!(peak || trough) || std::abs(q[t]) > reach)", "if (true)"),
-    ("a lost branch blames no Newton solve on Max iterations", "source/loca_glue.cc",
+    ("a lost branch blames no Newton solve on Max iterations", "source/newton_solver.cc",
      "status != NOX::StatusTest::Converged && iterations >= impl_->max_iterations}", "false}"),
 ]
 
