@@ -14,7 +14,6 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
-#include <map>
 #include <sstream>
 
 namespace nsm
@@ -75,17 +74,23 @@ namespace nsm
       return "field_" + std::to_string(index) + suffix;
     }
 
-    /// The space-time field on a 2D mesh of (x, t): x cells as the bar's
-    /// mesh, time cells so that the support points in t number at least
-    /// `samples`, FE_Q(p) in both, values interpolated at the support points
-    /// (exact in x: the 2D and 1D support points coincide).
-    std::string write_space_time(const std::string    &directory,
-                                 unsigned int          index,
-                                 const PeriodicField  &field,
-                                 const Discretisation &d,
-                                 unsigned int          samples)
+    /// Each DoF of the bar as (support abscissa, DoF), sorted by x.
+    std::vector<std::pair<double, unsigned int>> dofs_by_x(const Discretisation &d)
     {
-      const unsigned int p = d.fe().degree;
+      std::vector<std::pair<double, unsigned int>> by_x;
+      const std::vector<double>                    x = d.support_points();
+      for (unsigned int i = 0; i < x.size(); ++i)
+        by_x.emplace_back(x[i], i);
+      std::sort(by_x.begin(), by_x.end());
+      return by_x;
+    }
+
+    /// The (x, t) mesh: x cells as the bar's mesh, time cells so that the
+    /// support points of FE_Q(p) in t number at least `samples`.
+    void make_space_time_mesh(dealii::Triangulation<2> &mesh, const PeriodicField &field, const Discretisation &d,
+                              const unsigned int samples)
+    {
+      const unsigned int  p = d.fe().degree;
       std::vector<double> x_steps;
       {
         std::vector<std::pair<double, double>> cells;
@@ -95,22 +100,30 @@ namespace nsm
         for (const auto &[a, b] : cells)
           x_steps.push_back(b - a);
       }
-      const unsigned int  time_cells = (samples + p - 1) / p;
+      const unsigned int        time_cells = (samples + p - 1) / p;
       const std::vector<double> t_steps(time_cells, field.period() / time_cells);
+      dealii::GridGenerator::subdivided_hyper_rectangle(mesh, {x_steps, t_steps}, dealii::Point<2>(0, 0),
+                                                        dealii::Point<2>(d.bar().length(), field.period()));
+    }
+
+    /// The space-time field on the 2D mesh of (x, t), FE_Q(p) in both, values
+    /// interpolated at the support points (exact in x: the 2D and 1D support
+    /// points coincide).
+    std::string write_space_time(const std::string    &directory,
+                                 unsigned int          index,
+                                 const PeriodicField  &field,
+                                 const Discretisation &d,
+                                 unsigned int          samples)
+    {
+      const unsigned int       p = d.fe().degree;
       dealii::Triangulation<2> mesh;
-      dealii::GridGenerator::subdivided_hyper_rectangle(
-        mesh, {x_steps, t_steps}, dealii::Point<2>(0, 0),
-        dealii::Point<2>(d.bar().length(), field.period()));
-      const dealii::FE_Q<2>  fe(p);
+      make_space_time_mesh(mesh, field, d, samples);
+      const dealii::FE_Q<2> fe(p);
       dealii::DoFHandler<2> dofs(mesh);
       dofs.distribute_dofs(fe);
 
       // 1D DoF at each support abscissa.
-      std::vector<std::pair<double, unsigned int>> by_x;
-      const std::vector<double> x1 = d.support_points();
-      for (unsigned int i = 0; i < x1.size(); ++i)
-        by_x.emplace_back(x1[i], i);
-      std::sort(by_x.begin(), by_x.end());
+      const std::vector<std::pair<double, unsigned int>> by_x = dofs_by_x(d);
       const auto dof_at = [&](double x) {
         auto it = std::lower_bound(by_x.begin(), by_x.end(), std::make_pair(x - 1e-12 * d.bar().length(), 0u));
         if (it == by_x.end() || std::abs(it->first - x) > 1e-9 * d.bar().length())
@@ -136,8 +149,7 @@ namespace nsm
       out.add_data_vector(u, derived);
       out.build_patches(p);
       out.set_flags(vtk_flags(field.omega()));
-      return write_atomically(directory + "/" + name(index, ".vtu"),
-                        [&](std::ostream &s) { out.write_vtu(s); });
+      return write_atomically(directory + "/" + name(index, ".vtu"), [&](std::ostream &s) { out.write_vtu(s); });
     }
 
     /// 1D snapshots over one period and their .pvd time series.
@@ -149,13 +161,13 @@ namespace nsm
     {
       const std::string folder = name(index, "_snapshots");
       std::filesystem::create_directories(directory + "/" + folder);
-      const AxialStrainAndForce<1>                   derived(d.bar());
-      std::vector<std::pair<double, std::string>>   series;
+      const AxialStrainAndForce<1>                derived(d.bar());
+      std::vector<std::pair<double, std::string>> series;
       for (unsigned int j = 0; j < samples; ++j)
         {
-          const double           t = field.period() * j / samples;
+          const double                 t = field.period() * j / samples;
           const dealii::Vector<double> u = field.displacement(t), v = field.velocity(t);
-          dealii::DataOut<1>     out;
+          dealii::DataOut<1>           out;
           out.attach_dof_handler(d.dof_handler());
           out.add_data_vector(u, "displacement");
           out.add_data_vector(v, "velocity");
@@ -171,6 +183,61 @@ namespace nsm
                          [&](std::ostream &s) { dealii::DataOutBase::write_pvd_record(s, series); }),
               directory + "/" + folder + "/ (" + std::to_string(samples) + " snapshots)"};
     }
+
+    /// The contact end over one period, at `n` instants.
+    CsvTable tip_table(const unsigned int index, const PeriodicField &field, const Discretisation &d,
+                       const unsigned int n)
+    {
+      CsvTable tip{name(index, "_tip.csv"), {"t", "contact_displacement", "contact_velocity", "contact_force"}, {}};
+      for (unsigned int j = 0; j < n; ++j)
+        {
+          const double t = field.period() * j / n;
+          tip.rows.push_back({t, field.contact_displacement(t), field.velocity(d.contact_dof(), t),
+                              field.contact_force(t)});
+        }
+      return tip;
+    }
+
+    CsvTable harmonics_table(const unsigned int index, const PeriodicField &field)
+    {
+      CsvTable                   harmonics{name(index, "_harmonics.csv"), {"k", "is_sine", "force", "displacement"}, {}};
+      const FourierCoefficients &c = field.coefficients();
+      for (std::size_t i = 0; i < c.order.size(); ++i)
+        harmonics.rows.push_back({double(c.order[i]), double(c.is_sine[i]), c.force[i], c.displacement[i]});
+      return harmonics;
+    }
+
+    /// The profile at t = 0 at every DoF, sorted by x.
+    CsvTable initial_table(const unsigned int index, const PeriodicField &field, const Discretisation &d)
+    {
+      CsvTable                     initial{name(index, "_initial.csv"), {"x", "displacement", "velocity"}, {}};
+      const std::vector<double>    x  = d.support_points();
+      const dealii::Vector<double> u0 = field.displacement(0.0), v0 = field.velocity(0.0);
+      for (unsigned int i = 0; i < x.size(); ++i)
+        initial.rows.push_back({x[i], u0[i], v0[i]});
+      std::sort(initial.rows.begin(), initial.rows.end());
+      return initial;
+    }
+
+    /// u(x, t) for the colour map: n + 1 instants, at most ~200 abscissae
+    /// (and always the contact end).
+    CsvTable space_time_table(const unsigned int index, const PeriodicField &field, const Discretisation &d,
+                              const unsigned int n)
+    {
+      const std::vector<std::pair<double, unsigned int>> by_x   = dofs_by_x(d);
+      const std::size_t                                  stride = std::max<std::size_t>(1, by_x.size() / 200);
+      CsvTable grid{name(index, "_spacetime.csv"), {"t", "x", "displacement"}, {}};
+      for (unsigned int j = 0; j <= n; ++j)
+        {
+          const double                 t = field.period() * j / n;
+          const dealii::Vector<double> u = field.displacement(t);
+          for (std::size_t i = 0; i < by_x.size(); i += stride)
+            grid.rows.push_back({t, by_x[i].first, u[by_x[i].second]});
+          if ((by_x.size() - 1) % stride)
+            grid.rows.push_back({t, by_x.back().first, u[by_x.back().second]});
+        }
+      return grid;
+    }
   } // namespace
 
   std::vector<std::string> write_field(const std::string        &directory,
@@ -179,55 +246,12 @@ namespace nsm
                                        const Discretisation     &d,
                                        const FieldOutputOptions &options)
   {
-    std::vector<std::string> files;
     const unsigned int       n = options.time_samples;
-
-    CsvTable tip{name(index, "_tip.csv"),
-                 {"t", "contact_displacement", "contact_velocity", "contact_force"}, {}};
-    for (unsigned int j = 0; j < n; ++j)
-      {
-        const double t = field.period() * j / n;
-        tip.rows.push_back({t, field.contact_displacement(t), field.velocity(d.contact_dof(), t),
-                            field.contact_force(t)});
-      }
-    files.push_back(write_csv(directory, tip));
-
-    CsvTable harmonics{name(index, "_harmonics.csv"),
-                       {"k", "is_sine", "force", "displacement"}, {}};
-    const FourierCoefficients &c = field.coefficients();
-    for (std::size_t i = 0; i < c.order.size(); ++i)
-      harmonics.rows.push_back({double(c.order[i]), double(c.is_sine[i]), c.force[i], c.displacement[i]});
-    files.push_back(write_csv(directory, harmonics));
-
-    // The profile at t = 0 at every DoF, sorted by x.
-    CsvTable initial{name(index, "_initial.csv"), {"x", "displacement", "velocity"}, {}};
-    const std::vector<double> x = d.support_points();
-    const dealii::Vector<double> u0 = field.displacement(0.0), v0 = field.velocity(0.0);
-    for (unsigned int i = 0; i < x.size(); ++i)
-      initial.rows.push_back({x[i], u0[i], v0[i]});
-    std::sort(initial.rows.begin(), initial.rows.end());
-    files.push_back(write_csv(directory, initial));
-
+    std::vector<std::string> files{write_csv(directory, tip_table(index, field, d, n)),
+                                   write_csv(directory, harmonics_table(index, field)),
+                                   write_csv(directory, initial_table(index, field, d))};
     if (options.plots)
-      {
-        // At most ~200 abscissae for the colour map.
-        std::vector<std::pair<double, unsigned int>> by_x;
-        for (unsigned int i = 0; i < x.size(); ++i)
-          by_x.emplace_back(x[i], i);
-        std::sort(by_x.begin(), by_x.end());
-        const std::size_t stride = std::max<std::size_t>(1, by_x.size() / 200);
-        CsvTable          grid{name(index, "_spacetime.csv"), {"t", "x", "displacement"}, {}};
-        for (unsigned int j = 0; j <= n; ++j)
-          {
-            const double                 t = field.period() * j / n;
-            const dealii::Vector<double> u = field.displacement(t);
-            for (std::size_t i = 0; i < by_x.size(); i += stride)
-              grid.rows.push_back({t, by_x[i].first, u[by_x[i].second]});
-            if ((by_x.size() - 1) % stride)
-              grid.rows.push_back({t, by_x.back().first, u[by_x.back().second]});
-          }
-        files.push_back(write_csv(directory, grid));
-      }
+      files.push_back(write_csv(directory, space_time_table(index, field, d, n)));
     if (options.vtk)
       {
         files.push_back(write_space_time(directory, index, field, d, n));
