@@ -210,12 +210,10 @@ namespace nsm
     /// The profile at t = 0 at every DoF, sorted by x.
     CsvTable initial_table(const unsigned int index, const PeriodicField &field, const Discretisation &d)
     {
-      CsvTable                     initial{name(index, "_initial.csv"), {"x", "displacement", "velocity"}, {}};
-      const std::vector<double>    x  = d.support_points();
+      CsvTable initial{name(index, "_initial.csv"), {"x", "displacement", "velocity"}, {}};
       const dealii::Vector<double> u0 = field.displacement(0.0), v0 = field.velocity(0.0);
-      for (unsigned int i = 0; i < x.size(); ++i)
-        initial.rows.push_back({x[i], u0[i], v0[i]});
-      std::sort(initial.rows.begin(), initial.rows.end());
+      for (const auto &[x, dof] : dofs_by_x(d))
+        initial.rows.push_back({x, u0[dof], v0[dof]});
       return initial;
     }
 
