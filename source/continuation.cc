@@ -41,6 +41,32 @@ namespace nsm
     return scene.contact.sign == ForceSign::physical ? 1.0 : -1.0;
   }
 
+  const char *backbone_end_name(const BackboneEnd end)
+  {
+    switch (end)
+      {
+        case BackboneEnd::range:
+          return "range";
+        case BackboneEnd::max_steps:
+          return "max_steps";
+        case BackboneEnd::lost:
+          return "lost";
+        case BackboneEnd::refused:
+          return "refused";
+      }
+    return "";
+  }
+
+  std::optional<double> Backbone::omega_reached(const double direction) const
+  {
+    if (points.empty())
+      return std::nullopt;
+    const auto furthest = std::max_element(points.begin(), points.end(), [&](const auto &a, const auto &b) {
+      return direction * a.omega < direction * b.omega;
+    });
+    return furthest->omega;
+  }
+
   unsigned int Backbone::main_points() const
   {
     return std::count_if(points.begin(), points.end(),
@@ -79,16 +105,25 @@ namespace nsm
               return;
             }
           if (end == SegmentEnd::max_steps)
-            return backbone.events.push_back(event_message("Max steps reached", omega));
+            {
+              backbone.end = BackboneEnd::max_steps;
+              return backbone.events.push_back(event_message("Max steps reached", omega));
+            }
           if (end == SegmentEnd::refused)
-            return;
+            {
+              backbone.end = BackboneEnd::refused;
+              return;
+            }
           backbone.folds.push_back(omega);
           backbone.events.push_back(event_message(end == SegmentEnd::fold ?
                                                     "branch folds (continuation stalls)" :
                                                     "resonance tongue above Energy max",
                                                   omega, context.resonances));
           if (!leap(context, backbone, segment + 1))
-            return;
+            {
+              backbone.end = BackboneEnd::lost;
+              return;
+            }
           context.first_fold.reset();
         }
     }

@@ -1,3 +1,4 @@
+#include <nsm/continuation.h>
 #include <nsm/output.h>
 #include <nsm/plots.h>
 #include <nsm/progress.h>
@@ -246,7 +247,8 @@ namespace nsm
         std::ostringstream note;
         note << "study: " << combinations_.size() << " rows, " << missing_.size() << " run now on " << ranks_
              << (ranks_ == 1 ? " rank, " : " ranks, ") << resumed() << " from an earlier run, " << failed_
-             << " failed" << left_out_note(base_.study, combinations_.size());
+             << " failed, " << ended_early_ << " ended before the Omega range's end (backbone_end)"
+             << left_out_note(base_.study, combinations_.size());
         std::vector<std::string> lines{note.str()};
         lines.insert(lines.end(), reference_notes.begin(), reference_notes.end());
         for (std::string &line : pareto_notes(table_, key_size_))
@@ -266,10 +268,17 @@ namespace nsm
               std::vector<std::string> cells = split_fields(p, '\x1f');
               cells.erase(cells.begin());
               failed_ += cells[key_size_] != "ok";
+              const std::string &end = cells[column("backbone_end")];
+              ended_early_ += !end.empty() && end != backbone_end_name(BackboneEnd::range);
               std::vector<std::string> key(cells.begin(), cells.begin() + key_size_);
               rows_[key] = std::vector<CsvCell>(cells.begin(), cells.end());
             }
         in_combination_order();
+      }
+
+      std::size_t column(const std::string &name) const
+      {
+        return std::find(table_.columns.begin(), table_.columns.end(), name) - table_.columns.begin();
       }
 
       /// study.csv holds the rows computed so far (earlier runs' too), in
@@ -301,7 +310,7 @@ namespace nsm
       std::size_t                         key_size_ = 0;
       std::map<std::vector<std::string>, std::vector<CsvCell>> rows_;
       std::vector<std::size_t>            missing_;
-      unsigned int                        failed_ = 0;
+      unsigned int                        failed_ = 0, ended_early_ = 0;
     };
   } // namespace
 

@@ -224,6 +224,8 @@ namespace nsm
     m.main_points       = backbone.main_points();
     m.newton_iterations = backbone.newton_cost.converged_iterations + backbone.newton_cost.failed_iterations;
     m.failed_solves     = backbone.newton_cost.failed_solves;
+    m.backbone_end      = backbone_end_name(backbone.end);
+    m.omega_reached     = backbone.omega_reached(branch_direction(scene));
     if (reference.mode_bar)
       main_point_errors(backbone, *reference.mode_bar, scene.contact.gap, m);
     {

@@ -10,6 +10,7 @@
 #include <nsm/newton_solver.h>
 #include <nsm/scene.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,19 @@ namespace nsm
     unsigned int      points;
   };
 
+  /// How the continuation ended: a study's row says it (backbone_end), so
+  /// that a row whose branch was lost is not read as one that covered the range.
+  enum class BackboneEnd
+  {
+    range,     ///< Omega min or max reached, or the range left
+    max_steps, ///< Max steps points in all
+    lost,      ///< after a fold or tongue, no leap found the branch again
+    refused    ///< arclength reached a point that is not a contact motion
+  };
+
+  /// "range", "max_steps", "lost" or "refused", as study.csv writes it.
+  const char *backbone_end_name(BackboneEnd end);
+
   struct Backbone
   {
     std::vector<BackbonePoint> points;
@@ -61,8 +75,13 @@ namespace nsm
     std::vector<std::string>   events; ///< folds, leaps, stops: for the summary
     std::vector<double>        folds;  ///< Omega of each fold turned or leapt
     unsigned int               leaps = 0;
+    BackboneEnd                end   = BackboneEnd::range;
 
     unsigned int main_points() const;
+
+    /// The Omega of the written point furthest in the branch's `direction`
+    /// (branch_direction); none if no point was written.
+    std::optional<double> omega_reached(double direction) const;
   };
 
   /// Omega min <= omega <= Omega max.

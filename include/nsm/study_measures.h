@@ -40,6 +40,8 @@ namespace nsm
     std::vector<std::optional<MainBranchPoint>> points; ///< at each Backbone omega on the main branch
     std::vector<BackbonePoint>                  solved; ///< those found, for the verification in time
     unsigned long         newton_iterations = 0, failed_solves = 0;
+    std::string           backbone_end; ///< backbone_end_name; empty without harmonic balance
+    std::optional<double> omega_reached;
   };
 
   /// The timed stages, in the order of their study.csv columns.

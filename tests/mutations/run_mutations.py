@@ -91,6 +91,10 @@ MUTATIONS = [
      "if (!(peak || trough) || std::abs(q[t]) > reach)", "if (true)"),
     ("a lost branch blames no Newton solve on Max iterations", "source/newton_solver.cc",
      "status != NOX::StatusTest::Converged && iterations >= impl_->max_iterations}", "false}"),
+    ("a study's row whose branch was lost reads as one that reached the range", "source/continuation.cc",
+     "              backbone.end = BackboneEnd::lost;\n", ""),
+    ("results that depend on the machine's cores", "source/main.cc",
+     "  dealii::MultithreadInfo::set_thread_limit(1);\n", ""),
 ]
 
 

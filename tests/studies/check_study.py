@@ -16,6 +16,10 @@ usage: check_study.py NSM_BAR STUDIES_DIR {rates|ranks|resume|reference|harmonic
           to 40 at every Omega that all three find on it, and so does the one-period
           defect in time of the main points at the Backbone omegas, which equals
           the defect a plain run reports for its fields at those Omega;
+  ended   ended.prm: each row says how its continuation ended; at M = 160
+          the seed bar's is lost, and the row says so, with the Omega where a
+          plain run of that scene says it was lost and its last point;
+          at M = 40 the row reaches Omega max;
   unused  unused.prm: of 16 combinations, the 7 that differ from an earlier one
           only in values their run does not use (Time samples under exact
           integration, graded ratios without grading) are left out, the rest
@@ -24,6 +28,7 @@ usage: check_study.py NSM_BAR STUDIES_DIR {rates|ranks|resume|reference|harmonic
 import csv
 import math
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -301,6 +306,30 @@ def main_points_error_falls(executable, directory, rows):
     assert abs(errors[len(errors) // 2] - median[40]) <= 1e-8 * median[40], (errors[len(errors) // 2], median[40])
 
 
+def ended(executable, studies):
+    directory = fresh("ended", studies, "ended.prm")
+    result = run([executable, "ended.prm"], directory)
+    assert "0 failed, 1 ended before the Omega range's end (backbone_end)" in result.stdout, result.stdout
+    rows = {int(r["harmonics"]): r for r in read(os.path.join(directory, "out", "study.csv"))}
+    assert all(r["status"] == "ok" for r in rows.values()), rows
+    # The default Omega max; the last point lands on it exactly.
+    assert rows[40]["backbone_end"] == "range" and float(rows[40]["omega_reached"]) == 2.2, rows[40]
+    with open(os.path.join(directory, "ended.prm")) as f:
+        scene = f.read().split("subsection Study")[0]
+    with open(os.path.join(directory, "plain.prm"), "w") as f:
+        f.write(scene + "subsection Harmonic balance\n  set Harmonics = 160\nend\n"
+                "subsection Output\n  set Directory = plain\n  set Backbone = true\n  set Plots = false\nend\n")
+    summary = run([executable, "plain.prm"], directory).stdout
+    lost = re.search(r"branch lost after the fold at Omega = ([0-9.]+)", summary)
+    assert lost, summary
+    omegas = [float(r["Omega"]) for r in read(os.path.join(directory, "plain", "backbone.csv"))]
+    reached = float(rows[160]["omega_reached"])
+    assert rows[160]["backbone_end"] == "lost" and reached == max(omegas), (rows[160], max(omegas))
+    # The summary prints Omega to 8 significant digits.
+    assert abs(reached - float(lost.group(1))) <= 1e-7 and reached < 2.2, (reached, lost.group(1))
+    print(f"M = 40: range, {rows[40]['omega_reached']}; M = 160: lost at {reached}")
+
+
 def unused(executable, studies):
     directory = fresh("unused", studies, "unused.prm")
     result = run([executable, "unused.prm"], directory)
@@ -311,6 +340,8 @@ def unused(executable, studies):
     for refinement, ratio, integration, samples in keys:
         assert (ratio == "-") == (refinement == "none"), keys
         assert (samples == "-") == (integration == "exact"), keys
+    # No harmonic balance, no continuation to end.
+    assert all(r["backbone_end"] == "" and r["omega_reached"] == "" for r in rows), rows
     # The graded rows are other meshes: their errors differ from the uniform one's.
     errors = {r["refinement"] + r["graded_ratio"]: float(r["spectrum_error"]) for r in rows}
     assert len(set(errors.values())) == 3, errors
@@ -320,5 +351,5 @@ def unused(executable, studies):
 if __name__ == "__main__":
     executable, studies, mode = os.path.abspath(sys.argv[1]), sys.argv[2], sys.argv[3]
     {"rates": rates, "ranks": ranks, "resume": resume, "reference": reference,
-     "harmonics": harmonics, "unused": unused}[mode](executable, studies)
+     "harmonics": harmonics, "ended": ended, "unused": unused}[mode](executable, studies)
     print(f"study {mode}: ok")
