@@ -121,6 +121,9 @@ TEST(Backbone, SeedEq5BranchPassesThePapersFrequencyBelowW1)
   // u(L) = g0, whose energy g0^2 (w1^2 + W^2) / (4 phi_1(L)^2) is the grazing
   // energy to 0.6 %: within 10 % of it (measured 4 % above, 0.69 g0^2).
   EXPECT_NEAR(at_figure.measures.energy / model.grazing(1).second, 1.0, 0.1);
+  // The branch goes down in Omega: it reaches Omega min, its lowest point.
+  EXPECT_EQ(backbone.end, nsm::BackboneEnd::range);
+  EXPECT_EQ(backbone.omega_reached(nsm::branch_direction(model.scene)), model.scene.continuation.omega_min);
 }
 
 TEST(Backbone, DoublingTheGapMultipliesEnergiesByFour)
@@ -464,8 +467,23 @@ TEST(Backbone, StartsWithin1e4OfGrazingAndEndsExactlyAtOmegaMax)
   EXPECT_GT(backbone.points.front().omega, w1);
   EXPECT_LT(backbone.points.front().omega / w1 - 1, 1e-4);
   EXPECT_EQ(backbone.points.back().omega, scene.continuation.omega_max);
+  EXPECT_EQ(backbone.end, nsm::BackboneEnd::range);
+  EXPECT_EQ(backbone.omega_reached(nsm::branch_direction(scene)), scene.continuation.omega_max);
   for (const auto &p : backbone.points)
     EXPECT_LE(p.measures.energy, scene.continuation.energy_max);
+}
+
+TEST(Backbone, SaysItStoppedAtMaxStepsShortOfTheRange)
+{
+  auto scene                   = uniform_scene(20);
+  scene.continuation.max_steps = 5;
+  HbModel    model(scene);
+  const auto backbone = model.backbone();
+  ASSERT_EQ(backbone.points.size(), 5u);
+  EXPECT_EQ(backbone.end, nsm::BackboneEnd::max_steps);
+  EXPECT_STREQ(nsm::backbone_end_name(backbone.end), "max_steps");
+  EXPECT_EQ(backbone.omega_reached(nsm::branch_direction(scene)), backbone.points.back().omega);
+  EXPECT_LT(backbone.points.back().omega, scene.continuation.omega_max);
 }
 
 TEST(Backbone, NarrowRangeJustAboveGrazingGetsPointsUpToItsEnd)
