@@ -51,6 +51,8 @@ namespace nsm
           return "max_steps";
         case BackboneEnd::lost:
           return "lost";
+        case BackboneEnd::energy_max:
+          return "energy_max";
         case BackboneEnd::refused:
           return "refused";
       }
@@ -120,10 +122,7 @@ namespace nsm
                                                     "resonance tongue above Energy max",
                                                   omega, context.resonances));
           if (!leap(context, backbone, segment + 1))
-            {
-              backbone.end = BackboneEnd::lost;
-              return;
-            }
+            return;
           context.first_fold.reset();
         }
     }

@@ -30,8 +30,11 @@ namespace nsm
     /// needs more than the default 12).
     struct LeapTally
     {
-      unsigned int solves = 0, outside = 0, at_limit = 0, stalled = 0, no_contact = 0;
+      unsigned int solves = 0, outside = 0, above_energy_max = 0, at_limit = 0, stalled = 0, no_contact = 0;
       double       furthest = 0;
+
+      /// Landings that only Energy max refused: the branch goes on above it.
+      bool left_energy_range() const { return above_energy_max > 0; }
 
       void failed(const BranchContext::SolveFailure failure)
       {
@@ -39,7 +42,8 @@ namespace nsm
         ++(failure == F::iteration_limit ? at_limit : failure == F::stalled ? stalled : no_contact);
       }
 
-      std::string text(const double lowest, const double highest, const unsigned int max_iterations) const
+      std::string text(const double lowest, const double highest, const double energy_max,
+                       const unsigned int max_iterations) const
       {
         std::ostringstream s;
         s << std::setprecision(8) << ": no landing from " << solves << " Newton solves up to Omega = " << furthest
@@ -50,6 +54,8 @@ namespace nsm
           separator = ", ";
           return s;
         };
+        if (above_energy_max > 0)
+          part(above_energy_max) << "converged above Energy max = " << energy_max << " only";
         if (outside > 0)
           part(outside) << "converged outside the landing energies " << lowest << " to " << highest;
         if (at_limit > 0)
@@ -101,11 +107,15 @@ namespace nsm
               if (tally.solves++ == 0 || context.beyond(omega, tally.furthest))
                 tally.furthest = omega;
               if (!context.solve(omega, guess, segment, point, true))
-                tally.failed(context.last_failure());
-              else if (!(point.measures.energy <= c.energy_max &&
-                         point.measures.energy < c.leap_energy_ratio * energy &&
-                         point.measures.energy > least / c.leap_energy_ratio))
+                {
+                  tally.failed(context.last_failure());
+                  continue;
+                }
+              const double e = point.measures.energy;
+              if (!(e < c.leap_energy_ratio * energy && e > least / c.leap_energy_ratio))
                 ++tally.outside;
+              else if (!(e <= c.energy_max))
+                ++tally.above_energy_max;
               else
                 {
                   backbone.events.push_back(event_message(
@@ -126,9 +136,12 @@ namespace nsm
     // tongue.
     if (land(false) || (first > 0 && land(true)))
       return true;
+    backbone.end = tally.left_energy_range() ? BackboneEnd::energy_max : BackboneEnd::lost;
     backbone.events.push_back(
-      event_message("branch lost after the fold", front.omega) +
-      tally.text(least / c.leap_energy_ratio, std::min(c.energy_max, c.leap_energy_ratio * energy),
+      event_message(tally.left_energy_range() ? "branch goes on only above Energy max after the fold" :
+                                                "branch lost after the fold",
+                    front.omega) +
+      tally.text(least / c.leap_energy_ratio, c.leap_energy_ratio * energy, c.energy_max,
                  context.scene.harmonic_balance.max_iterations));
     return false;
   }

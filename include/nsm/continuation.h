@@ -58,13 +58,15 @@ namespace nsm
   /// that a row whose branch was lost is not read as one that covered the range.
   enum class BackboneEnd
   {
-    range,     ///< Omega min or max reached, or the range left
-    max_steps, ///< Max steps points in all
-    lost,      ///< after a fold or tongue, no leap found the branch again
-    refused    ///< arclength reached a point that is not a contact motion
+    range,      ///< Omega min or max reached, or the range left
+    max_steps,  ///< Max steps points in all
+    lost,       ///< after a fold or tongue, no leap found the branch again
+    energy_max, ///< after a fold or tongue, the leap landed only above Energy max
+    refused     ///< arclength reached a point that is not a contact motion
   };
 
-  /// "range", "max_steps", "lost" or "refused", as study.csv writes it.
+  /// "range", "max_steps", "lost", "energy_max" or "refused", as study.csv
+  /// writes it.
   const char *backbone_end_name(BackboneEnd end);
 
   struct Backbone

@@ -91,8 +91,11 @@ MUTATIONS = [
      "if (!(peak || trough) || std::abs(q[t]) > reach)", "if (true)"),
     ("a lost branch blames no Newton solve on Max iterations", "source/newton_solver.cc",
      "status != NOX::StatusTest::Converged && iterations >= impl_->max_iterations}", "false}"),
-    ("a study's row whose branch was lost reads as one that reached the range", "source/continuation.cc",
-     "              backbone.end = BackboneEnd::lost;\n", ""),
+    ("a study's row whose branch was lost reads as one that reached the range", "source/leap.cc",
+     "    backbone.end = tally.left_energy_range() ? BackboneEnd::energy_max : BackboneEnd::lost;\n", ""),
+    ("a branch that rises above Energy max called lost", "source/leap.cc",
+     "bool left_energy_range() const { return above_energy_max > 0; }",
+     "bool left_energy_range() const { return false; }"),
     ("results that depend on the machine's cores", "source/main.cc",
      "  dealii::MultithreadInfo::set_thread_limit(1);\n", ""),
 ]

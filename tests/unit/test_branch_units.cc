@@ -14,6 +14,7 @@
 #include <sstream>
 #include <string>
 
+#include "exact_bar.h"
 #include "hb_model.h"
 
 namespace
@@ -203,10 +204,47 @@ TEST(Leap, ALostBranchSaysWhatItsNewtonSolvesEndedIn)
   EXPECT_EQ(counted, std::stoul(m[2])) << message;
   EXPECT_GT(2 * at_limit, counted) << message;
   EXPECT_NE(message.find("stopped at Max iterations = 12"), std::string::npos) << message;
+  EXPECT_EQ(lost.end, nsm::BackboneEnd::lost);
 
   const nsm::Backbone reached = seed_at_m160(40);
   EXPECT_EQ(reached.points.size(), 300u);
   EXPECT_GT(reached.points.back().omega, front);
   for (const std::string &event : reached.events)
     EXPECT_EQ(event.find("branch lost"), std::string::npos) << event;
+}
+
+// The uniform bar's first nonsmooth mode has the energy g0^2 / (2 (T - 3)^2),
+// which crosses 1e-3 at Omega = 2.0789 (T = 3.0224). Run to 2.08 with that
+// Energy max, the branch is not lost: the leap beyond the last fold lands
+// only above Energy max, and the run says so. With Energy max 1e-2 it reaches
+// 2.08.
+TEST(Leap, ABranchThatRisesAboveEnergyMaxIsNotCalledLost)
+{
+  auto scene                    = testing_helpers::hb_scene("1", 40);
+  scene.continuation.omega_max  = 2.08;
+  scene.continuation.energy_max = 1e-3;
+  HbModel             model(scene);
+  const nsm::Backbone above = model.backbone();
+  EXPECT_EQ(above.end, nsm::BackboneEnd::energy_max);
+  const std::string &message = above.events.back();
+  std::smatch        m;
+  ASSERT_TRUE(std::regex_search(message, m,
+                                std::regex("branch goes on only above Energy max after the fold at Omega = ([0-9.]+): "
+                                           "no landing from [0-9]+ Newton solves up to Omega = ([0-9.]+) "
+                                           "\\(([0-9]+) converged above Energy max = 0.001 only")))
+    << message;
+  const auto exact_energy = [&](const double omega) {
+    return exact::UniformMode(2 * M_PI / omega, scene.contact.gap).energy;
+  };
+  // The exact mode crosses Energy max between the front and the furthest try.
+  EXPECT_LT(exact_energy(std::stod(m[1])), scene.continuation.energy_max) << message;
+  EXPECT_GT(exact_energy(std::stod(m[2])), scene.continuation.energy_max) << message;
+  EXPECT_GT(std::stoul(m[3]), 0u);
+
+  scene.continuation.energy_max = 1e-2;
+  HbModel             higher(scene);
+  const nsm::Backbone reached = higher.backbone();
+  EXPECT_EQ(reached.end, nsm::BackboneEnd::range);
+  EXPECT_EQ(reached.points.back().omega, 2.08);
+  EXPECT_GT(reached.points.back().measures.energy, 1e-3);
 }
