@@ -70,10 +70,24 @@ namespace nsm
       return packed;
     }
 
+    /// A row whose continuation ended (backbone_end not range) strictly
+    /// inside the span of the Backbone omegas measured its backbone errors
+    /// over part of them only: they are not comparable with the other rows'.
+    bool ended_inside(const std::string &end, const std::string &omega_reached, const std::vector<double> &omegas)
+    {
+      if (end.empty() || end == backbone_end_name(BackboneEnd::range) || omegas.empty())
+        return false;
+      const double reached = std::stod(omega_reached);
+      const auto [low, high] = std::minmax_element(omegas.begin(), omegas.end());
+      return reached > *low && reached < *high;
+    }
+
     /// The run summary's answer to "what does accuracy cost": per measured
     /// error, the rows that no other row beats in both error and median
-    /// time (the Pareto front), fastest first.
-    std::vector<std::string> pareto_notes(const CsvTable &table, const std::size_t key_size)
+    /// time (the Pareto front), fastest first. Rows that ended inside the
+    /// Backbone omegas are left out of the backbone error's front.
+    std::vector<std::string> pareto_notes(const CsvTable &table, const std::size_t key_size,
+                                          const std::vector<double> &backbone_omegas)
     {
       const auto column = [&](const std::string &name) {
         return std::find(table.columns.begin(), table.columns.end(), name) - table.columns.begin();
@@ -94,10 +108,19 @@ namespace nsm
       std::vector<std::string> notes;
       for (const char *error : {"spectrum_error", "receptance_error", "energy_error_max"})
         {
+          const bool backbone_error = std::string(error) == "energy_error_max";
           std::vector<std::pair<double, const std::vector<CsvCell> *>> rows;
+          unsigned int                                                 partial = 0;
           for (const auto &row : table.rows)
-            if (!cell(row, column(error)).empty())
-              rows.emplace_back(std::stod(cell(row, time)), &row);
+            {
+              if (cell(row, column(error)).empty())
+                continue;
+              if (backbone_error && ended_inside(cell(row, column("backbone_end")),
+                                                 cell(row, column("omega_reached")), backbone_omegas))
+                ++partial;
+              else
+                rows.emplace_back(std::stod(cell(row, time)), &row);
+            }
           std::sort(rows.begin(), rows.end(),
                     [](const auto &a, const auto &b) { return a.first < b.first; });
           double best = std::numeric_limits<double>::infinity();
@@ -112,6 +135,9 @@ namespace nsm
                   note << " " << table.columns[c] << " " << cell(*row, c);
                 notes.push_back(note.str());
               }
+          if (partial > 0)
+            notes.push_back("  (" + std::string(error) + ": " + std::to_string(partial) +
+                            " rows left out, their continuation ended inside the Backbone omegas)");
         }
       if (!notes.empty())
         notes.insert(notes.begin(), "the fastest row to each error (median time):");
@@ -251,7 +277,7 @@ namespace nsm
              << left_out_note(base_.study, combinations_.size());
         std::vector<std::string> lines{note.str()};
         lines.insert(lines.end(), reference_notes.begin(), reference_notes.end());
-        for (std::string &line : pareto_notes(table_, key_size_))
+        for (std::string &line : pareto_notes(table_, key_size_, base_.study.backbone_omega_values))
           lines.push_back(std::move(line));
         return lines;
       }

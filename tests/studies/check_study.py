@@ -19,7 +19,9 @@ usage: check_study.py NSM_BAR STUDIES_DIR {rates|ranks|resume|reference|harmonic
   ended   ended.prm: each row says how its continuation ended; at M = 160
           the seed bar's is lost, and the row says so, with the Omega where a
           plain run of that scene says it was lost and its last point;
-          at M = 40 the row reaches Omega max;
+          at M = 40 the row reaches Omega max; ended_energy.prm: on the
+          uniform bar a row that ends at Energy max inside the Backbone
+          omegas is left out of the energy error's Pareto front;
   unused  unused.prm: of 16 combinations, the 7 that differ from an earlier one
           only in values their run does not use (Time samples under exact
           integration, graded ratios without grading) are left out, the rest
@@ -328,6 +330,27 @@ def ended(executable, studies):
     # The summary prints Omega to 8 significant digits.
     assert abs(reached - float(lost.group(1))) <= 1e-7 and reached < 2.2, (reached, lost.group(1))
     print(f"M = 40: range, {rows[40]['omega_reached']}; M = 160: lost at {reached}")
+    energy_front_leaves_out_partial_rows(executable, studies)
+
+
+def energy_front_leaves_out_partial_rows(executable, studies):
+    directory = fresh("ended_energy", studies, "ended_energy.prm")
+    summary = run([executable, "ended_energy.prm"], directory).stdout
+    rows = {int(r["harmonics"]): r for r in read(os.path.join(directory, "out", "study.csv"))}
+    assert [rows[m]["backbone_end"] for m in (10, 20, 40)] == ["range", "range", "energy_max"], rows
+    # The exact mode crosses Energy max between the M = 40 row's end and the
+    # last Backbone omega: its energy g0^2 / (2 (T - 3)^2) at both.
+    reached = float(rows[40]["omega_reached"])
+    assert exact_uniform_energy(reached, 1e-3) < 1e-3 < exact_uniform_energy(2.079, 1e-3), reached
+    assert rows[40]["energy_at_2.079"] == "" and all(rows[m]["energy_at_2.079"] for m in (10, 20)), rows
+    # Left out, it would have led the front: its error over two Omega is the least.
+    errors = {m: float(r["energy_error_max"]) for m, r in rows.items()}
+    assert errors[40] < min(errors[10], errors[20]), errors
+    front = [line for line in summary.splitlines() if line.startswith("    energy_error_max ")]
+    assert front and not any("harmonics 40" in line for line in front), summary
+    assert "(energy_error_max: 1 rows left out, their continuation ended inside the Backbone omegas)" in summary, \
+        summary
+    print(f"energy front: {front}; M = 40 ended at {reached}, left out")
 
 
 def unused(executable, studies):
