@@ -70,6 +70,11 @@ namespace nsm
       return packed;
     }
 
+    std::size_t column_of(const CsvTable &table, const std::string &name)
+    {
+      return std::find(table.columns.begin(), table.columns.end(), name) - table.columns.begin();
+    }
+
     /// A row whose continuation ended (backbone_end not range) strictly
     /// inside the span of the Backbone omegas measured its backbone errors
     /// over part of them only: they are not comparable with the other rows'.
@@ -89,9 +94,7 @@ namespace nsm
     std::vector<std::string> pareto_notes(const CsvTable &table, const std::size_t key_size,
                                           const std::vector<double> &backbone_omegas)
     {
-      const auto column = [&](const std::string &name) {
-        return std::find(table.columns.begin(), table.columns.end(), name) - table.columns.begin();
-      };
+      const auto column = [&](const std::string &name) { return column_of(table, name); };
       const auto cell = [](const std::vector<CsvCell> &row, const std::size_t c) {
         return std::get<std::string>(row[c]);
       };
@@ -294,17 +297,12 @@ namespace nsm
               std::vector<std::string> cells = split_fields(p, '\x1f');
               cells.erase(cells.begin());
               failed_ += cells[key_size_] != "ok";
-              const std::string &end = cells[column("backbone_end")];
+              const std::string &end = cells[column_of(table_, "backbone_end")];
               ended_early_ += !end.empty() && end != backbone_end_name(BackboneEnd::range);
               std::vector<std::string> key(cells.begin(), cells.begin() + key_size_);
               rows_[key] = std::vector<CsvCell>(cells.begin(), cells.end());
             }
         in_combination_order();
-      }
-
-      std::size_t column(const std::string &name) const
-      {
-        return std::find(table_.columns.begin(), table_.columns.end(), name) - table_.columns.begin();
       }
 
       /// study.csv holds the rows computed so far (earlier runs' too), in
