@@ -276,7 +276,8 @@ namespace nsm
         std::ostringstream note;
         note << "study: " << combinations_.size() << " rows, " << missing_.size() << " run now on " << ranks_
              << (ranks_ == 1 ? " rank, " : " ranks, ") << resumed() << " from an earlier run, " << failed_
-             << " failed, " << ended_early_ << " ended before the Omega range's end (backbone_end)"
+             << " failed; " << ended_early() << (ended_early() == 1 ? " row" : " rows")
+             << " ended before the Omega range's end (backbone_end)"
              << left_out_note(base_.study, combinations_.size());
         std::vector<std::string> lines{note.str()};
         lines.insert(lines.end(), reference_notes.begin(), reference_notes.end());
@@ -288,6 +289,17 @@ namespace nsm
     private:
       std::size_t resumed() const { return combinations_.size() - missing_.size(); }
 
+      /// The rows of study.csv, earlier runs' too, whose continuation ended
+      /// before the range's end.
+      std::size_t ended_early() const
+      {
+        const std::size_t c = column_of(table_, "backbone_end");
+        return std::count_if(table_.rows.begin(), table_.rows.end(), [&](const std::vector<CsvCell> &row) {
+          const std::string &end = std::get<std::string>(row[c]);
+          return !end.empty() && end != backbone_end_name(BackboneEnd::range);
+        });
+      }
+
       /// Rank 0 keeps the gathered rows of one round.
       void keep_rows(const std::vector<std::string> &gathered)
       {
@@ -297,8 +309,6 @@ namespace nsm
               std::vector<std::string> cells = split_fields(p, '\x1f');
               cells.erase(cells.begin());
               failed_ += cells[key_size_] != "ok";
-              const std::string &end = cells[column_of(table_, "backbone_end")];
-              ended_early_ += !end.empty() && end != backbone_end_name(BackboneEnd::range);
               std::vector<std::string> key(cells.begin(), cells.begin() + key_size_);
               rows_[key] = std::vector<CsvCell>(cells.begin(), cells.end());
             }
@@ -334,7 +344,7 @@ namespace nsm
       std::size_t                         key_size_ = 0;
       std::map<std::vector<std::string>, std::vector<CsvCell>> rows_;
       std::vector<std::size_t>            missing_;
-      unsigned int                        failed_ = 0, ended_early_ = 0;
+      unsigned int                        failed_ = 0;
     };
   } // namespace
 

@@ -311,7 +311,10 @@ def main_points_error_falls(executable, directory, rows):
 def ended(executable, studies):
     directory = fresh("ended", studies, "ended.prm")
     result = run([executable, "ended.prm"], directory)
-    assert "0 failed, 1 ended before the Omega range's end (backbone_end)" in result.stdout, result.stdout
+    assert "0 failed; 1 row ended before the Omega range's end (backbone_end)" in result.stdout, result.stdout
+    # A rerun computes nothing and still counts it, from study.csv.
+    rerun = run([executable, "ended.prm"], directory).stdout
+    assert "0 run now" in rerun and "1 row ended before the Omega range's end" in rerun, rerun
     rows = {int(r["harmonics"]): r for r in read(os.path.join(directory, "out", "study.csv"))}
     assert all(r["status"] == "ok" for r in rows.values()), rows
     # The default Omega max; the last point lands on it exactly.
