@@ -18,6 +18,7 @@ namespace nsm
   /// branch). If nothing lands, the last resort tries the last point before
   /// the segment as the only guess. A success
   /// appends the landing as the first point of `segment`; a failure records
-  /// that the branch was lost and what the Newton solves ended in.
+  /// how the backbone ended (Backbone::end: lost, or energy_max where the only
+  /// landings lay above Energy max) and what the Newton solves ended in.
   bool leap(BranchContext &context, Backbone &backbone, unsigned int segment);
 } // namespace nsm
