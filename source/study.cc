@@ -75,12 +75,19 @@ namespace nsm
       return std::find(table.columns.begin(), table.columns.end(), name) - table.columns.begin();
     }
 
-    /// A row whose continuation ended (backbone_end not range) strictly
-    /// inside the span of the Backbone omegas measured its backbone errors
-    /// over part of them only: they are not comparable with the other rows'.
+    /// A row's backbone_end says its continuation stopped before the range's
+    /// end (empty: the row ran no harmonic balance).
+    bool stopped_short(const std::string &end)
+    {
+      return !end.empty() && end != backbone_end_name(BackboneEnd::range);
+    }
+
+    /// A row whose continuation stopped short strictly inside the span of
+    /// the Backbone omegas measured its backbone errors over part of them
+    /// only: they are not comparable with the other rows'.
     bool ended_inside(const std::string &end, const std::string &omega_reached, const std::vector<double> &omegas)
     {
-      if (end.empty() || end == backbone_end_name(BackboneEnd::range) || omegas.empty())
+      if (!stopped_short(end) || omegas.empty())
         return false;
       const double reached = std::stod(omega_reached);
       const auto [low, high] = std::minmax_element(omegas.begin(), omegas.end());
@@ -295,8 +302,7 @@ namespace nsm
       {
         const std::size_t c = column_of(table_, "backbone_end");
         return std::count_if(table_.rows.begin(), table_.rows.end(), [&](const std::vector<CsvCell> &row) {
-          const std::string &end = std::get<std::string>(row[c]);
-          return !end.empty() && end != backbone_end_name(BackboneEnd::range);
+          return stopped_short(std::get<std::string>(row[c]));
         });
       }
 
