@@ -251,13 +251,14 @@ def harmonics(executable, studies):
     time_defects_fall(executable, directory, rows)
 
 
-def plain_run(executable, directory, name, output):
-    """harmonics.prm without its Study section, at M = 40, as a plain run
-    writing its backbone to directory/name, with `output` added to Output."""
-    with open(os.path.join(directory, "harmonics.prm")) as f:
+def plain_run(executable, directory, name, output, study="harmonics.prm", harmonics=40):
+    """The study scene without its Study section, at M = `harmonics`, as a
+    plain run writing its backbone to directory/name, with `output` added
+    to Output."""
+    with open(os.path.join(directory, study)) as f:
         scene = f.read().split("subsection Study")[0]
     with open(os.path.join(directory, name + ".prm"), "w") as f:
-        f.write(scene + "subsection Harmonic balance\n  set Harmonics = 40\nend\n"
+        f.write(scene + f"subsection Harmonic balance\n  set Harmonics = {harmonics}\nend\n"
                 f"subsection Output\n  set Directory = {name}\n  set Backbone = true\n  set Plots = false\n"
                 + output + "end\n")
     return run([executable, name + ".prm"], directory)
@@ -319,12 +320,7 @@ def ended(executable, studies):
     assert all(r["status"] == "ok" for r in rows.values()), rows
     # The default Omega max; the last point lands on it exactly.
     assert rows[40]["backbone_end"] == "range" and float(rows[40]["omega_reached"]) == 2.2, rows[40]
-    with open(os.path.join(directory, "ended.prm")) as f:
-        scene = f.read().split("subsection Study")[0]
-    with open(os.path.join(directory, "plain.prm"), "w") as f:
-        f.write(scene + "subsection Harmonic balance\n  set Harmonics = 160\nend\n"
-                "subsection Output\n  set Directory = plain\n  set Backbone = true\n  set Plots = false\nend\n")
-    summary = run([executable, "plain.prm"], directory).stdout
+    summary = plain_run(executable, directory, "plain", "", study="ended.prm", harmonics=160).stdout
     lost = re.search(r"branch lost after the fold at Omega = ([0-9.]+)", summary)
     assert lost, summary
     omegas = [float(r["Omega"]) for r in read(os.path.join(directory, "plain", "backbone.csv"))]
