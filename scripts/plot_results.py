@@ -173,15 +173,6 @@ def pareto(times, errors):
     return front
 
 
-def ended_inside(row, omegas):
-    """The rule of the run summary's front (study.cc): a row whose
-    continuation ended strictly inside the span of the Backbone omegas
-    measured its energy error over part of them only."""
-    if row["backbone_end"] in ("", "range") or not omegas:
-        return False
-    return min(omegas) < float(row["omega_reached"]) < max(omegas)
-
-
 def study_plot(directory):
     with open(os.path.join(directory, "study.csv"), newline="") as f:
         rows = [r for r in csv.DictReader(f) if r["status"] == "ok"]
@@ -195,7 +186,6 @@ def study_plot(directory):
     # One line per combination of the varying parameters but the size.
     varying = [c for c in swept if c != size and len({r[c] for r in rows}) > 1]
     measures = [(c, name) for c, name in STUDY_ERRORS if any(r[c] for r in rows)]
-    omegas = [float(c[len("energy_at_"):]) for c in rows[0] if c.startswith("energy_at_")]
     if not measures:
         return
     figure, axes = plt.subplots(len(measures), 2, figsize=(12, 4.2 * len(measures)), squeeze=False)
@@ -217,7 +207,8 @@ def study_plot(directory):
                            label=label)
             by_time.loglog([float(r["wall_total_median"]) for r in group], errors, marker, ms=3,
                            color=colour)
-        partial = [r for r in valid if column == "energy_error_max" and ended_inside(r, omegas)]
+        # study.csv says which rows measured the energy error over part of the Backbone omegas.
+        partial = [r for r in valid if column == "energy_error_max" and r["energy_error_partial"] == "yes"]
         if partial:
             errors = [float(r[column]) for r in partial]
             by_dofs.loglog([int(r[size_column]) for r in partial], errors, "o", ms=9, mfc="none", color="0.5")

@@ -82,24 +82,12 @@ namespace nsm
       return !end.empty() && end != backbone_end_name(BackboneEnd::range);
     }
 
-    /// A row whose continuation stopped short strictly inside the span of
-    /// the Backbone omegas measured its backbone errors over part of them
-    /// only: they are not comparable with the other rows'.
-    bool ended_inside(const std::string &end, const std::string &omega_reached, const std::vector<double> &omegas)
-    {
-      if (!stopped_short(end) || omegas.empty())
-        return false;
-      const double reached = std::stod(omega_reached);
-      const auto [low, high] = std::minmax_element(omegas.begin(), omegas.end());
-      return reached > *low && reached < *high;
-    }
-
     /// The run summary's answer to "what does accuracy cost": per measured
     /// error, the rows that no other row beats in both error and median
-    /// time (the Pareto front), fastest first. Rows that ended inside the
-    /// Backbone omegas are left out of the backbone error's front.
-    std::vector<std::string> pareto_notes(const CsvTable &table, const std::size_t key_size,
-                                          const std::vector<double> &backbone_omegas)
+    /// time (the Pareto front), fastest first. Rows whose energy errors
+    /// cover part of the Backbone omegas (energy_error_partial) are left out
+    /// of the backbone error's front.
+    std::vector<std::string> pareto_notes(const CsvTable &table, const std::size_t key_size)
     {
       const auto column = [&](const std::string &name) { return column_of(table, name); };
       const auto cell = [](const std::vector<CsvCell> &row, const std::size_t c) {
@@ -125,8 +113,7 @@ namespace nsm
             {
               if (cell(row, column(error)).empty())
                 continue;
-              if (backbone_error && ended_inside(cell(row, column("backbone_end")),
-                                                 cell(row, column("omega_reached")), backbone_omegas))
+              if (backbone_error && cell(row, column("energy_error_partial")) == "yes")
                 ++partial;
               else
                 rows.emplace_back(std::stod(cell(row, time)), &row);
@@ -147,7 +134,8 @@ namespace nsm
               }
           if (partial > 0)
             notes.push_back("  (" + std::string(error) + ": " + std::to_string(partial) +
-                            " rows left out, their continuation ended inside the Backbone omegas)");
+                            (partial == 1 ? " row left out, its continuation" : " rows left out, their continuation") +
+                            " ended inside the Backbone omegas: energy_error_partial)");
         }
       if (!notes.empty())
         notes.insert(notes.begin(), "the fastest row to each error (median time):");
@@ -288,7 +276,7 @@ namespace nsm
              << left_out_note(base_.study, combinations_.size());
         std::vector<std::string> lines{note.str()};
         lines.insert(lines.end(), reference_notes.begin(), reference_notes.end());
-        for (std::string &line : pareto_notes(table_, key_size_, base_.study.backbone_omega_values))
+        for (std::string &line : pareto_notes(table_, key_size_))
           lines.push_back(std::move(line));
         return lines;
       }

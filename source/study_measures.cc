@@ -117,6 +117,16 @@ namespace nsm
       m.time_defect_median = defects[defects.size() / 2];
       m.time_defect_max    = defects.back();
     }
+
+    /// A continuation that stopped short (not at the range's end) strictly
+    /// between the least and the largest Backbone omega.
+    bool ended_inside(const BackboneEnd end, const std::optional<double> &reached, const std::vector<double> &omegas)
+    {
+      if (end == BackboneEnd::range || !reached || omegas.empty())
+        return false;
+      const auto [low, high] = std::minmax_element(omegas.begin(), omegas.end());
+      return *reached > *low && *reached < *high;
+    }
   } // namespace
 
   const std::vector<std::string> &study_stages()
@@ -226,6 +236,7 @@ namespace nsm
     m.failed_solves     = backbone.newton_cost.failed_solves;
     m.backbone_end      = backbone_end_name(backbone.end);
     m.omega_reached     = backbone.omega_reached(branch_direction(scene));
+    m.energy_error_partial = ended_inside(backbone.end, m.omega_reached, study.backbone_omega_values);
     if (reference.mode_bar)
       main_point_errors(backbone, *reference.mode_bar, scene.contact.gap, m);
     {

@@ -117,7 +117,7 @@ namespace nsm
                                         "main_energy_error_q90", "main_time_defect_median",
                                         "main_time_defect_max", "energy_points",
                                         "main_points", "newton_iterations", "failed_solves",
-                                        "backbone_end", "omega_reached",
+                                        "backbone_end", "omega_reached", "energy_error_partial",
                                         "peak_memory_mib", "wall_total_min", "wall_total_median",
                                         "wall_total_max", "cpu_total_median"};
     for (const std::string &stage : study_stages())
@@ -174,6 +174,7 @@ namespace nsm
                                     std::to_string(m.failed_solves),
                                     m.backbone_end,
                                     text(m.omega_reached),
+                                    m.energy_error_partial ? (*m.energy_error_partial ? "yes" : "no") : "",
                                     text(status_mib("VmHWM") - resident),
                                     text(*std::min_element(totals.begin(), totals.end())),
                                     text(median(totals)),

@@ -42,6 +42,11 @@ namespace nsm
     unsigned long         newton_iterations = 0, failed_solves = 0;
     std::string           backbone_end; ///< backbone_end_name; empty without harmonic balance
     std::optional<double> omega_reached;
+    /// The continuation stopped short strictly inside the span of the
+    /// Backbone omegas: the backbone errors cover part of them only, so they
+    /// are not comparable with other rows' (left off the energy error's
+    /// Pareto front). Empty without harmonic balance.
+    std::optional<bool> energy_error_partial;
   };
 
   /// The timed stages, in the order of their study.csv columns.
