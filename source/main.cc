@@ -5,7 +5,6 @@
 #include <nsm/study.h>
 
 #include <deal.II/base/mpi.h>
-#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <iostream>
@@ -97,12 +96,7 @@ int main(int argc, char **argv)
       prm.print_parameters(std::cout, dealii::ParameterHandler::PRM);
       return 0;
     }
-  // One thread, as a study's MPI_InitFinalize sets it: deal.II's FEValues
-  // gives other last bits with more threads (its gradients with 2 threads
-  // against 1, measured), so results would depend on the machine's cores and
-  // a study's row would not be its scene's plain run, bit for bit. These 1D
-  // problems gain no time from threads (prm/seed.prm: 0.53 s both ways).
-  dealii::MultithreadInfo::set_thread_limit(1);
+  nsm::use_one_thread();
   std::optional<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
   const int code = run(argc, argv, argument, mpi);
   // A rank that failed alone would leave the others waiting in a collective;

@@ -13,6 +13,7 @@
 #include <nsm/result_tables.h>
 #include <nsm/time_verification.h>
 
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/timer.h>
 
 #include <algorithm>
@@ -295,4 +296,6 @@ namespace nsm
     for (const std::string &f : report.files)
       out << "    " << f << '\n';
   }
+
+  void use_one_thread() { dealii::MultithreadInfo::set_thread_limit(1); }
 } // namespace nsm

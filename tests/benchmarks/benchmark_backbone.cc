@@ -8,6 +8,7 @@
 #include <nsm/continuation.h>
 #include <nsm/discretisation.h>
 #include <nsm/harmonic_balance.h>
+#include <nsm/pipeline.h>
 #include <nsm/receptance.h>
 
 #include <chrono>
@@ -85,6 +86,7 @@ namespace
 
 int main()
 {
+  nsm::use_one_thread(); // as nsm-bar: the same results
   std::printf("| mesh | method | points | main points | tongues | leaps | folds | set-up [s] | backbone [s] | total [s] | receptance | residual | Jacobian (+dR/dW) | linear solves | NOX/LOCA, predictors, measures | ms per point (all) | ms per main point | last Omega | ms per converged Newton solve | failed solves (folds, leaps) |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const auto method : {nsm::ContinuationMethod::sequential, nsm::ContinuationMethod::arclength})

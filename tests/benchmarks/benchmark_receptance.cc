@@ -4,6 +4,7 @@
 // Bessel receptance). Ratios are measured in this one run.
 #include <nsm/bar_model.h>
 #include <nsm/discretisation.h>
+#include <nsm/pipeline.h>
 #include <nsm/receptance.h>
 
 #include <chrono>
@@ -63,6 +64,7 @@ namespace
 
 int main()
 {
+  nsm::use_one_thread(); // as nsm-bar: the same results
   const Model seed(1, 4000);
   const double seed_error =
     error(nsm::Receptance(seed.discretisation, {nsm::ReceptanceMethod::direct, 0}, 0.0));

@@ -4,6 +4,8 @@
 // sampled system is solved from the exact solution; the table gives the
 // energy difference, the cost of one residual + Jacobian evaluation, and the
 // Newton iterations.
+#include <nsm/pipeline.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -62,6 +64,7 @@ void uniform_convergence()
 
 int main()
 {
+  nsm::use_one_thread(); // as nsm-bar: the same results
   uniform_convergence();
   struct Case
   {

@@ -8,6 +8,8 @@
 //     the fold where M = 160 is lost, padded with zero harmonics: the branch
 //     exists there at M = 80 and moves little from M = 80 to 160 where both
 //     are found, so this is as good a guess as any leap could make.
+#include <nsm/pipeline.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -91,6 +93,7 @@ namespace
 
 int main()
 {
+  nsm::use_one_thread(); // as nsm-bar: the same results
   std::printf("seed bar, FE_Q(10) x 20, modal, exact integration, grazing to 2.2, Energy max 1e-3\n\n");
   std::printf("| M | points | main points | Omega reached | sign changes of q per period on main points: median | max "
               "| share with more than 2 | largest |share(q > 0) - contact fraction| |\n|---|---|---|---|---|---|---|---|\n");

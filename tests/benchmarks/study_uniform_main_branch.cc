@@ -6,6 +6,8 @@
 // continuation that labels main points can reach at this M: the share of Omega
 // values with a solution within 5 % of the exact energy, the median error, and
 // the windows of width 0.01 in [1.58, 2.08) that hold such a solution.
+#include <nsm/pipeline.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -39,6 +41,7 @@ namespace
 
 int main(int argc, char **argv)
 {
+  nsm::use_one_thread(); // as nsm-bar: the same results
   const double grid = argc > 1 ? std::atof(argv[1]) : 0.0025;
   std::printf("uniform bar, FE_Q(10) x 10 cells, modal, exact integration; Omega = 1.5775 + i %g < 2.08\n\n", grid);
   std::printf("| M | Omega values | converged | within 5 %% | within 2.5 %% | median error | windows with a point within 5 %% (of 50) | empty windows |\n|---|---|---|---|---|---|---|---|\n");
