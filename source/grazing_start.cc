@@ -7,6 +7,16 @@ namespace nsm
 {
   namespace
   {
+    /// Six significant digits, whatever the scale (energies go down to 1e-20
+    /// with small gaps).
+    std::string text(const double value)
+    {
+      std::ostringstream s;
+      s.precision(6);
+      s << value;
+      return s.str();
+    }
+
     [[noreturn]] void no_start(const BranchContext &context, const unsigned int mode, const double w)
     {
       std::ostringstream s;
@@ -26,9 +36,14 @@ namespace nsm
     const unsigned int         mode  = c.mode;
     const std::vector<double> &poles = context.hb.receptance().poles();
     if (mode > poles.size())
-      throw InputError("parameter 'Continuation/Mode' = " + std::to_string(mode) +
-                       " is out of range: allowed 1 to " + std::to_string(poles.size()) +
-                       " (clamped-free modes below Harmonics x Omega max)");
+      {
+        const std::string band = "Harmonics x Omega max = " +
+                                 text(context.scene.harmonic_balance.harmonics * c.omega_max);
+        throw InputError("parameter 'Continuation/Mode' = " + std::to_string(mode) + " is out of range: " +
+                         (poles.empty() ? "no clamped-free mode lies below " + band + "; allowed: a larger Omega max" :
+                                          "allowed 1 to " + std::to_string(poles.size()) +
+                                            " (clamped-free modes below " + band + ")"));
+      }
     const double w = std::sqrt(poles[mode - 1]);
     // The contact lasts a vanishing share of the period at grazing; Search
     // reach (5 %) of w_j away the branch is far beyond its grazing end. A
@@ -49,9 +64,9 @@ namespace nsm
         s << "start at grazing of clamped-free mode " << mode << " (w = " << w << ") at Omega = " << omega;
         backbone.events.push_back(s.str());
         if (point.measures.energy > c.energy_max)
-          throw InputError("parameter 'Continuation/Energy max' = " + std::to_string(c.energy_max) +
+          throw InputError("parameter 'Continuation/Energy max' = " + text(c.energy_max) +
                            " is out of range: allowed above the energy at grazing, " +
-                           std::to_string(point.measures.energy));
+                           text(point.measures.energy));
         const bool before = context.beyond(context.near_end, omega);
         context.span      = std::abs(context.far_end - (before ? context.near_end : omega));
         return point;

@@ -296,6 +296,15 @@ def rows(executable):
         dict(name="mode_beyond_mesh", scene=section("Continuation", Mode=10000) +
              output(Directory="out", Backbone="true"), code=2,
              words=["Continuation/Mode", "[1, 4000]"]),
+        # No mode at all below the band: the range is empty, not "1 to 0".
+        dict(name="mode_beyond_band", scene=SMALL.replace("Harmonics = 20", "Harmonics = 1") +
+             section("Continuation", Omega_min=0.5, Omega_max=1) + output(Directory="out", Backbone="true"),
+             code=2, words=["Continuation/Mode", "no clamped-free mode lies below Harmonics x Omega max = 1"]),
+        # Tiny energies are printed as numbers, not as 0.000000.
+        dict(name="energy_max_below_grazing", scene=BACKBONE.replace("Energy_max", "x") +
+             section("Contact", Gap="1e-6") + section("Continuation", Energy_max="1e-20") +
+             output(Directory="out", Backbone="true"),
+             code=2, words=["Continuation/Energy max' = 1e-20", "above the energy at grazing, 6.6"]),
         dict(name="grazing_offset_beyond_reach", scene=section(
             "Continuation", Grazing_offset="1e-2", Search_reach="1e-3") +
              output(Directory="out", Backbone="true"), code=2,
