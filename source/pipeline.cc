@@ -46,6 +46,23 @@ namespace nsm
       return s.str();
     }
 
+    /// A field is solved on the computed branch; beyond its first or last
+    /// point (before grazing, or past where it was lost) Newton could only
+    /// land on something that was not traced, so the Omega is refused.
+    void require_on_branch(const Backbone &backbone, const double omega)
+    {
+      const auto [low, high] = std::minmax_element(
+        backbone.points.begin(), backbone.points.end(),
+        [](const BackbonePoint &a, const BackbonePoint &b) { return a.omega < b.omega; });
+      if (omega >= low->omega && omega <= high->omega)
+        return;
+      std::ostringstream s;
+      s.precision(8);
+      s << "parameter 'Output/Fields at' = " << omega << " is out of range: allowed within the computed branch, "
+        << low->omega << " to " << high->omega << " (how it ended: " << backbone_end_name(backbone.end) << ")";
+      throw InputError(s.str());
+    }
+
     /// The summary line of a field's verification.
     std::string field_verification(const PeriodicField &field, const Discretisation &discretisation, const Scene &scene)
     {
@@ -160,6 +177,7 @@ namespace nsm
           const auto  report_count = [&] { return std::to_string(fields_.size()) + " fields"; };
           for (const double omega : o.fields_at)
             {
+              require_on_branch(backbone_, omega);
               fields_.emplace_back(*hb_, *discretisation_, solve_on_branch(*hb_, scene_, backbone_, omega),
                                    scene_.contact.sign);
               if (const BackbonePoint &p = fields_.back().point(); p.branch == Branch::tongue)

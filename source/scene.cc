@@ -303,7 +303,8 @@ namespace nsm
     double w = 0;
     for (const double f : output.receptance_frequencies)
       w = std::max(w, f);
-    if (output.backbone)
+    // A field is a point of the backbone: the run traces it for fields alone too.
+    if (output.backbone || output.fields())
       w = std::max(w, harmonic_balance.harmonics * continuation.omega_max);
     return w;
   }

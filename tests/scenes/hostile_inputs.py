@@ -186,6 +186,14 @@ def modal_static_value(_):
     assert abs(float(rows[1][1]) - LN3) < 1e-7, rows[1]
 
 
+def field_alone(_):
+    files = listing("out")
+    assert "fields.csv" in files and "backbone.csv" not in files, files
+    header, *rows = read_rows("out/fields.csv")
+    omegas = [float(r[header.index("Omega")]) for r in rows]
+    assert omegas == [1.92], omegas
+
+
 def replaced_whole(_):
     files = listing("out")
     with open("out/nsm-bar.manifest") as f:
@@ -311,6 +319,13 @@ def rows(executable):
              words=["Continuation/Grazing offset", "< Search reach = 0.001"]),
         dict(name="fields_outside_range", scene=output(Directory="out", Fields_at=5), code=2,
              words=["Output/Fields at", "[Omega min, Omega max]"]),
+        # A field alone traces the backbone it lies on, with the receptance's poles
+        # up to Harmonics x Omega max (it used to count none and refuse Mode 1).
+        dict(name="field_without_backbone", scene=BACKBONE + output(Directory="out", Fields_at=1.92), code=0,
+             check=field_alone, leaves={"out"}),
+        # Below w1 the physical branch does not exist: the paper's 1.907 on its bar.
+        dict(name="fields_off_branch", scene=BACKBONE + output(Directory="out", Fields_at=1.907), code=2,
+             words=["Output/Fields at", "allowed within the computed branch, 1.91915"]),
         dict(name="verify_without_backbone", scene=spectrum_scene() +
              output(Verify_in_time="true"), code=2,
              words=["Output/Verify in time", "Backbone = true"]),
