@@ -17,6 +17,21 @@ namespace nsm
       return s.str();
     }
 
+    /// The branch leaves grazing beyond the range's far end: the range holds
+    /// none of it, whatever Newton does.
+    [[noreturn]] void range_misses_branch(const BranchContext &context, const unsigned int mode, const double w,
+                                          const double start)
+    {
+      const bool        up = context.direction > 0;
+      std::ostringstream s;
+      s.precision(6);
+      s << "parameter 'Continuation/" << (up ? "Omega max" : "Omega min") << "' = " << context.far_end
+        << " is out of range: allowed " << (up ? "above" : "below") << " Omega = " << start
+        << ", where the branch of clamped-free mode " << mode << " (w = " << w << ") leaves grazing "
+        << (up ? "upwards (Contact/Force sign = physical)" : "downwards (Contact/Force sign = seed-eq5)");
+      throw InputError(s.str());
+    }
+
     [[noreturn]] void no_start(const BranchContext &context, const unsigned int mode, const double w)
     {
       std::ostringstream s;
@@ -49,6 +64,8 @@ namespace nsm
     // reach (5 %) of w_j away the branch is far beyond its grazing end. A
     // start before the range is traced up to it; one beyond it has no point
     // in it.
+    if (const double start = w * (1 + context.direction * c.grazing_offset); context.beyond(start, context.far_end))
+      range_misses_branch(context, mode, w, start);
     for (double offset = c.grazing_offset; offset < c.search_reach; offset *= 2)
       {
         const double omega = w * (1 + context.direction * offset);

@@ -304,6 +304,10 @@ def rows(executable):
         dict(name="mode_beyond_mesh", scene=section("Continuation", Mode=10000) +
              output(Directory="out", Backbone="true"), code=2,
              words=["Continuation/Mode", "[1, 4000]"]),
+        # A range that holds none of the branch: physical, it leaves w1 = 1.919137 upwards.
+        dict(name="range_below_branch", scene=SMALL + section("Continuation", Omega_min=1.5, Omega_max=1.9) +
+             output(Directory="out", Backbone="true"), code=2,
+             words=["Continuation/Omega max' = 1.9", "allowed above Omega = 1.91916", "leaves grazing upwards"]),
         # No mode at all below the band: the range is empty, not "1 to 0".
         dict(name="mode_beyond_band", scene=SMALL.replace("Harmonics = 20", "Harmonics = 1") +
              section("Continuation", Omega_min=0.5, Omega_max=1) + output(Directory="out", Backbone="true"),
