@@ -51,15 +51,13 @@ namespace nsm
     /// land on something that was not traced, so the Omega is refused.
     void require_on_branch(const Backbone &backbone, const double omega)
     {
-      const auto [low, high] = std::minmax_element(
-        backbone.points.begin(), backbone.points.end(),
-        [](const BackbonePoint &a, const BackbonePoint &b) { return a.omega < b.omega; });
-      if (omega >= low->omega && omega <= high->omega)
+      const double low = *backbone.omega_reached(-1), high = *backbone.omega_reached(1);
+      if (omega >= low && omega <= high)
         return;
       std::ostringstream s;
       s.precision(8);
       s << "parameter 'Output/Fields at' = " << omega << " is out of range: allowed within the computed branch, "
-        << low->omega << " to " << high->omega << " (how it ended: " << backbone_end_name(backbone.end) << ")";
+        << low << " to " << high << " (how it ended: " << backbone_end_name(backbone.end) << ")";
       throw InputError(s.str());
     }
 
