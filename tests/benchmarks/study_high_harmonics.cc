@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 #include "hb_model.h"
 
@@ -97,12 +98,11 @@ int main()
   std::printf("seed bar, FE_Q(10) x 20, modal, exact integration, grazing to 2.2, Energy max 1e-3\n\n");
   std::printf("| M | points | main points | Omega reached | sign changes of q per period on main points: median | max "
               "| share with more than 2 | largest |share(q > 0) - contact fraction| |\n|---|---|---|---|---|---|---|---|\n");
-  nsm::Backbone at40, at80;
-  double        lost160 = 0;
+  std::map<unsigned int, nsm::Backbone> runs;
   for (const unsigned int harmonics : {40u, 80u, 160u})
     {
       testing_helpers::HbModel model(seed(harmonics));
-      const nsm::Backbone      b = model.backbone();
+      const nsm::Backbone     &b = runs[harmonics] = model.backbone();
       std::vector<int>         changes;
       double                   mismatch = 0;
       for (const nsm::BackbonePoint &p : b.points)
@@ -120,15 +120,12 @@ int main()
                   100.0 * std::count_if(changes.begin(), changes.end(), [](int n) { return n > 2; }) / changes.size(),
                   mismatch);
       std::fflush(stdout);
-      if (harmonics < 160)
-        (harmonics == 40 ? at40 : at80) = b;
-      if (harmonics == 160)
-        lost160 = reached;
     }
+  const double lost160 = *runs[160].omega_reached(1);
 
   std::printf("\nNewton at M from the main points of M / 2 beyond Omega = %.6f (where M = 160 is lost), padded with "
               "zeros\n\n| M / 2 to M | points | converge | also with the leap's second try | energy moved: median "
               "| largest |\n|---|---|---|---|---|---|\n", lost160);
   for (const auto &[from, to] : {std::pair{40u, 80u}, std::pair{80u, 160u}})
-    padded_start(from == 40 ? at40 : at80, from, to, lost160);
+    padded_start(runs[from], from, to, lost160);
 }
