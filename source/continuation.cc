@@ -138,12 +138,11 @@ namespace nsm
     trace(context, backbone);
     backbone.newton_cost = context.newton_cost();
     // Points traced on the way from grazing to the range are not written.
-    const auto &c = scene.continuation;
-    auto       &p = backbone.points;
+    auto &p = backbone.points;
     p.erase(std::remove_if(p.begin(), p.end(),
                            [&](const BackbonePoint &q) { return !in_omega_range(scene, q.omega); }),
             p.end());
-    label_branches(hb, c.tongue_share, branch_direction(scene), p);
+    label_branches(hb, scene, p);
     backbone.tongues = collect_tongues(p);
     return backbone;
   }
@@ -177,7 +176,7 @@ namespace nsm
     BackbonePoint point;
     const auto    eligible = [&](const BackbonePoint &q) { return !main_only || q.branch == Branch::main; };
     const auto    labelled = [&]() -> BackbonePoint & {
-      label_point(hb, scene.continuation.tongue_share, context.direction, p, point);
+      label_point(hb, scene, p, point);
       return point;
     };
     // Between two points of one segment, the solution must continue the branch

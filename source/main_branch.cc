@@ -97,14 +97,29 @@ namespace nsm
       const unsigned int k = spectral_excess(hb.harmonic_energies(point.x)).harmonic;
       return resonance_of(hb.receptance(), std::max(k, 1u), point.omega);
     }
+
+    /// The fundamental near the branch's own mode is the branch itself, not an
+    /// internal resonance: an excursion named so (with fewer than 4
+    /// harmonics, where none can stand out) is the branch's own shape.
+    bool is_internal(const InternalResonance &r, const Scene &scene)
+    {
+      return !(r.harmonic == 1 && r.mode == scene.continuation.mode);
+    }
+
+    /// A tongue point of resonance r if r names an internal resonance; main
+    /// for r = {0, 0, 0} (on the envelope) or the branch's own fundamental.
+    void mark(BackbonePoint &point, const InternalResonance &r, const Scene &scene)
+    {
+      const bool tongue = r.harmonic > 0 && is_internal(r, scene);
+      point.branch      = tongue ? Branch::tongue : Branch::main;
+      point.resonance   = tongue ? r : InternalResonance{0, 0, 0};
+    }
   } // namespace
 
-  void label_branches(HarmonicBalance            &hb,
-                      const double                tongue_share,
-                      const double                direction,
-                      std::vector<BackbonePoint> &points)
+  void label_branches(HarmonicBalance &hb, const Scene &scene, std::vector<BackbonePoint> &points)
   {
-    const std::vector<bool> above = above_envelope(points, direction, tongue_share);
+    const std::vector<bool> above =
+      above_envelope(points, branch_direction(scene), scene.continuation.tongue_share);
     for (std::size_t first = 0; first < points.size();)
       {
         std::size_t end = first;
@@ -112,9 +127,7 @@ namespace nsm
           ++end;
         if (end == first)
           {
-            points[first].branch    = Branch::main;
-            points[first].resonance = {0, 0, 0};
-            ++first;
+            mark(points[first++], {0, 0, 0}, scene);
             continue;
           }
         const auto top = std::max_element(points.begin() + first, points.begin() + end,
@@ -123,26 +136,25 @@ namespace nsm
                                           });
         const InternalResonance r = tongue_resonance(hb, *top);
         for (; first < end; ++first)
-          {
-            points[first].branch    = Branch::tongue;
-            points[first].resonance = r;
-          }
+          mark(points[first], r, scene);
       }
   }
 
   void label_point(HarmonicBalance                  &hb,
-                   const double                      tongue_share,
-                   const double                      direction,
+                   const Scene                      &scene,
                    const std::vector<BackbonePoint> &points,
                    BackbonePoint                    &point)
   {
-    double least = point.measures.energy;
+    const double direction = branch_direction(scene);
+    double       least     = point.measures.energy;
     for (const BackbonePoint &q : points)
       if (direction * (q.omega - point.omega) >= 0)
         least = std::min(least, q.measures.energy);
-    const bool tongue = exceeds_envelope(point.measures.energy, least, tongue_share);
-    point.branch      = tongue ? Branch::tongue : Branch::main;
-    point.resonance   = tongue ? tongue_resonance(hb, point) : InternalResonance{0, 0, 0};
+    mark(point,
+         exceeds_envelope(point.measures.energy, least, scene.continuation.tongue_share) ?
+           tongue_resonance(hb, point) :
+           InternalResonance{0, 0, 0},
+         scene);
     hb.set_omega(point.omega);
   }
 

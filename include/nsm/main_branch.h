@@ -5,7 +5,8 @@
 // energy written at or beyond its Omega (the monotone lower envelope of the
 // backbone) is therefore a tongue point; every other point is on the main
 // branch. A tongue is named after the harmonic k >= 3 that stands out most
-// of the spectrum at its highest point, and the mode j nearest to k W.
+// of the spectrum at its highest point, and the mode j nearest to k W; an
+// excursion that names only the branch's own fundamental is main.
 #pragma once
 
 #include <nsm/continuation.h>
@@ -38,19 +39,17 @@ namespace nsm
                                    double                            share);
 
   /// Sets every point's branch, and the resonance of each run of tongue
-  /// points from the spectrum of its most energetic point.
-  void label_branches(HarmonicBalance            &hb,
-                      double                      tongue_share,
-                      double                      direction,
-                      std::vector<BackbonePoint> &points);
+  /// points from the spectrum of its most energetic point (the scene's Tongue
+  /// share, direction and Mode). A run whose resonance is the fundamental at
+  /// the branch's own mode is main: nothing resonates there.
+  void label_branches(HarmonicBalance &hb, const Scene &scene, std::vector<BackbonePoint> &points);
 
   /// Labels one point solved off the backbone (a field at a given Omega) by
-  /// the same envelope: a tongue point, named from its own spectrum, if its
-  /// energy exceeds (1 + share) times the least energy of `points` at or
-  /// beyond its Omega in `direction`; else main.
+  /// the same rule: a tongue point, named from its own spectrum, if its
+  /// energy exceeds (1 + Tongue share) times the least energy of `points` at
+  /// or beyond its Omega and it names an internal resonance; else main.
   void label_point(HarmonicBalance                  &hb,
-                   double                            tongue_share,
-                   double                            direction,
+                   const Scene                      &scene,
                    const std::vector<BackbonePoint> &points,
                    BackbonePoint                    &point);
 

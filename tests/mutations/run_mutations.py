@@ -53,15 +53,14 @@ MUTATIONS = [
     ("study deals each round's row to every rank", "source/study.cc",
      "const std::size_t mine = round + rank_;",
      "const std::size_t mine = round;"),
-    ("tongues sought below the envelope of the points before", "source/continuation.cc",
-     "label_branches(hb, c.tongue_share, branch_direction(scene), p);",
-     "label_branches(hb, c.tongue_share, -branch_direction(scene), p);"),
+    ("tongues sought below the envelope of the points before", "source/main_branch.cc",
+     "above_envelope(points, branch_direction(scene),", "above_envelope(points, -branch_direction(scene),"),
     ("fine backbone reference with the gap 10 % off", "source/study_combinations.cc",
      'set_entry(prm, "Discretisation", "Refinement", "none");',
      'set_entry(prm, "Discretisation", "Refinement", "none");\n    set_entry(prm, "Contact", "Gap", "1.1e-3");'),
     ("fields always labelled main", "source/main_branch.cc",
-     "const bool tongue = exceeds_envelope(point.measures.energy, least, tongue_share);",
-     "const bool tongue = false && exceeds_envelope(point.measures.energy, least, tongue_share);"),
+     "exceeds_envelope(point.measures.energy, least, scene.continuation.tongue_share) ?",
+     "false ?"),
     ("leap without its last resort", "source/leap.cc",
      "if (land(false) || (first > 0 && land(true)))", "if (land(false))"),
     ("leap from the segment's first fold even behind its start", "source/leap.cc",
@@ -103,6 +102,8 @@ MUTATIONS = [
      "return *reached > *low && *reached < *high;", "return *reached > *low && *reached < *low;"),
     ("results that depend on the machine's cores", "source/pipeline.cc",
      "void use_one_thread() { dealii::MultithreadInfo::set_thread_limit(1); }", "void use_one_thread() {}"),
+    ("the branch's own fundamental named a tongue", "source/main_branch.cc",
+     "return !(r.harmonic == 1 && r.mode == scene.continuation.mode);", "return true;"),
 ]
 
 

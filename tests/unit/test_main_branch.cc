@@ -124,6 +124,32 @@ TEST(MainBranch, ATongueIsAnExcursionAboveTheMonotoneEnvelope)
   EXPECT_EQ(nsm::above_envelope(twins, 1.0, 0.02), (std::vector<bool>{false, true, false}));
 }
 
+// With one harmonic no harmonic can stand out, so an excursion above the
+// envelope can only be named after the fundamental; at the branch's own mode
+// that is the branch, not a resonance. The uniform bar with eq. (5) at M = 1
+// leaves grazing below w1 = pi / 2 and its energy rises by 18 % to a hump near
+// 1.51, then falls to 0.40 of it at 0.5: the envelope alone labelled the 117
+// points before the fall a tongue of w_1 / 1.
+TEST(MainBranch, TheBranchsOwnFundamentalIsNoTongue)
+{
+  auto scene = testing_helpers::hb_scene("1", 1);
+  scene.contact.sign            = nsm::ForceSign::seed_eq5;
+  scene.continuation.omega_min  = 0.5;
+  scene.continuation.omega_max  = 1.95;
+  scene.continuation.energy_max = 1;
+  HbModel    model(scene);
+  const auto backbone = model.backbone();
+  ASSERT_GE(backbone.points.size(), 50u);
+  const auto top = std::max_element(backbone.points.begin(), backbone.points.end(), [](const auto &a, const auto &b) {
+    return a.measures.energy < b.measures.energy;
+  });
+  // The hump is there: far beyond the Tongue share of both ends.
+  EXPECT_GT(top->measures.energy, (1 + 5 * scene.continuation.tongue_share) * backbone.points.front().measures.energy);
+  EXPECT_GT(top->measures.energy, 2 * backbone.points.back().measures.energy);
+  EXPECT_EQ(backbone.main_points(), backbone.points.size());
+  EXPECT_TRUE(backbone.tongues.empty());
+}
+
 namespace
 {
   // Uniform bar, grazing to W = 2.08, sequential. Every point written is
