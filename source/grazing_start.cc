@@ -35,7 +35,8 @@ namespace nsm
     [[noreturn]] void no_start(const BranchContext &context, const unsigned int mode, const double w)
     {
       std::ostringstream s;
-      s << "no converged non-trivial solution within 5 % of grazing of clamped-free mode " << mode
+      s << "no converged non-trivial solution within Continuation/Search reach = "
+        << text(context.scene.continuation.search_reach) << " (relative) of grazing of clamped-free mode " << mode
         << " (w = " << w << ") and before the end of Continuation/Omega min..max"
         << "; Contact/Alpha = " << context.scene.contact.alpha << " gives alpha gamma(0) = "
         << context.scene.contact.alpha * context.hb.receptance()(0.0).gamma

@@ -317,6 +317,11 @@ def rows(executable):
              section("Contact", Gap="1e-6") + section("Continuation", Energy_max="1e-20") +
              output(Directory="out", Backbone="true"),
              code=2, words=["Continuation/Energy max' = 1e-20", "above the energy at grazing, 6.6"]),
+        # Alpha far from 1 / gamma(0): the start fails, and says over which reach it searched.
+        dict(name="no_start_within_reach", scene=SMALL + section("Contact", Alpha="1e12") +
+             output(Directory="out", Backbone="true"), code=3,
+             words=["no converged non-trivial solution", "Continuation/Search reach = 0.05",
+                    "Contact/Alpha = 1e+12"]),
         dict(name="grazing_offset_beyond_reach", scene=section(
             "Continuation", Grazing_offset="1e-2", Search_reach="1e-3") +
              output(Directory="out", Backbone="true"), code=2,
