@@ -66,6 +66,33 @@ TEST(GrazingStart, FirstPointLiesJustBeyondGrazingInTheBranchDirection)
     }
 }
 
+// What any solve (sequential, arclength, leap) must be to become a point: the
+// equations solved to Tolerance, contact, and in the full basis an unfolding
+// parameter mu no larger than Tolerance (it enters a residual row). Each
+// bound from both sides, on the start point of the full basis.
+TEST(BranchContext, APointIsAContactMotionThatSolvesTheEquations)
+{
+  auto scene                       = seed(nsm::ForceSign::physical, nsm::ContinuationMethod::arclength, 2.2);
+  scene.harmonic_balance.basis     = nsm::HarmonicBasis::full;
+  Tracing                  t(scene);
+  const nsm::BackbonePoint start = t.backbone.points.front();
+  const double             tol   = scene.harmonic_balance.tolerance;
+  const auto point_from = [&](std::vector<double> x, const double residual) {
+    nsm::BackbonePoint point;
+    return t.context.make_point(x, start.omega, residual, 3, 0, point);
+  };
+  ASSERT_LE(std::abs(start.x[1]), 1e-12);
+  EXPECT_TRUE(point_from(start.x, 0.5 * tol));
+  EXPECT_FALSE(point_from(start.x, 2 * tol));
+  // The trivial solution solves the equations but touches nothing.
+  EXPECT_FALSE(point_from(std::vector<double>(start.x.size(), 0.0), 0.0));
+  auto forced = start.x;
+  forced[1]   = 0.5 * tol;
+  EXPECT_TRUE(point_from(forced, 0.5 * tol));
+  forced[1] = -2 * tol;
+  EXPECT_FALSE(point_from(forced, 0.5 * tol));
+}
+
 TEST(SequentialSteps, StaysOnBranchBoundsTheChangeOfTheSolutionAndOfTheContact)
 {
   nsm::Scene::Continuation c; // a fifth of the solution, 0.01 of the contact fraction
