@@ -104,6 +104,8 @@ MUTATIONS = [
      "void use_one_thread() { dealii::MultithreadInfo::set_thread_limit(1); }", "void use_one_thread() {}"),
     ("the branch's own fundamental named a tongue", "source/main_branch.cc",
      "return !(r.harmonic == 1 && r.mode == scene.continuation.mode);", "return true;"),
+    ("the unfolding parameter accepted far beyond the Newton tolerance", "source/branch_context.cc",
+     "std::abs(x[1]) > scene.harmonic_balance.tolerance", "std::abs(x[1]) > 1e-6"),
 ]
 
 
