@@ -130,6 +130,8 @@ namespace nsm
                 note << "  " << error << " " << e << " in " << seconds_taken << " s:";
                 for (const std::size_t c : varying)
                   note << " " << table.columns[c] << " " << cell(*row, c);
+                if (varying.empty())
+                  note << " the scene's own values (one row)";
                 notes.push_back(note.str());
               }
           if (partial > 0)
@@ -269,7 +271,7 @@ namespace nsm
       std::vector<std::string> notes(const std::vector<std::string> &reference_notes) const
       {
         std::ostringstream note;
-        note << "study: " << combinations_.size() << " rows, " << missing_.size() << " run now on " << ranks_
+        note << "study: " << combinations_.size() << (combinations_.size() == 1 ? " row, " : " rows, ") << missing_.size() << " run now on " << ranks_
              << (ranks_ == 1 ? " rank, " : " ranks, ") << resumed() << " from an earlier run, " << failed_
              << " failed; " << ended_early() << (ended_early() == 1 ? " row" : " rows")
              << " ended before the Omega range's end (backbone_end)"

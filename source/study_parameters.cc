@@ -4,6 +4,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <algorithm>
 #include <sstream>
 
 namespace nsm
@@ -32,15 +33,28 @@ namespace nsm
       {"Harmonic balance", "Integration", "Integrations", "integration"},
       {"Harmonic balance", "Time samples", "Time samples", "time_samples", "integration", "sampled"}};
 
-    std::vector<std::string> split_list(const std::string &text)
+    /// The comma-separated values of Study/`entry`, trimmed. An empty value
+    /// (a stray comma) or one listed twice is most likely a typo, and would
+    /// only repeat a row: an input error.
+    std::vector<std::string> split_list(const std::string &text, const std::string &entry)
     {
       std::vector<std::string> items;
-      std::stringstream        in(text);
+      if (text.find_first_not_of(" \t") == std::string::npos)
+        return items;
+      const auto refuse = [&](const std::string &why) {
+        throw InputError("parameter 'Study/" + entry + "' = '" + text + "' is not allowed: " + why +
+                         "; allowed: distinct comma-separated values");
+      };
+      std::stringstream in(text + ",");
       for (std::string item; std::getline(in, item, ',');)
         {
           const auto first = item.find_first_not_of(" \t");
-          if (first != std::string::npos)
-            items.push_back(item.substr(first, item.find_last_not_of(" \t") - first + 1));
+          if (first == std::string::npos)
+            refuse("an empty value");
+          item = item.substr(first, item.find_last_not_of(" \t") - first + 1);
+          if (std::find(items.begin(), items.end(), item) != items.end())
+            refuse("'" + item + "' is listed twice");
+          items.push_back(item);
         }
       return items;
     }
@@ -125,7 +139,7 @@ namespace nsm
     std::vector<AllowedCheck> checks;
     for (const Sweepable &s : sweepable)
       {
-        Sweep sweep{s.subsection,      s.name, s.study_entry, s.column, split_list(prm.get(s.study_entry)),
+        Sweep sweep{s.subsection,      s.name, s.study_entry, s.column, split_list(prm.get(s.study_entry), s.study_entry),
                     s.used_if_column, s.used_if_value};
         for (const std::string &value : sweep.values)
           checks.push_back({sweep.subsection + "/" + sweep.name, value, std::string("Study/") + s.study_entry});
@@ -140,7 +154,7 @@ namespace nsm
     repeats               = static_cast<unsigned int>(prm.get_integer("Repeats"));
     verify_in_time        = prm.get_bool("Verify in time");
     reference_degree      = prm.get("Reference degree");
-    reference_cells       = split_list(prm.get("Reference cells"));
+    reference_cells       = split_list(prm.get("Reference cells"), "Reference cells");
     if (!reference_degree.empty())
       checks.push_back({"Discretisation/Degree", reference_degree, "Study/Reference degree"});
     for (const std::string &cells : reference_cells)

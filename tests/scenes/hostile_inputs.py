@@ -372,6 +372,12 @@ def rows(executable):
         dict(name="study_selection", scene=section("Study", Refinements="none, fancy",
                                                    Spectrum_modes=2) + output(Directory="out"),
              code=2, words=["Study/Refinements", "one of none, graded, adaptive"]),
+        # A stray comma or a value listed twice is a typo, not a value (it was
+        # dropped, or ran a row twice under a reason that did not apply).
+        dict(name="study_empty_value", scene=section("Study", Degrees="1,,2", Spectrum_modes=2) +
+             output(Directory="out"), code=2, words=["Study/Degrees", "'1,,2'", "an empty value"]),
+        dict(name="study_value_twice", scene=section("Study", Cells="4, 8, 4", Spectrum_modes=2) +
+             output(Directory="out"), code=2, words=["Study/Cells", "'4' is listed twice"]),
         dict(name="study_measures_nothing", scene=section("Study", Degrees="1, 2") +
              output(Directory="out"), code=2, words=["Study/Spectrum modes"]),
         dict(name="study_combination", scene=section("Discretisation", Refinement="graded") +
