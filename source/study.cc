@@ -155,6 +155,12 @@ namespace nsm
 
   namespace
   {
+    /// "1 row", "2 rows".
+    std::string counted(const std::size_t n, const std::string &noun)
+    {
+      return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+    }
+
     /// "; n combinations left out: ..." if study_combinations left any out.
     std::string left_out_note(const StudyParameters &study, const std::size_t rows)
     {
@@ -271,10 +277,9 @@ namespace nsm
       std::vector<std::string> notes(const std::vector<std::string> &reference_notes) const
       {
         std::ostringstream note;
-        note << "study: " << combinations_.size() << (combinations_.size() == 1 ? " row, " : " rows, ") << missing_.size() << " run now on " << ranks_
-             << (ranks_ == 1 ? " rank, " : " ranks, ") << resumed() << " from an earlier run, " << failed_
-             << " failed; " << ended_early() << (ended_early() == 1 ? " row" : " rows")
-             << " ended before the Omega range's end (backbone_end)"
+        note << "study: " << counted(combinations_.size(), "row") << ", " << missing_.size() << " run now on "
+             << counted(ranks_, "rank") << ", " << resumed() << " from an earlier run, " << failed_ << " failed; "
+             << counted(ended_early(), "row") << " ended before the Omega range's end (backbone_end)"
              << left_out_note(base_.study, combinations_.size());
         std::vector<std::string> lines{note.str()};
         lines.insert(lines.end(), reference_notes.begin(), reference_notes.end());

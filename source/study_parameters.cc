@@ -139,8 +139,13 @@ namespace nsm
     std::vector<AllowedCheck> checks;
     for (const Sweepable &s : sweepable)
       {
-        Sweep sweep{s.subsection,      s.name, s.study_entry, s.column, split_list(prm.get(s.study_entry), s.study_entry),
-                    s.used_if_column, s.used_if_value};
+        Sweep sweep{s.subsection,
+                    s.name,
+                    s.study_entry,
+                    s.column,
+                    split_list(prm.get(s.study_entry), s.study_entry),
+                    s.used_if_column,
+                    s.used_if_value};
         for (const std::string &value : sweep.values)
           checks.push_back({sweep.subsection + "/" + sweep.name, value, std::string("Study/") + s.study_entry});
         sweeps.push_back(std::move(sweep));
