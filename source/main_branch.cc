@@ -86,6 +86,25 @@ namespace nsm
     return above;
   }
 
+  std::vector<bool> behind_front(const std::vector<BackbonePoint> &points,
+                                 const double                      direction,
+                                 const std::vector<bool>          &above)
+  {
+    std::vector<bool> behind(points.size());
+    double            front = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < points.size(); ++i)
+      {
+        if (i > 0 && points[i].segment != points[i - 1].segment)
+          front = -std::numeric_limits<double>::infinity();
+        if (above[i])
+          continue;
+        behind[i] = direction * points[i].omega < front;
+        if (!behind[i])
+          front = direction * points[i].omega;
+      }
+    return behind;
+  }
+
   namespace
   {
     /// The resonance a tongue point belongs to: the harmonic that stands out
@@ -118,8 +137,11 @@ namespace nsm
 
   void label_branches(HarmonicBalance &hb, const Scene &scene, std::vector<BackbonePoint> &points)
   {
-    const std::vector<bool> above =
-      above_envelope(points, branch_direction(scene), scene.continuation.tongue_share);
+    const double      direction = branch_direction(scene);
+    std::vector<bool> above     = above_envelope(points, direction, scene.continuation.tongue_share);
+    const std::vector<bool> behind = behind_front(points, direction, above);
+    for (std::size_t i = 0; i < points.size(); ++i)
+      above[i] = above[i] || behind[i];
     for (std::size_t first = 0; first < points.size();)
       {
         std::size_t end = first;

@@ -38,9 +38,19 @@ namespace nsm
                                    double                            direction,
                                    double                            share);
 
+  /// Per point, in order: true if it is not `above` the envelope but lies
+  /// behind its segment's front, the farthest Omega in `direction` of the
+  /// segment's earlier points that are neither above nor behind. The main
+  /// branch is a graph over Omega; a continuation that comes back (the back
+  /// of a fold, the middle of an S) is on another branch.
+  std::vector<bool> behind_front(const std::vector<BackbonePoint> &points,
+                                 double                            direction,
+                                 const std::vector<bool>          &above);
+
   /// Sets every point's branch, and the resonance of each run of tongue
   /// points from the spectrum of its most energetic point (the scene's Tongue
-  /// share, direction and Mode). A run whose resonance is the fundamental at
+  /// share, direction and Mode). Tongue points are those above the envelope
+  /// or behind the front. A run whose resonance is the fundamental at
   /// the branch's own mode is main: nothing resonates there.
   void label_branches(HarmonicBalance &hb, const Scene &scene, std::vector<BackbonePoint> &points);
 

@@ -124,6 +124,28 @@ TEST(MainBranch, ATongueIsAnExcursionAboveTheMonotoneEnvelope)
   EXPECT_EQ(nsm::above_envelope(twins, 1.0, 0.02), (std::vector<bool>{false, true, false}));
 }
 
+// The main branch is a graph over Omega: within a segment, a point that comes
+// back behind the farthest main point (the back of a small fold, not above the
+// envelope) is not main; a new segment starts its own front, and points above
+// the envelope neither count as behind nor move the front.
+TEST(MainBranch, APointBehindItsSegmentsFrontIsNotMain)
+{
+  auto points = points_at({{1.0, 1.0}, {1.1, 1.1}, {1.2, 1.2}, {1.15, 1.19}, {1.18, 1.2},
+                           {1.25, 1.25}, {1.3, 2.0}, {1.28, 1.3}, {1.24, 1.31}, {1.35, 1.35}});
+  for (std::size_t i = 8; i < points.size(); ++i)
+    points[i].segment = 1;
+  const std::vector<bool> above = {false, false, false, false, false, false, true, false, false, false};
+  // 1.18 is behind 1.2 though it moved on from 1.15: a point behind does not
+  // move the front. 1.28 is not behind: neither does the tongue point at 1.3.
+  // 1.24 opens segment 1 and is its own front.
+  const std::vector<bool> expected = {false, false, false, true, true, false, false, false, false, false};
+  EXPECT_EQ(nsm::behind_front(points, 1.0, above), expected);
+  // Against the direction (eq. (5)'s branch goes down in Omega) every point
+  // that moves up in Omega is behind.
+  const std::vector<bool> mirrored = {false, true, true, true, true, true, false, true, false, true};
+  EXPECT_EQ(nsm::behind_front(points, -1.0, above), mirrored);
+}
+
 // With one harmonic no harmonic can stand out, so an excursion above the
 // envelope can only be named after the fundamental; at the branch's own mode
 // that is the branch, not a resonance. The uniform bar with eq. (5) at M = 1
@@ -175,6 +197,7 @@ namespace
     const double g0 = scene.contact.gap;
     std::vector<double> main_errors, tongue_errors;
     std::set<int>       windows;
+    const nsm::BackbonePoint *front = nullptr;
     for (const auto &p : backbone.points)
       {
         const double period = 2 * M_PI / p.omega;
@@ -187,6 +210,10 @@ namespace
             EXPECT_GT(error, -0.05) << p.omega;
             if (p.omega >= 1.58 && p.omega < omega_max)
               windows.insert(static_cast<int>((p.omega - 1.58) / 0.01));
+            // A graph over Omega: no main point behind an earlier one of its
+            // segment (arclength comes back over folds).
+            EXPECT_TRUE(!front || front->segment != p.segment || p.omega >= front->omega) << p.omega;
+            front = &p;
           }
         else
           {
