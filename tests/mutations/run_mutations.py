@@ -54,7 +54,7 @@ MUTATIONS = [
      "const std::size_t mine = round + rank_;",
      "const std::size_t mine = round;"),
     ("tongues sought below the envelope of the points before", "source/main_branch.cc",
-     "above_envelope(points, branch_direction(scene),", "above_envelope(points, -branch_direction(scene),"),
+     "above_envelope(points, direction,", "above_envelope(points, -direction,"),
     ("fine backbone reference with the gap 10 % off", "source/study_combinations.cc",
      'set_entry(prm, "Discretisation", "Refinement", "none");',
      'set_entry(prm, "Discretisation", "Refinement", "none");\n    set_entry(prm, "Contact", "Gap", "1.1e-3");'),
