@@ -67,7 +67,8 @@ namespace nsm
                       Patterns::Double(1e-4, 1),
                       "A point is labelled a tongue point if its energy exceeds the least energy "
                       "written at or beyond its Omega (in the direction of continuation) by more "
-                      "than this share; otherwise it is on the main branch.");
+                      "than this share, or if it lies behind an earlier main point of its segment in "
+                      "Omega (the back of a fold); otherwise it is on the main branch.");
     prm.declare_entry("Tongue energy ratio",
                       text(d.tongue_energy_ratio),
                       Patterns::Double(1, 1e6),
