@@ -6,11 +6,17 @@ linearly between two consecutive main points of one of B's segments that
 bracket it (the closest of several such pieces is taken). A's points outside
 every such piece of B are not compared.
 
-usage: compare_backbones.py A/backbone.csv B/backbone.csv [tolerance]
+usage: compare_backbones.py A/backbone.csv B/backbone.csv [tolerance] [--sampled-from FINE/backbone.csv]
 
 Prints how many of A's main points were compared, how many agree within the
 tolerance (relative energy, default 1e-3), the median and 90th percentile of
 the differences, and the points that differ by more.
+
+With --sampled-from, B's points are replaced by the points of the run FINE
+(steps much smaller than B's) nearest in Omega to B's main points: FINE's
+branch sampled where B sampled its own. Comparing A with that tells what the
+linear interpolation between B's points costs by itself, whatever branch B
+followed.
 """
 import csv
 import statistics
@@ -34,9 +40,25 @@ def energies_at(pieces, omega):
             for w0, e0, w1, e1 in pieces if min(w0, w1) <= omega <= max(w0, w1) and w0 != w1]
 
 
+def sampled_like(fine, coarse):
+    """FINE's points nearest in Omega to COARSE's main points, in FINE's order."""
+    omegas = [float(r["Omega"]) for r in fine]
+    nearest = {min(range(len(fine)), key=lambda i: abs(omegas[i] - float(r["Omega"])))
+               for r in coarse if r["branch"] == "main"}
+    return [fine[i] for i in sorted(nearest)]
+
+
 def main():
-    a, b = read(sys.argv[1]), read(sys.argv[2])
-    tolerance = float(sys.argv[3]) if len(sys.argv) > 3 else 1e-3
+    args = sys.argv[1:]
+    fine = None
+    if "--sampled-from" in args:
+        at = args.index("--sampled-from")
+        fine = read(args[at + 1])
+        del args[at:at + 2]
+    a, b = read(args[0]), read(args[1])
+    if fine is not None:
+        b = sampled_like(fine, b)
+    tolerance = float(args[2]) if len(args) > 2 else 1e-3
     pieces = main_pieces(b)
     compared = []
     for row in a:

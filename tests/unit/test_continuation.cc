@@ -219,6 +219,30 @@ namespace
                                                     (omega - p[i].omega) / (p[i + 1].omega - p[i].omega));
     return energies;
   }
+
+  struct Agreement
+  {
+    unsigned int compared = 0, agree = 0;
+  };
+
+  /// a's main points inside a main piece of b, and how many of them agree
+  /// with b's energy there to 1e-3 relative (the closest piece).
+  Agreement main_points_agreement(const nsm::Backbone &a, const nsm::Backbone &b)
+  {
+    Agreement result;
+    for (const auto &p : a.points)
+      {
+        const auto energies = main_energies_at(b, p.omega);
+        if (p.branch != nsm::Branch::main || energies.empty())
+          continue;
+        ++result.compared;
+        double closest = INFINITY;
+        for (const double e : energies)
+          closest = std::min(closest, std::abs(e / p.measures.energy - 1));
+        result.agree += closest <= 1e-3;
+      }
+    return result;
+  }
 } // namespace
 
 TEST(Backbone, SequentialMainBranchDoesNotDependOnTheStepSize)
@@ -239,20 +263,30 @@ TEST(Backbone, SequentialMainBranchDoesNotDependOnTheStepSize)
       const LargestSteps largest = largest_steps(*backbone);
       EXPECT_LE(largest.contact, coarse.continuation.max_contact_change) << "W = " << largest.contact_at;
     }
-  unsigned int compared = 0, agree = 0;
-  for (const auto &p : a.points)
-    {
-      const auto energies = main_energies_at(b, p.omega);
-      if (p.branch != nsm::Branch::main || energies.empty())
-        continue;
-      ++compared;
-      double closest = INFINITY;
-      for (const double e : energies)
-        closest = std::min(closest, std::abs(e / p.measures.energy - 1));
-      agree += closest <= 1e-3;
-    }
+  const auto [compared, agree] = main_points_agreement(a, b);
   ASSERT_GE(compared, 100u);
   EXPECT_GE(agree, 0.95 * compared) << agree << " of " << compared;
+}
+
+TEST(Backbone, ArclengthMainPointsLieOnTheBranchSmallStepsFind)
+{
+  // prm/seed-high-order.prm with arclength, against sequential steps of 1e-4
+  // (which agree with the default steps at 98 %). Measured: 135 of the 148
+  // arclength main points inside a fine main piece agree to 1e-3 (91 %); 177
+  // of 229 (77 %) while a point that came back over a fold could be main.
+  auto coarse                      = seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
+  coarse.discretisation.cells      = 7;
+  coarse.continuation.method       = nsm::ContinuationMethod::arclength;
+  coarse.continuation.max_steps    = 5000;
+  auto fine                        = seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
+  fine.discretisation.cells        = 7;
+  fine.continuation.initial_step   = fine.continuation.max_step = 1e-4;
+  fine.continuation.max_steps      = 10000;
+  HbModel    coarse_model(coarse), fine_model(fine);
+  const auto a = coarse_model.backbone(), b = fine_model.backbone();
+  const auto [compared, agree] = main_points_agreement(a, b);
+  ASSERT_GE(compared, 100u);
+  EXPECT_GE(agree, 0.9 * compared) << agree << " of " << compared;
 }
 
 namespace
