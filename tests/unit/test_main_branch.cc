@@ -240,10 +240,10 @@ namespace
     EXPECT_LE(median(main_errors), 0.06);
     // The tongues are the inaccurate points, far beyond the HB's accuracy.
     EXPECT_GE(median(tongue_errors), 0.2);
-    // The main branch spans the range: at M = 40 the nearest solutions leave 2
-    // windows without a point within 5 % (at M = 20, 12); the path may miss a
-    // few more.
-    EXPECT_GE(windows.size(), windows_min);
+    // The main branch spans the range: at most 3 of the 50 windows without a
+    // main point (issue 7). Measured 2026-11-26: 50 and 47 (sequential, M = 20
+    // and 40), 50 and 49 (arclength).
+    EXPECT_GE(windows.size(), windows_min) << windows.size();
     // The branch is followed to the end of the range.
     EXPECT_EQ(backbone.points.back().omega, omega_max);
     EXPECT_FALSE(backbone.tongues.empty());
@@ -253,12 +253,12 @@ namespace
 
 TEST(MainBranch, UniformBarMainPointsAreCloseToTheExactEnergyAtM20)
 {
-  check_uniform_main_branch(20, 2.08, 40);
+  check_uniform_main_branch(20, 2.08, 47);
 }
 
 TEST(MainBranch, UniformBarMainPointsAreCloseToTheExactEnergyAtM40)
 {
-  check_uniform_main_branch(40, 2.08, 40);
+  check_uniform_main_branch(40, 2.08, 47);
 }
 
 // Arclength climbs each tongue up to Tongue energy ratio and leaps from the
@@ -270,12 +270,12 @@ TEST(MainBranch, UniformBarMainPointsAreCloseToTheExactEnergyAtM40)
 // Max steps.
 TEST(MainBranch, UniformBarArclengthMainPointsAreCloseToTheExactEnergyAtM20)
 {
-  check_uniform_main_branch(20, 2.08, 40, nsm::ContinuationMethod::arclength);
+  check_uniform_main_branch(20, 2.08, 47, nsm::ContinuationMethod::arclength);
 }
 
 TEST(MainBranch, UniformBarArclengthMainPointsAreCloseToTheExactEnergyAtM40)
 {
-  check_uniform_main_branch(40, 2.08, 40, nsm::ContinuationMethod::arclength);
+  check_uniform_main_branch(40, 2.08, 47, nsm::ContinuationMethod::arclength);
 }
 
 TEST(MainBranch, UniformBarMainPointsAreCloseToTheExactEnergyAtM80)
