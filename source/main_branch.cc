@@ -133,19 +133,27 @@ namespace nsm
       point.branch      = tongue ? Branch::tongue : Branch::main;
       point.resonance   = tongue ? r : InternalResonance{0, 0, 0};
     }
+
+    /// Per point: above the envelope or behind its segment's front.
+    std::vector<bool> off_main(const std::vector<BackbonePoint> &points, const Scene &scene)
+    {
+      const double            direction = branch_direction(scene);
+      const std::vector<bool> above     = above_envelope(points, direction, scene.continuation.tongue_share);
+      const std::vector<bool> behind    = behind_front(points, direction, above);
+      std::vector<bool>       off(points.size());
+      for (std::size_t i = 0; i < points.size(); ++i)
+        off[i] = above[i] || behind[i];
+      return off;
+    }
   } // namespace
 
   void label_branches(HarmonicBalance &hb, const Scene &scene, std::vector<BackbonePoint> &points)
   {
-    const double      direction = branch_direction(scene);
-    std::vector<bool> above     = above_envelope(points, direction, scene.continuation.tongue_share);
-    const std::vector<bool> behind = behind_front(points, direction, above);
-    for (std::size_t i = 0; i < points.size(); ++i)
-      above[i] = above[i] || behind[i];
+    const std::vector<bool> off = off_main(points, scene);
     for (std::size_t first = 0; first < points.size();)
       {
         std::size_t end = first;
-        while (end < points.size() && above[end])
+        while (end < points.size() && off[end])
           ++end;
         if (end == first)
           {

@@ -107,7 +107,7 @@ MUTATIONS = [
     ("the unfolding parameter accepted far beyond the Newton tolerance", "source/branch_context.cc",
      "std::abs(x[1]) > scene.harmonic_balance.tolerance", "std::abs(x[1]) > 1e-6"),
     ("a point that comes back over a fold labelled main", "source/main_branch.cc",
-     "above[i] = above[i] || behind[i];", "above[i] = above[i];"),
+     "off[i] = above[i] || behind[i];", "off[i] = above[i];"),
     ("one front for all segments", "source/main_branch.cc",
      "if (i > 0 && points[i].segment != points[i - 1].segment)", "if (false)"),
 ]
