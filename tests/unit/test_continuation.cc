@@ -274,14 +274,13 @@ TEST(Backbone, ArclengthMainPointsLieOnTheBranchSmallStepsFind)
   // (which agree with the default steps at 98 %). Measured: 135 of the 148
   // arclength main points inside a fine main piece agree to 1e-3 (91 %); 177
   // of 229 (77 %) while a point that came back over a fold could be main.
-  auto coarse                      = seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
-  coarse.discretisation.cells      = 7;
-  coarse.continuation.method       = nsm::ContinuationMethod::arclength;
-  coarse.continuation.max_steps    = 5000;
-  auto fine                        = seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
-  fine.discretisation.cells        = 7;
-  fine.continuation.initial_step   = fine.continuation.max_step = 1e-4;
-  fine.continuation.max_steps      = 10000;
+  auto fine                      = seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
+  fine.discretisation.cells      = 7;
+  auto coarse                    = fine;
+  coarse.continuation.method     = nsm::ContinuationMethod::arclength;
+  coarse.continuation.max_steps  = 5000;
+  fine.continuation.initial_step = fine.continuation.max_step = 1e-4;
+  fine.continuation.max_steps    = 10000;
   HbModel    coarse_model(coarse), fine_model(fine);
   const auto a = coarse_model.backbone(), b = fine_model.backbone();
   const auto [compared, agree] = main_points_agreement(a, b);
