@@ -43,6 +43,22 @@ namespace nsm
                 "Discretisation/Round-off limit = " + format_value(d.roundoff_limit) + ")",
               std::to_string(d.graded_layers));
     }
+    /// Graded refinement with no layer, or with cells that do not shrink, is
+    /// the uniform mesh: a scene that asks for grading gets it or an error.
+    void require_grading_refines(const Scene::Discretisation &d)
+    {
+      if (d.refinement != Refinement::graded)
+        return;
+      require(d.graded_layers >= 1,
+              "Discretisation/Graded/Layers",
+              "an integer in [1, Cells] = [1, " + std::to_string(d.cells) +
+                "] with Refinement = graded (0 layers refine nothing)",
+              std::to_string(d.graded_layers));
+      require(d.graded_ratio < 1,
+              "Discretisation/Graded/Ratio",
+              "a number in [1e-06, 1) with Refinement = graded (1 refines nothing)",
+              format_value(d.graded_ratio));
+    }
   } // namespace
 
   void Scene::Discretisation::declare(ParameterHandler &prm)
@@ -119,6 +135,7 @@ namespace nsm
             "Discretisation/Graded/Layers",
             "an integer in [0, Cells] = [0, " + std::to_string(cells) + "]",
             std::to_string(graded_layers));
+    require_grading_refines(*this);
     require_graded_cells_above_roundoff(*this);
     prm.leave_subsection();
     prm.enter_subsection("Adaptive");

@@ -45,6 +45,8 @@ namespace
       {"cells_zero", "subsection Discretisation\n set Cells = 0\nend\n", "Discretisation/Cells", "[1, 1000000]"},
       {"ratio_large", "subsection Discretisation\n subsection Graded\n  set Ratio = 1.5\n end\nend\n", "Graded/Ratio", "a number in [1e-06, 1]"},
       {"layers_too_many", "subsection Discretisation\n set Cells = 4\n subsection Graded\n  set Layers = 5\n end\nend\n", "Graded/Layers", "[0, 4]"},
+      {"graded_no_layers", "subsection Discretisation\n set Cells = 4\n set Refinement = graded\nend\n", "Graded/Layers", "[1, 4] with Refinement = graded"},
+      {"graded_ratio_one", "subsection Discretisation\n set Refinement = graded\n subsection Graded\n  set Layers = 2\n  set Ratio = 1\n end\nend\n", "Graded/Ratio", "[1e-06, 1) with Refinement = graded"},
       {"grading_extreme", "subsection Discretisation\n set Cells = 100\n subsection Graded\n  set Ratio = 0.5\n  set Layers = 80\n end\nend\n", "Graded/Layers", "at most 22 with Ratio = 0.5 and Cells = 100"},
       {"fraction_zero", "subsection Discretisation\n subsection Adaptive\n  set Refine fraction = 0\n end\nend\n", "Adaptive/Refine fraction", "a number in [1e-06, 1]"},
       {"method_unknown", "subsection Receptance\n set Method = iterative\nend\n", "Receptance/Method", "one of direct, modal"},
