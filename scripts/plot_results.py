@@ -184,7 +184,8 @@ def study_plot(directory):
     if len({r["cells"] for r in rows}) == 1 and len({r["harmonics"] for r in rows}) > 1:
         size, size_column, size_name = "harmonics", "hb_unknowns", "harmonic-balance unknowns"
     # One line per combination of the varying parameters but the size.
-    varying = [c for c in swept if c != size and len({r[c] for r in rows}) > 1]
+    # "-" marks a value a row's run does not use: it names nothing.
+    varying = [c for c in swept if c != size and len({r[c] for r in rows} - {"-"}) > 1]
     measures = [(c, name) for c, name in STUDY_ERRORS if any(r[c] for r in rows)]
     if not measures:
         return
@@ -198,7 +199,7 @@ def study_plot(directory):
         styles = {}
         for (key, group), colour in zip(sorted(groups.items(), key=lambda g: natural(g[0])), colours):
             group.sort(key=lambda r: int(r[size_column]))
-            label = ", ".join(f"{c} {v}" for c, v in zip(varying, key)) or "study"
+            label = ", ".join(f"{c} {v}" for c, v in zip(varying, key) if v != "-") or "study"
             # The parameters after the first (e.g. the refinement) set marker and line style.
             index = styles.setdefault(key[1:], len(styles))
             marker, dashes = "os^vdp"[index % 6], ["-", "--", ":", "-."][index % 4]

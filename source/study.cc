@@ -3,6 +3,7 @@
 #include <nsm/plots.h>
 #include <nsm/progress.h>
 #include <nsm/study.h>
+#include <nsm/study_combinations.h>
 #include <nsm/study_reference.h>
 #include <nsm/study_row.h>
 
@@ -15,6 +16,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 
 namespace nsm
@@ -93,15 +95,18 @@ namespace nsm
       const auto cell = [](const std::vector<CsvCell> &row, const std::size_t c) {
         return std::get<std::string>(row[c]);
       };
-      // A row is named by the swept parameters whose values differ between rows.
+      // A row is named by the swept parameters that take more than one value
+      // (unused_value, for a value the row's run does not use, names nothing).
       std::vector<std::size_t> varying;
       for (std::size_t c = 0; c < key_size; ++c)
-        for (const auto &row : table.rows)
-          if (cell(row, c) != cell(table.rows.front(), c))
-            {
-              varying.push_back(c);
-              break;
-            }
+        {
+          std::set<std::string> values;
+          for (const auto &row : table.rows)
+            if (cell(row, c) != unused_value)
+              values.insert(cell(row, c));
+          if (values.size() > 1)
+            varying.push_back(c);
+        }
       const std::size_t        time = column("wall_total_median");
       std::vector<std::string> notes;
       for (const char *error : {"spectrum_error", "receptance_error", "energy_error_max"})
@@ -129,7 +134,8 @@ namespace nsm
                 note.precision(3);
                 note << "  " << error << " " << e << " in " << seconds_taken << " s:";
                 for (const std::size_t c : varying)
-                  note << " " << table.columns[c] << " " << cell(*row, c);
+                  if (cell(*row, c) != unused_value)
+                    note << " " << table.columns[c] << " " << cell(*row, c);
                 if (varying.empty())
                   note << " the scene's own values (one row)";
                 notes.push_back(note.str());

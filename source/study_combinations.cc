@@ -55,7 +55,7 @@ namespace nsm
       return prm;
     }
 
-    /// The combination's values with those its run does not use written "-"
+    /// The combination's values, those its run does not use as unused_value
     /// (Sweep::used_if_column: Time samples under exact integration, the
     /// graded and adaptive parameters under another refinement).
     std::vector<std::string> used_values(const std::vector<StudyParameters::Sweep> &sweeps,
@@ -69,7 +69,7 @@ namespace nsm
               return w.column == sweeps[i].used_if_column;
             });
             if (as_set[condition - sweeps.begin()] != sweeps[i].used_if_value)
-              key[i] = "-";
+              key[i] = unused_value;
           }
       return key;
     }

@@ -9,6 +9,9 @@
 
 namespace nsm
 {
+  /// A swept parameter's value in a combination whose run does not use it.
+  inline const std::string unused_value = "-";
+
   /// One combination of the swept values: the scene a row runs.
   struct StudyCombination
   {

@@ -25,7 +25,8 @@ usage: check_study.py NSM_BAR STUDIES_DIR {rates|ranks|resume|reference|harmonic
   unused  unused.prm: of 16 combinations, the 7 that differ from an earlier one
           only in values their run does not use (Time samples under exact
           integration, graded ratios without grading) are left out, the rest
-          run once each.
+          run once each; the summary names the spectrum error's Pareto front
+          as study.csv gives it, without the values a row does not use.
 """
 import csv
 import math
@@ -371,6 +372,17 @@ def unused(executable, studies):
     # The graded rows are other meshes: their errors differ from the uniform one's.
     errors = {r["refinement"] + r["graded_ratio"]: float(r["spectrum_error"]) for r in rows}
     assert len(set(errors.values())) == 3, errors
+    # The summary's Pareto front, recomputed from study.csv: the rows that no
+    # faster row beats in error, each named by the swept parameters that take
+    # more than one value, a value its run does not use ("-") left out.
+    swept = ["refinement", "graded_ratio", "integration", "time_samples"]
+    front, best = [], math.inf
+    for r in sorted(rows, key=lambda r: float(r["wall_total_median"])):
+        if float(r["spectrum_error"]) < best:
+            best = float(r["spectrum_error"])
+            front.append(" ".join(f"{c} {r[c]}" for c in swept if r[c] != "-"))
+    named = re.findall(r"^ +spectrum_error \S+ in \S+ s: (.*)$", result.stdout, re.M)
+    assert named == front, (named, front)
     print(f"{len(rows)} rows of 16 combinations: {sorted(set(keys))}")
 
 
