@@ -25,6 +25,12 @@ namespace nsm
   {
     namespace fs = std::filesystem;
 
+    /// study.csv's cells are read back as text.
+    const std::string &text_cell(const std::vector<CsvCell> &row, const std::size_t c)
+    {
+      return std::get<std::string>(row[c]);
+    }
+
     std::string file_text(const std::string &path)
     {
       std::ifstream      in(path);
@@ -56,7 +62,7 @@ namespace nsm
         {
           std::vector<std::string> key;
           for (std::size_t c = 0; c < key_size; ++c)
-            key.push_back(std::get<std::string>(row[c]));
+            key.push_back(text_cell(row, c));
           rows[key] = row;
         }
       return rows;
@@ -84,6 +90,35 @@ namespace nsm
       return !end.empty() && end != backbone_end_name(BackboneEnd::range);
     }
 
+    /// The swept columns (the first key_size) that take more than one value:
+    /// they name a row. unused_value, for a value a row's run does not use,
+    /// names nothing.
+    std::vector<std::size_t> varying_columns(const CsvTable &table, const std::size_t key_size)
+    {
+      std::vector<std::size_t> varying;
+      for (std::size_t c = 0; c < key_size; ++c)
+        {
+          std::set<std::string> values;
+          for (const auto &row : table.rows)
+            if (text_cell(row, c) != unused_value)
+              values.insert(text_cell(row, c));
+          if (values.size() > 1)
+            varying.push_back(c);
+        }
+      return varying;
+    }
+
+    std::string row_name(const CsvTable                 &table,
+                         const std::vector<CsvCell>     &row,
+                         const std::vector<std::size_t> &varying)
+    {
+      std::string name;
+      for (const std::size_t c : varying)
+        if (text_cell(row, c) != unused_value)
+          name += " " + table.columns[c] + " " + text_cell(row, c);
+      return varying.empty() ? " the scene's own values (one row)" : name;
+    }
+
     /// The run summary's answer to "what does accuracy cost": per measured
     /// error, the rows that no other row beats in both error and median
     /// time (the Pareto front), fastest first. Rows whose energy errors
@@ -91,22 +126,8 @@ namespace nsm
     /// of the backbone error's front.
     std::vector<std::string> pareto_notes(const CsvTable &table, const std::size_t key_size)
     {
-      const auto column = [&](const std::string &name) { return column_of(table, name); };
-      const auto cell = [](const std::vector<CsvCell> &row, const std::size_t c) {
-        return std::get<std::string>(row[c]);
-      };
-      // A row is named by the swept parameters that take more than one value
-      // (unused_value, for a value the row's run does not use, names nothing).
-      std::vector<std::size_t> varying;
-      for (std::size_t c = 0; c < key_size; ++c)
-        {
-          std::set<std::string> values;
-          for (const auto &row : table.rows)
-            if (cell(row, c) != unused_value)
-              values.insert(cell(row, c));
-          if (values.size() > 1)
-            varying.push_back(c);
-        }
+      const auto column  = [&](const std::string &name) { return column_of(table, name); };
+      const auto varying = varying_columns(table, key_size);
       const std::size_t        time = column("wall_total_median");
       std::vector<std::string> notes;
       for (const char *error : {"spectrum_error", "receptance_error", "energy_error_max"})
@@ -116,28 +137,24 @@ namespace nsm
           unsigned int                                                 partial = 0;
           for (const auto &row : table.rows)
             {
-              if (cell(row, column(error)).empty())
+              if (text_cell(row, column(error)).empty())
                 continue;
-              if (backbone_error && cell(row, column("energy_error_partial")) == "yes")
+              if (backbone_error && text_cell(row, column("energy_error_partial")) == "yes")
                 ++partial;
               else
-                rows.emplace_back(std::stod(cell(row, time)), &row);
+                rows.emplace_back(std::stod(text_cell(row, time)), &row);
             }
           std::sort(rows.begin(), rows.end(),
                     [](const auto &a, const auto &b) { return a.first < b.first; });
           double best = std::numeric_limits<double>::infinity();
           for (const auto &[seconds_taken, row] : rows)
-            if (const double e = std::stod(cell(*row, column(error))); e < best)
+            if (const double e = std::stod(text_cell(*row, column(error))); e < best)
               {
                 best = e;
                 std::ostringstream note;
                 note.precision(3);
-                note << "  " << error << " " << e << " in " << seconds_taken << " s:";
-                for (const std::size_t c : varying)
-                  if (cell(*row, c) != unused_value)
-                    note << " " << table.columns[c] << " " << cell(*row, c);
-                if (varying.empty())
-                  note << " the scene's own values (one row)";
+                note << "  " << error << " " << e << " in " << seconds_taken << " s:"
+                     << row_name(table, *row, varying);
                 notes.push_back(note.str());
               }
           if (partial > 0)
@@ -303,7 +320,7 @@ namespace nsm
       {
         const std::size_t c = column_of(table_, "backbone_end");
         return std::count_if(table_.rows.begin(), table_.rows.end(), [&](const std::vector<CsvCell> &row) {
-          return stopped_short(std::get<std::string>(row[c]));
+          return stopped_short(text_cell(row, c));
         });
       }
 
