@@ -133,6 +133,23 @@ namespace nsm
   {
     NewtonCost total = newton_.cost();
     total += leap_newton_.cost();
+    if (fewer_harmonics_)
+      total += fewer_harmonics_->newton_cost;
     return total;
+  }
+
+  const Backbone *BranchContext::fewer_harmonics()
+  {
+    const unsigned int harmonics = scene.harmonic_balance.harmonics;
+    if (!scene.continuation.leap_from_fewer_harmonics || harmonics < 2)
+      return nullptr;
+    if (!fewer_harmonics_)
+      {
+        Scene fewer                       = scene;
+        fewer.harmonic_balance.harmonics = harmonics / 2;
+        HarmonicBalance model(fewer, hb.receptance());
+        fewer_harmonics_ = std::make_unique<Backbone>(compute_backbone(model, fewer, resonances));
+      }
+    return fewer_harmonics_.get();
   }
 } // namespace nsm

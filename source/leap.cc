@@ -83,9 +83,33 @@ namespace nsm
     // written within reach behind the front, divided by Leap energy ratio.
     const double least = least_energy_behind(context, backbone, front.omega, reach);
 
-    // Newton from each guess at growing distances beyond the front; the first
-    // landing within the energy bounds starts the new segment.
+    // Newton from a guess; the first landing within the energy bounds starts
+    // the new segment.
     LeapTally  tally;
+    const auto landed = [&](const double omega, const std::vector<double> &guess, const char *how) {
+      BackbonePoint point;
+      if (tally.solves++ == 0 || context.beyond(omega, tally.furthest))
+        tally.furthest = omega;
+      if (!context.solve(omega, guess, segment, point, true))
+        {
+          tally.failed(context.last_failure());
+          return false;
+        }
+      const double e = point.measures.energy;
+      if (!(e < c.leap_energy_ratio * energy && e > least / c.leap_energy_ratio))
+        ++tally.outside;
+      else if (!(e <= c.energy_max))
+        ++tally.above_energy_max;
+      else
+        {
+          backbone.events.push_back(event_message(how, omega));
+          ++backbone.leaps;
+          backbone.points.push_back(std::move(point));
+          return true;
+        }
+      return false;
+    };
+    // Guesses at growing distances beyond the front.
     const auto land = [&](const bool last_resort) {
       for (double distance = c.initial_step;
            distance <= reach && context.beyond(context.far_end, front.omega);
@@ -100,41 +124,43 @@ namespace nsm
                           std::vector<std::vector<double>>{front.x, backbone.points[first].x,
                                                            context.hb.grazing_guess()};
           for (const std::vector<double> &guess : guesses)
-            {
-              if (guess.empty())
-                continue;
-              BackbonePoint point;
-              if (tally.solves++ == 0 || context.beyond(omega, tally.furthest))
-                tally.furthest = omega;
-              if (!context.solve(omega, guess, segment, point, true))
-                {
-                  tally.failed(context.last_failure());
-                  continue;
-                }
-              const double e = point.measures.energy;
-              if (!(e < c.leap_energy_ratio * energy && e > least / c.leap_energy_ratio))
-                ++tally.outside;
-              else if (!(e <= c.energy_max))
-                ++tally.above_energy_max;
-              else
-                {
-                  backbone.events.push_back(event_message(
-                    last_resort ? "leapt to a new segment from the fold before the tongue" : "leapt to a new segment",
-                    omega));
-                  ++backbone.leaps;
-                  backbone.points.push_back(std::move(point));
-                  return true;
-                }
-            }
+            if (!guess.empty() &&
+                landed(omega, guess,
+                       last_resort ? "leapt to a new segment from the fold before the tongue" :
+                                     "leapt to a new segment"))
+              return true;
           if (omega == context.far_end)
             break;
+        }
+      return false;
+    };
+    // The main points of the branch with half the harmonics within reach,
+    // nearest first, their higher harmonics zero.
+    const auto land_from_fewer_harmonics = [&]() {
+      const Backbone *fewer = context.fewer_harmonics();
+      if (!fewer)
+        return false;
+      std::vector<const BackbonePoint *> near;
+      for (const BackbonePoint &q : fewer->points)
+        if (q.branch == Branch::main && context.beyond(q.omega, front.omega) &&
+            std::abs(q.omega - front.omega) <= reach)
+          near.push_back(&q);
+      std::sort(near.begin(), near.end(), [&](const BackbonePoint *a, const BackbonePoint *b) {
+        return std::abs(a->omega - front.omega) < std::abs(b->omega - front.omega);
+      });
+      for (const BackbonePoint *q : near)
+        {
+          std::vector<double> guess(context.hb.n_unknowns(), 0.0);
+          std::copy(q->x.begin(), q->x.end(), guess.begin());
+          if (landed(q->omega, guess, "leapt to a new segment from the branch with half the harmonics"))
+            return true;
         }
       return false;
     };
     // The last resort, where the previous leap landed on a tongue that ends in
     // a fold no guess gets past: the last point before that leap, before the
     // tongue.
-    if (land(false) || (first > 0 && land(true)))
+    if (land(false) || (first > 0 && land(true)) || land_from_fewer_harmonics())
       return true;
     backbone.end = tally.left_energy_range() ? BackboneEnd::energy_max : BackboneEnd::lost;
     backbone.events.push_back(

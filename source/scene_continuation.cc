@@ -98,6 +98,13 @@ namespace nsm
                       Patterns::Double(1e-4, 0.5),
                       "How far, relative to Omega, the start searches from grazing and a leap "
                       "searches beyond the front for a converged point.");
+    prm.declare_entry("Leap from fewer harmonics",
+                      d.leap_from_fewer_harmonics ? "true" : "false",
+                      Patterns::Bool(),
+                      "Where a leap finds no landing from its own guesses, it tries the main "
+                      "points within reach of the same branch traced once with half the "
+                      "harmonics, their higher harmonics zero. Near dense internal resonances "
+                      "(the seed bar at M = 160) Newton converges from nothing else.");
     prm.leave_subsection();
   }
 
@@ -132,6 +139,7 @@ namespace nsm
     max_solution_change = prm.get_double("Max solution change");
     leap_energy_ratio   = prm.get_double("Leap energy ratio");
     search_reach        = prm.get_double("Search reach");
+    leap_from_fewer_harmonics = prm.get_bool("Leap from fewer harmonics");
     require(grazing_offset < search_reach,
             "Continuation/Grazing offset",
             "< Search reach = " + format_value(search_reach),

@@ -8,6 +8,7 @@
 #include <nsm/continuation.h>
 #include <nsm/progress.h>
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -80,6 +81,11 @@ namespace nsm
 
     NewtonCost newton_cost() const;
 
+    /// The same branch traced with half the harmonics (computed once, on
+    /// first use; null below 2 harmonics): where a leap finds no landing,
+    /// its main points are guesses that lie near solutions.
+    const Backbone *fewer_harmonics();
+
     HarmonicBalance                     &hb;
     const Scene                         &scene;
     const std::vector<InternalResonance> resonances;
@@ -93,6 +99,7 @@ namespace nsm
     NewtonSolver leap_newton_;
     Progress     progress_;
     SolveFailure last_failure_ = SolveFailure::stalled;
+    std::unique_ptr<Backbone> fewer_harmonics_;
   };
 
   /// The least energy written within `reach` of omega and not beyond it in

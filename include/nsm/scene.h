@@ -174,6 +174,7 @@ namespace nsm
       double             max_solution_change = 0.2;
       double             leap_energy_ratio   = 4.0;
       double             search_reach        = 0.05;
+      bool               leap_from_fewer_harmonics = true;
 
       static void declare(dealii::ParameterHandler &prm);
       void        parse(dealii::ParameterHandler &prm);

@@ -139,6 +139,7 @@ TEST(Scene, DeclaredDefaultsAreTheStructDefaults)
   EXPECT_EQ(pc.max_solution_change, dc.max_solution_change);
   EXPECT_EQ(pc.leap_energy_ratio, dc.leap_energy_ratio);
   EXPECT_EQ(pc.search_reach, dc.search_reach);
+  EXPECT_EQ(pc.leap_from_fewer_harmonics, dc.leap_from_fewer_harmonics);
   const auto &po = parsed.output, &dout = d.output;
   EXPECT_EQ(po.directory, dout.directory);
   EXPECT_EQ(po.spectrum_modes, dout.spectrum_modes);
