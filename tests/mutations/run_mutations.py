@@ -62,7 +62,7 @@ MUTATIONS = [
      "exceeds_envelope(point.measures.energy, least, scene.continuation.tongue_share) ?",
      "false ?"),
     ("leap without its last resort", "source/leap.cc",
-     "if (land(false) || (first > 0 && land(true)))", "if (land(false))"),
+     "if (land(false) || (first > 0 && land(true)) ||", "if (land(false) ||"),
     ("leap from the segment's first fold even behind its start", "source/leap.cc",
      "backbone.points[leap_front(context, backbone, first)]",
      "backbone.points[context.first_fold.value_or(backbone.points.size() - 1)]"),
@@ -96,8 +96,8 @@ MUTATIONS = [
      "bool left_energy_range() const { return above_energy_max > 0; }",
      "bool left_energy_range() const { return false; }"),
     ("a row that ended inside the Backbone omegas may lead the energy front", "source/study.cc",
-     "if (backbone_error && cell(row, column(\"energy_error_partial\")) == \"yes\")",
-     "if (false && backbone_error && cell(row, column(\"energy_error_partial\")) == \"yes\")"),
+     "if (backbone_error && text_cell(row, column(\"energy_error_partial\")) == \"yes\")",
+     "if (false && backbone_error && text_cell(row, column(\"energy_error_partial\")) == \"yes\")"),
     ("a row's energy error over part of the Backbone omegas not marked", "source/study_measures.cc",
      "return *reached > *low && *reached < *high;", "return *reached > *low && *reached < *low;"),
     ("results that depend on the machine's cores", "source/pipeline.cc",
@@ -110,6 +110,12 @@ MUTATIONS = [
      "off[i] = above[i] || behind[i];", "off[i] = above[i];"),
     ("one front for all segments", "source/main_branch.cc",
      "if (i > 0 && points[i].segment != points[i - 1].segment)", "if (false)"),
+    ("a leap from fewer harmonics starts from tongue points too", "source/leap.cc",
+     "if (q.branch == Branch::main && context.beyond(q.omega, front.omega) &&",
+     "if (context.beyond(q.omega, front.omega) &&"),
+    ("a leap from fewer harmonics puts each harmonic in the next one's slot", "source/leap.cc",
+     "std::copy(q->x.begin(), q->x.end(), guess.begin());",
+     "std::copy(q->x.begin(), q->x.end() - 1, guess.begin() + 1);"),
 ]
 
 
