@@ -1,5 +1,6 @@
 // Study (not a test): why the seed bar's branch is lost at M = 160 (near
-// Omega = 1.964, doc/accuracy-and-cost.md). Two measures:
+// Omega = 1.964, doc/accuracy-and-cost.md) when its leaps have only their own
+// guesses, and why the branch with half the harmonics carries it. Two measures:
 //  1. how fragmented the contact is on the main branch at M = 40, 80, 160:
 //     the sign changes of q = lambda - alpha g over a period, recomputed here
 //     from the physical Fourier coefficients on a fine grid (their share of
@@ -55,6 +56,7 @@ namespace
     // FE_Q(10) x 20 resolves gamma up to k W = 320 (the study's mesh, tests/studies/ended.prm).
     scene.discretisation.cells       = 20;
     scene.harmonic_balance.harmonics = harmonics;
+    scene.continuation.leap_from_fewer_harmonics = false;
     return scene;
   }
   /// Newton at M = `to` from the main points of `coarse` (M = `from`) beyond
