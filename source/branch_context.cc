@@ -117,7 +117,8 @@ namespace nsm
   {
     progress_.update([&] {
       std::ostringstream s;
-      s << backbone.points.size() << " points, Omega = " << backbone.points.back().omega << " (range "
+      // M tells the branch with half the harmonics (leap.h) from the run's own.
+      s << "M = " << scene.harmonic_balance.harmonics << ", " << backbone.points.size() << " points, Omega = " << backbone.points.back().omega << " (range "
         << near_end << " to " << far_end << "), " << backbone.leaps << " leaps";
       return s.str();
     });

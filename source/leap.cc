@@ -159,8 +159,9 @@ namespace nsm
     };
     // The last resort, where the previous leap landed on a tongue that ends in
     // a fold no guess gets past: the last point before that leap, before the
-    // tongue.
-    if (land(false) || (first > 0 && land(true)) || land_from_fewer_harmonics())
+    // tongue. A branch that goes on above Energy max is not lost: fewer
+    // harmonics would not bring it back below.
+    if (land(false) || (first > 0 && land(true)) || (!tally.left_energy_range() && land_from_fewer_harmonics()))
       return true;
     backbone.end = tally.left_energy_range() ? BackboneEnd::energy_max : BackboneEnd::lost;
     backbone.events.push_back(

@@ -1,5 +1,6 @@
 // Over a fold or a resonance tongue to the branch beyond it: Newton at Omega
-// values growing away from the segment's front, from three guesses.
+// values growing away from the segment's front, from three guesses, and from
+// the branch with half the harmonics where those fail.
 #pragma once
 
 #include <nsm/branch_context.h>
@@ -16,7 +17,10 @@ namespace nsm
   /// above the least energy written within reach behind the front divided by
   /// that ratio (a front high on a tongue must not bar the way down to the
   /// branch). If nothing lands, the last resort tries the last point before
-  /// the segment as the only guess. A success
+  /// the segment as the only guess, and then (Leap from fewer harmonics) the
+  /// main points within reach of the branch traced with half the harmonics,
+  /// nearest first, at their own W: near dense resonances nothing else lies
+  /// in Newton's basin (the seed bar at M = 160). A success
   /// appends the landing as the first point of `segment`; a failure records
   /// how the backbone ended (Backbone::end: lost, or energy_max where the only
   /// landings lay above Energy max) and what the Newton solves ended in.
