@@ -118,8 +118,9 @@ namespace nsm
     progress_.update([&] {
       std::ostringstream s;
       // M tells the branch with half the harmonics (leap.h) from the run's own.
-      s << "M = " << scene.harmonic_balance.harmonics << ", " << backbone.points.size() << " points, Omega = " << backbone.points.back().omega << " (range "
-        << near_end << " to " << far_end << "), " << backbone.leaps << " leaps";
+      s << "M = " << scene.harmonic_balance.harmonics << ", " << backbone.points.size()
+        << " points, Omega = " << backbone.points.back().omega << " (range " << near_end << " to " << far_end
+        << "), " << backbone.leaps << " leaps";
       return s.str();
     });
     return backbone.points.size() >= scene.continuation.max_steps;

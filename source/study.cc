@@ -25,12 +25,6 @@ namespace nsm
   {
     namespace fs = std::filesystem;
 
-    /// study.csv's cells are read back as text.
-    const std::string &text_cell(const std::vector<CsvCell> &row, const std::size_t c)
-    {
-      return std::get<std::string>(row[c]);
-    }
-
     std::string file_text(const std::string &path)
     {
       std::ifstream      in(path);

@@ -72,7 +72,7 @@ namespace nsm
       std::vector<std::optional<double>> values;
       for (const auto &row : table.rows)
         {
-          const std::string &cell = std::get<std::string>(row[c - table.columns.begin()]);
+          const std::string &cell = text_cell(row, c - table.columns.begin());
           values.push_back(cell.empty() ? std::nullopt : std::optional<double>(std::stod(cell)));
         }
       return values;

@@ -35,6 +35,12 @@ namespace nsm
   /// length differs from the header's.
   CsvTable read_csv(const std::string &path);
 
+  /// Cell c of a row that read_csv read: always text.
+  inline const std::string &text_cell(const std::vector<CsvCell> &row, const std::size_t c)
+  {
+    return std::get<std::string>(row[c]);
+  }
+
   /// Writes `path` through `write` into path.partial, renamed to path once
   /// complete, so no half-written file remains. Returns the path.
   std::string write_atomically(const std::string                         &path,
