@@ -4,12 +4,12 @@
 // receptance accuracy (benchmark_receptance); then, on the latter, how the
 // cost of a converged Newton solve and of its parts grows with the harmonics
 // M (sequential). Ratios are from this one run.
-#include <nsm/bar_model.h>
-#include <nsm/continuation.h>
-#include <nsm/discretisation.h>
-#include <nsm/harmonic_balance.h>
-#include <nsm/pipeline.h>
-#include <nsm/receptance.h>
+#include <nsm/model/bar_model.h>
+#include <nsm/continuation/continuation.h>
+#include <nsm/model/discretisation.h>
+#include <nsm/harmonic_balance/harmonic_balance.h>
+#include <nsm/base/threads.h>
+#include <nsm/model/receptance.h>
 
 #include <chrono>
 #include <cstdio>

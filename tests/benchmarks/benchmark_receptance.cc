@@ -2,10 +2,10 @@
 // W = 2) with the seed discretisation (p = 1, 4000 cells) against the
 // cheapest FE_Q(p >= 4) mesh that is at least as accurate (against the exact
 // Bessel receptance). Ratios are measured in this one run.
-#include <nsm/bar_model.h>
-#include <nsm/discretisation.h>
-#include <nsm/pipeline.h>
-#include <nsm/receptance.h>
+#include <nsm/model/bar_model.h>
+#include <nsm/model/discretisation.h>
+#include <nsm/base/threads.h>
+#include <nsm/model/receptance.h>
 
 #include <chrono>
 #include <cmath>

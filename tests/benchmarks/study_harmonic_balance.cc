@@ -4,7 +4,7 @@
 // sampled system is solved from the exact solution; the table gives the
 // energy difference, the cost of one residual + Jacobian evaluation, and the
 // Newton iterations.
-#include <nsm/pipeline.h>
+#include <nsm/base/threads.h>
 
 #include <chrono>
 #include <cmath>

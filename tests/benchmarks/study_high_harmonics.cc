@@ -9,7 +9,7 @@
 //     the fold where M = 160 is lost, padded with zero harmonics: the branch
 //     exists there at M = 80 and moves little from M = 80 to 160 where both
 //     are found, so this is as good a guess as any leap could make.
-#include <nsm/pipeline.h>
+#include <nsm/base/threads.h>
 
 #include <algorithm>
 #include <cmath>

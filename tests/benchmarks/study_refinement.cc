@@ -1,7 +1,7 @@
 // Study (not a test): the fewest DoFs with which uniform, graded and
 // adaptive meshes reach a target accuracy of gamma over a band, for three
 // tapers A(x) = a - x. Results are in doc/studies.md.
-#include <nsm/pipeline.h>
+#include <nsm/base/threads.h>
 
 #include <cstdio>
 

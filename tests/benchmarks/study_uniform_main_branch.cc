@@ -6,7 +6,7 @@
 // continuation that labels main points can reach at this M: the share of Omega
 // values with a solution within 5 % of the exact energy, the median error, and
 // the windows of width 0.01 in [1.58, 2.08) that hold such a solution.
-#include <nsm/pipeline.h>
+#include <nsm/base/threads.h>
 
 #include <algorithm>
 #include <cmath>

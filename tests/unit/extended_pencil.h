@@ -3,7 +3,7 @@
 // the doubles assembled, so these are the same discrete problem's values.
 #pragma once
 
-#include <nsm/banded_pencil.h>
+#include <nsm/model/banded_pencil.h>
 
 #include <algorithm>
 #include <vector>

@@ -1,12 +1,12 @@
 // A complete HB model (bar, mesh, receptance, harmonic balance) for tests.
 #pragma once
 
-#include <nsm/bar_model.h>
-#include <nsm/continuation.h>
-#include <nsm/discretisation.h>
-#include <nsm/harmonic_balance.h>
-#include <nsm/receptance.h>
-#include <nsm/spectrum.h>
+#include <nsm/model/bar_model.h>
+#include <nsm/continuation/continuation.h>
+#include <nsm/model/discretisation.h>
+#include <nsm/harmonic_balance/harmonic_balance.h>
+#include <nsm/model/receptance.h>
+#include <nsm/model/spectrum.h>
 
 #include <memory>
 #include <utility>

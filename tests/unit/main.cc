@@ -1,6 +1,6 @@
 // The unit tests' main: one thread, as every nsm-bar run (use_one_thread),
 // so that what the tests compute is what the program computes.
-#include <nsm/pipeline.h>
+#include <nsm/base/threads.h>
 
 #include <gtest/gtest.h>
 

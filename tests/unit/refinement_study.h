@@ -4,10 +4,10 @@
 // documented study.
 #pragma once
 
-#include <nsm/adaptive_refinement.h>
-#include <nsm/bar_model.h>
-#include <nsm/discretisation.h>
-#include <nsm/receptance.h>
+#include <nsm/model/adaptive_refinement.h>
+#include <nsm/model/bar_model.h>
+#include <nsm/model/discretisation.h>
+#include <nsm/model/receptance.h>
 
 #include <cmath>
 #include <limits>

@@ -1,7 +1,7 @@
 // Small builders shared by the unit tests.
 #pragma once
 
-#include <nsm/scene.h>
+#include <nsm/scene/scene.h>
 
 #include <fstream>
 #include <string>

@@ -1,6 +1,6 @@
 // The active set {q > 0} of a trigonometric series and the Gram matrix over
 // it, against closed forms and a brute-force quadrature.
-#include <nsm/active_set.h>
+#include <nsm/harmonic_balance/active_set.h>
 
 #include <gtest/gtest.h>
 

@@ -2,10 +2,10 @@
 // start at grazing, sequential steps, arclength steps with their guards, and
 // the leap over a fold; on the uniform bar (w1 = pi / 2 exactly) and the seed
 // bar (w1 from method.md).
-#include <nsm/arclength_steps.h>
-#include <nsm/grazing_start.h>
-#include <nsm/leap.h>
-#include <nsm/sequential_steps.h>
+#include <nsm/continuation/arclength_steps.h>
+#include <nsm/continuation/grazing_start.h>
+#include <nsm/continuation/leap.h>
+#include <nsm/continuation/sequential_steps.h>
 
 #include <gtest/gtest.h>
 

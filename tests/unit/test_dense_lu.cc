@@ -1,5 +1,5 @@
 // The dense LU solve of the Newton steps against known solutions.
-#include <nsm/dense_lu.h>
+#include <nsm/base/dense_lu.h>
 
 #include <gtest/gtest.h>
 

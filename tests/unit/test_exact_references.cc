@@ -2,11 +2,11 @@
 // the tests' own Bessel and tan formulas on the unit bars, and, on bars with
 // other L, E, rho and tapers (where those formulas do not apply), to a
 // converged FE_Q(10) solution of the same bar.
-#include <nsm/bar_model.h>
-#include <nsm/discretisation.h>
-#include <nsm/exact_references.h>
-#include <nsm/receptance.h>
-#include <nsm/spectrum.h>
+#include <nsm/model/bar_model.h>
+#include <nsm/model/discretisation.h>
+#include <nsm/model/exact_references.h>
+#include <nsm/model/receptance.h>
+#include <nsm/model/spectrum.h>
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // the HB displacement, and the energy of the field vectors themselves,
 // u'^T M u' / 2 + u^T K u / 2, matches the HB energy formula (which never
 // forms a field).
-#include <nsm/fields.h>
+#include <nsm/verification/fields.h>
 
 #include <gtest/gtest.h>
 

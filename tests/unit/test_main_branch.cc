@@ -1,7 +1,7 @@
 // Main branch or tongue: the spectral test on synthetic spectra, Parseval for
 // the energy per harmonic, and the labels against the uniform bar's exact
 // energy E = g0^2 / (2 (T - 3)^2) (method.md section 7).
-#include <nsm/main_branch.h>
+#include <nsm/continuation/main_branch.h>
 
 #include <gtest/gtest.h>
 

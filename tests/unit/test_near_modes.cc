@@ -2,11 +2,11 @@
 // iteration) and the far modes' series against independent references: a
 // Sturm bisection of the same assembled pencil in extended precision, and
 // the full spectrum with its residues from the product formula.
-#include <nsm/adaptive_refinement.h>
-#include <nsm/bar_model.h>
-#include <nsm/discretisation.h>
-#include <nsm/near_modes.h>
-#include <nsm/spectrum.h>
+#include <nsm/model/adaptive_refinement.h>
+#include <nsm/model/bar_model.h>
+#include <nsm/model/discretisation.h>
+#include <nsm/model/near_modes.h>
+#include <nsm/model/spectrum.h>
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // The receptance gamma(w) against the exact references, and the direct
 // (UMFPACK) and modal methods against each other.
-#include <nsm/adaptive_refinement.h>
-#include <nsm/bar_model.h>
-#include <nsm/discretisation.h>
-#include <nsm/receptance.h>
+#include <nsm/model/adaptive_refinement.h>
+#include <nsm/model/bar_model.h>
+#include <nsm/model/discretisation.h>
+#include <nsm/model/receptance.h>
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
 // Bad input is rejected before any work, with a message that names the
 // parameter and the allowed range; the executable exits non-zero and writes
 // no output.
-#include <nsm/bar_model.h>
-#include <nsm/discretisation.h>
-#include <nsm/scene.h>
-#include <nsm/scene_entries.h>
+#include <nsm/model/bar_model.h>
+#include <nsm/model/discretisation.h>
+#include <nsm/scene/scene.h>
+#include <nsm/scene/scene_entries.h>
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // Eigenfrequencies against the exact Bessel roots, and their convergence in
 // h (rate 2p) and in p (exponential) for the tapered seed bar.
-#include <nsm/bar_model.h>
-#include <nsm/discretisation.h>
-#include <nsm/spectrum.h>
+#include <nsm/model/bar_model.h>
+#include <nsm/model/discretisation.h>
+#include <nsm/model/spectrum.h>
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Verification in time: the integrator against the uniform bar's exact
 // nonsmooth mode, and backbone points against their own time integration.
-#include <nsm/time_verification.h>
+#include <nsm/verification/time_verification.h>
 
 #include <gtest/gtest.h>
 

@@ -1,0 +1,38 @@
+// The three kinds of failure a run reports, each with its own exit code
+// (app/main.cc): bad input (2), a numerical failure (3), an output error (5).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace dealii
+{
+  class ExceptionBase;
+} // namespace dealii
+
+namespace nsm
+{
+  /// Bad input: the message names the parameter and the allowed range.
+  class InputError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  /// A file could not be written whole (disk full, file size limit, ...).
+  class OutputError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  /// A numerical failure that the run cannot recover from.
+  class NumericalError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  /// A deal.II exception's own message (without its banner) on one line.
+  std::string one_line_message(const dealii::ExceptionBase &e);
+} // namespace nsm

@@ -1,0 +1,96 @@
+// The continuation's results: a backbone's points, labelled main or
+// tongue, its tongues, how it ended, and the internal resonances that fold
+// it. The driver that computes it is continuation.h.
+#pragma once
+
+#include <nsm/harmonic_balance/newton_solver.h>
+#include <nsm/harmonic_balance/solution_measures.h>
+#include <nsm/scene/scene.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace nsm
+{
+  enum class Branch
+  {
+    main,  ///< the nonsmooth mode: on the backbone's monotone lower envelope (main_branch.h)
+    tongue ///< above it, near W = w_j / k, where harmonic k drives mode j near its resonance
+  };
+
+  /// "main" or "tongue", as the CSV files write it.
+  inline const char *branch_name(const Branch b) { return b == Branch::main ? "main" : "tongue"; }
+
+  struct InternalResonance
+  {
+    double       omega; ///< w_j / k
+    unsigned int mode;  ///< j
+    unsigned int harmonic; ///< k
+  };
+
+  struct BackbonePoint
+  {
+    unsigned int             segment;
+    double                   omega;
+    PeriodicSolutionMeasures measures;
+    unsigned int             newton_iterations;
+    double                   residual;
+    std::vector<double>      x; ///< scaled unknowns
+    Branch                   branch    = Branch::main;
+    InternalResonance        resonance = {0, 0, 0}; ///< of a tongue point; zero on the main branch
+  };
+
+  /// A run of tongue points of one resonance along the backbone.
+  struct Tongue
+  {
+    InternalResonance resonance;
+    double            foot_begin; ///< Omega of the point before it
+    double            foot_end;   ///< Omega of the point after it
+    double            max_energy; ///< highest energy written on it
+    unsigned int      points;
+  };
+
+  /// How the continuation ended: a study's row says it (backbone_end), so
+  /// that a row whose branch was lost is not read as one that covered the range.
+  enum class BackboneEnd
+  {
+    range,      ///< Omega min or max reached, or the range left
+    max_steps,  ///< Max steps points in all
+    lost,       ///< after a fold or tongue, no leap found the branch again
+    energy_max, ///< after a fold or tongue, the leap landed only above Energy max
+    refused     ///< arclength reached a point that is not a contact motion
+  };
+
+  /// "range", "max_steps", "lost", "energy_max" or "refused", as study.csv
+  /// writes it.
+  const char *backbone_end_name(BackboneEnd end);
+
+  struct Backbone
+  {
+    std::vector<BackbonePoint> points;
+    std::vector<Tongue>        tongues;
+    NewtonCost                 newton_cost; ///< sequential method and leaps
+    std::vector<std::string>   events; ///< folds, leaps, stops: for the summary
+    std::vector<double>        folds;  ///< Omega of each fold turned or leapt
+    unsigned int               leaps = 0;
+    BackboneEnd                end   = BackboneEnd::range;
+
+    unsigned int main_points() const;
+
+    /// The Omega of the written point furthest in the branch's `direction`
+    /// (branch_direction); none if no point was written.
+    std::optional<double> omega_reached(double direction) const;
+  };
+
+  /// Omega min <= omega <= Omega max.
+  bool in_omega_range(const Scene &scene, double omega);
+
+  /// +1 where the branch leaves grazing upwards in Omega (the physical force
+  /// sign), -1 with the paper's eq. (5): the one place this is derived.
+  double branch_direction(const Scene &scene);
+
+  /// The internal resonance nearest to omega (resonances not empty).
+  const InternalResonance &nearest_resonance(const std::vector<InternalResonance> &resonances,
+                                             double                                omega);
+} // namespace nsm

@@ -1,0 +1,108 @@
+// What the stages of tracing one branch share (continuation.h has the
+// overview): the model and the scene, the Newton solvers, the direction and
+// ends of the Omega range, and when a converged solve becomes a point. The
+// stages are separate units: grazing_start, sequential_steps,
+// arclength_steps and leap.
+#pragma once
+
+#include <nsm/continuation/backbone.h>
+#include <nsm/base/progress.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace nsm
+{
+  /// How a segment of the branch ended.
+  enum class SegmentEnd
+  {
+    approach,  ///< the start of the range reached from a start before it
+    range,     ///< Omega min or max reached
+    fold,      ///< no convergence below Min step, or LOCA gave up
+    tongue,    ///< energy above Energy max (climbing a resonance tongue)
+    max_steps, ///< Max steps points in all
+    refused,   ///< arclength reached a point that is not a contact motion
+    jump       ///< an arclength step left the branch (shortened and retried)
+  };
+
+  /// "what at Omega = ..." for the run summary, with the nearest internal
+  /// resonance when given the list.
+  std::string event_message(const std::string                    &what,
+                            double                                omega,
+                            const std::vector<InternalResonance> &resonances = {});
+
+  /// The straight line through the unknowns of a and b, evaluated at omega
+  /// (a's unknowns if both share one Omega): a Newton guess between points.
+  std::vector<double> interpolated_guess(const BackbonePoint &a, const BackbonePoint &b, double omega);
+
+  /// The first point of the segment the backbone's last point belongs to.
+  std::size_t last_segment_start(const Backbone &backbone);
+
+  class BranchContext
+  {
+  public:
+    BranchContext(HarmonicBalance &hb, const Scene &scene, std::vector<InternalResonance> resonances);
+
+    /// A converged solve becomes a point only if it is a genuine contact
+    /// motion: the trivial solution (no contact) and, in the full basis, a
+    /// solution whose unfolding parameter does not vanish are refused.
+    bool make_point(const std::vector<double> &x, double omega, double residual,
+                    unsigned int iterations, unsigned int segment, BackbonePoint &point);
+
+    /// Newton from the guess; a leap that fails with full steps tries again
+    /// with a line search and more iterations.
+    bool solve(double omega, const std::vector<double> &guess, unsigned int segment,
+               BackbonePoint &point, bool leaping = false);
+
+    /// Why the last solve() gave no point: Newton stopped unconverged at Max
+    /// iterations (in either try; more iterations might converge), stalled or
+    /// diverged, or converged to no contact motion.
+    enum class SolveFailure
+    {
+      iteration_limit,
+      stalled,
+      no_contact
+    };
+    SolveFailure last_failure() const { return last_failure_; }
+
+    /// Called after each point: Max steps reached? Also reports progress.
+    bool full(const Backbone &backbone);
+
+    bool in_range(double omega) const { return in_omega_range(scene, omega); }
+
+    /// a lies beyond b in the direction of continuation.
+    bool beyond(double a, double b) const { return direction * (a - b) > 0; }
+
+    /// Steps never exceed a tenth of the range covered, so that a narrow
+    /// range still gets points.
+    double max_step() const;
+
+    NewtonCost newton_cost() const;
+
+    /// The same branch traced with half the harmonics (computed once, on
+    /// first use; null below 2 harmonics): where a leap finds no landing,
+    /// its main points are guesses that lie near solutions.
+    const Backbone *fewer_harmonics();
+
+    HarmonicBalance                     &hb;
+    const Scene                         &scene;
+    const std::vector<InternalResonance> resonances;
+    const double                         direction;
+    const double                         near_end, far_end; ///< the range's ends, first met and last
+    double                               span = 0; ///< of the range covered from the start
+    std::optional<std::size_t>           first_fold; ///< in the current segment (arclength)
+
+  private:
+    NewtonSolver newton_;
+    NewtonSolver leap_newton_;
+    Progress     progress_;
+    SolveFailure last_failure_ = SolveFailure::stalled;
+    std::unique_ptr<Backbone> fewer_harmonics_;
+  };
+
+  /// The least energy written within `reach` of omega and not beyond it in
+  /// the direction of continuation: how low a landing there may go.
+  double least_energy_behind(const BranchContext &context, const Backbone &backbone, double omega, double reach);
+} // namespace nsm

@@ -1,0 +1,44 @@
+// Families of periodic solutions from grazing: sequential continuation in
+// Omega (the paper's) and pseudo-arclength (LOCA), with the internal
+// resonances W = w_j / k that fold the branch. compute_backbone joins the
+// stages of branch_context.h (grazing_start, sequential_steps,
+// arclength_steps, leap) into segments, then labels the points
+// (main_branch.h).
+#pragma once
+
+#include <nsm/continuation/backbone.h>
+#include <nsm/harmonic_balance/harmonic_balance.h>
+#include <nsm/scene/scene.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace nsm
+{
+  /// Every W = w_j / k in [Omega min, Omega max] with k <= M, w_j from the
+  /// FE clamped-free spectrum up to Harmonics x Omega max; sorted by W.
+  std::vector<InternalResonance> internal_resonances(const Receptance &receptance,
+                                                     const Scene      &scene);
+
+  /// Starts at grazing of Continuation/Mode and follows the branch with the
+  /// scene's method. Only converged, non-trivial points are kept.
+  Backbone compute_backbone(HarmonicBalance                      &hb,
+                            const Scene                          &scene,
+                            const std::vector<InternalResonance> &resonances);
+
+  /// The solution at exactly `omega` on the computed branch: Newton from the
+  /// interpolation of two backbone points of one segment that bracket it
+  /// (each such pair in turn), both labelled main if `main_only`. Otherwise
+  /// (omega in the gap a leap left), unless `main_only`, Newton with a line
+  /// search, as a leap, from the nearest points below and above and from the
+  /// impulsive guess. The point is labelled main or tongue against the
+  /// backbone's envelope (label_point). Throws NumericalError if nothing
+  /// converges.
+  BackbonePoint solve_on_branch(HarmonicBalance &hb,
+                                const Scene     &scene,
+                                const Backbone  &backbone,
+                                double           omega,
+                                bool             main_only = false);
+
+} // namespace nsm

@@ -1,0 +1,69 @@
+// Main branch or tongue, for every point. The nonsmooth mode hardens: along
+// the direction of continuation its energy rises. A resonance tongue is an
+// excursion above it, which the branch climbs near W = w_j / k and comes down
+// from beyond. A point whose energy is more than Tongue share above the lowest
+// energy written at or beyond its Omega (the monotone lower envelope of the
+// backbone) is therefore a tongue point; every other point is on the main
+// branch. A tongue is named after the harmonic k >= 3 that stands out most
+// of the spectrum at its highest point, and the mode j nearest to k W; an
+// excursion that names only the branch's own fundamental is main.
+#pragma once
+
+#include <nsm/continuation/backbone.h>
+
+namespace nsm
+{
+  /// How far harmonic k stands above the envelope of its neighbours (the
+  /// geometric mean of harmonics k - 2 and k + 2, or harmonic k - 2 alone at
+  /// the top), as a share of the total energy; 0 for k < 3.
+  double harmonic_excess(const std::vector<double> &harmonic_energies, unsigned int k);
+
+  /// The harmonic k >= 3 that stands out most, and its excess (negative if
+  /// none stands out); harmonic 0 if there are fewer than 4 harmonics.
+  struct SpectralExcess
+  {
+    unsigned int harmonic;
+    double       share;
+  };
+
+  SpectralExcess spectral_excess(const std::vector<double> &harmonic_energies);
+
+  /// The resonance w_j / k of harmonic k at Omega: j the clamped-free mode
+  /// whose frequency is nearest to k Omega.
+  InternalResonance resonance_of(const Receptance &receptance, unsigned int k, double omega);
+
+  /// Per point, in order: true if its energy exceeds (1 + share) times the
+  /// least energy of the points at or beyond its Omega in `direction`.
+  std::vector<bool> above_envelope(const std::vector<BackbonePoint> &points,
+                                   double                            direction,
+                                   double                            share);
+
+  /// Per point, in order: true if it is not `above` the envelope but lies
+  /// behind its segment's front, the farthest Omega in `direction` of the
+  /// segment's earlier points that are neither above nor behind. The main
+  /// branch is a graph over Omega; a continuation that comes back (the back
+  /// of a fold, the middle of an S) is on another branch.
+  std::vector<bool> behind_front(const std::vector<BackbonePoint> &points,
+                                 double                            direction,
+                                 const std::vector<bool>          &above);
+
+  /// Sets every point's branch, and the resonance of each run of tongue
+  /// points from the spectrum of its most energetic point (the scene's Tongue
+  /// share, direction and Mode). Tongue points are those above the envelope
+  /// or behind the front. A run whose resonance is the fundamental at
+  /// the branch's own mode is main: nothing resonates there.
+  void label_branches(HarmonicBalance &hb, const Scene &scene, std::vector<BackbonePoint> &points);
+
+  /// Labels one point solved off the backbone (a field at a given Omega) by
+  /// the same rule: a tongue point, named from its own spectrum, if its
+  /// energy exceeds (1 + Tongue share) times the least energy of `points` at
+  /// or beyond its Omega and it names an internal resonance; else main.
+  void label_point(HarmonicBalance                  &hb,
+                   const Scene                      &scene,
+                   const std::vector<BackbonePoint> &points,
+                   BackbonePoint                    &point);
+
+  /// The tongues of a labelled backbone: runs of tongue points of one
+  /// resonance, with the Omega of the main points at their feet.
+  std::vector<Tongue> collect_tongues(const std::vector<BackbonePoint> &points);
+} // namespace nsm

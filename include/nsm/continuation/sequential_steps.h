@@ -1,0 +1,22 @@
+// Sequential continuation (the paper's): steps in Omega with a secant
+// predictor inside a segment, each solved by Newton at fixed Omega.
+#pragma once
+
+#include <nsm/continuation/branch_context.h>
+
+namespace nsm
+{
+  /// A step whose solution moved by more than `Max solution change` times the
+  /// solution itself, or whose contact fraction changed by more than `Max
+  /// contact change`, has jumped to another branch (over a fold), not followed
+  /// it.
+  bool stays_on_branch(const BackbonePoint &from, const BackbonePoint &to, const Scene::Continuation &c);
+
+  /// Steps from the backbone's last point; the step grows by 1.5 after a
+  /// solve of at most 4 iterations, up to the context's max_step(), and is
+  /// quartered on failure or on a jump to another branch, down to Min step
+  /// (a fold). Steps stop exactly at the start of the range (coming from
+  /// before it) and at its end. With the arclength method it hands over
+  /// (`approach`) once the range is reached.
+  SegmentEnd sequential_segment(BranchContext &context, Backbone &backbone, unsigned int segment);
+} // namespace nsm

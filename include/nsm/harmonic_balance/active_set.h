@@ -1,0 +1,58 @@
+// The active set {tau : q(tau) > 0} of a trigonometric series
+// q = sum_i v_i phi_i on the harmonic balance's basis, and the Gram matrix of
+// the basis over it, G_ij = P_i[phi_j on {q > 0}]: the projection of the
+// Signorini law max(q, 0) (harmonic_balance.h).
+//
+// The exact rule finds the roots of q (bracketed on a grid of samples, then
+// refined) and integrates the products of basis functions in closed form; the
+// sampled rule sums them over the samples where q > 0.
+#pragma once
+
+#include <nsm/scene/scene.h>
+#include <nsm/harmonic_balance/trigonometric.h>
+
+#include <vector>
+
+namespace nsm
+{
+  class ActiveSet
+  {
+  public:
+    /// samples: the sampled rule's points per period, or the exact rule's
+    /// bracketing grid.
+    ActiveSet(TrigonometricBasis basis, Integration integration, unsigned int samples);
+
+    unsigned int n_samples() const { return samples_; }
+    /// phi_i(tau_s) on the samples tau_s = 2 pi s / samples (row-major,
+    /// one row of samples per basis function).
+    const std::vector<double> &table() const { return table_; }
+
+    /// The Gram matrix over {q > 0} (row-major n x n); returns the share of
+    /// the period where q > 0. The last v's result is kept: NOX asks for the
+    /// residual and the Jacobian at one point separately.
+    double gram(const std::vector<double> &v, std::vector<double> &gram) const;
+
+    /// q(tau), and q'(tau) if slope is given.
+    double value(const std::vector<double> &v, double tau, double *slope) const;
+    /// Roots of q in [0, 2 pi), sorted.
+    std::vector<double> roots(const std::vector<double> &v) const;
+
+  private:
+    /// Adds to `found` the two roots of q around sample t when q has an
+    /// extremum there towards zero that the samples q (of v) do not show
+    /// crossing it; `reach` bounds how far q departs between samples.
+    void crossings_near_extremum(const std::vector<double> &v, const std::vector<double> &q, unsigned int t,
+                                 double reach, std::vector<double> &found) const;
+    double gram_exact(const std::vector<double> &v, std::vector<double> &gram) const;
+    double gram_sampled(const std::vector<double> &v, std::vector<double> &gram) const;
+
+    TrigonometricBasis  basis_;
+    Integration         integration_;
+    unsigned int        samples_;
+    unsigned int        top_; ///< 2 M + 1: the orders of the products' terms
+    std::vector<double> table_;
+
+    mutable std::vector<double> cached_coefficients_, cached_gram_;
+    mutable double              cached_fraction_ = 0;
+  };
+} // namespace nsm

@@ -1,0 +1,72 @@
+// What a user reads of one periodic solution of the harmonic balance: its
+// energy over the period (mean, spread, share per harmonic) from the
+// receptance fields in closed form, and the contact force and gap over the
+// period. The harmonic balance supplies the solution in its angle variables.
+#pragma once
+
+#include <nsm/harmonic_balance/active_set.h>
+#include <nsm/harmonic_balance/trigonometric.h>
+
+#include <vector>
+
+namespace nsm
+{
+  /// Quantities of one converged (or candidate) periodic solution.
+  struct PeriodicSolutionMeasures
+  {
+    double energy;            ///< period mean of kinetic + strain energy
+    double energy_spread;     ///< (max - min) / mean over the period
+    double max_contact_force; ///< max over the period of lambda(t)
+    double contact_fraction;  ///< share of the period with lambda - alpha g > 0
+    double min_force;         ///< min lambda / max lambda (Signorini: >= 0)
+    double min_gap;           ///< min g / g0 (Signorini: >= 0)
+    double max_complementarity; ///< max |lambda g| / (max lambda g0)
+  };
+
+  /// gamma(k W) = tan(theta) at the frequency of harmonic k.
+  struct HarmonicPhase
+  {
+    double cos, sin, dtheta_domega; ///< of theta at frequency k W
+    double omega2;                  ///< (k W)^2
+    double dtheta_domega2;          ///< d theta / d(w^2) = gamma' cos^2
+  };
+
+  /// A solution at one W: basis function i carries c_i = scale x_i, its
+  /// contact force a_i = c_i cos(theta) and displacement b_i = -s c_i
+  /// sin(theta), theta that of harmonic order[i]. The references must
+  /// outlive the measures' calls.
+  struct PhasedSolution
+  {
+    const TrigonometricBasis         &functions;
+    const std::vector<HarmonicPhase> &phases; ///< per harmonic k = 0..M
+    const std::vector<double>        &x;      ///< 0 in the unfolding slot
+    double                            scale;
+    double                            omega;
+  };
+
+  class SolutionMeasures
+  {
+  public:
+    /// The energy is a trigonometric polynomial of degree 2M; its spread is
+    /// taken from 4 (2M + 1) points of it.
+    explicit SolutionMeasures(unsigned int harmonics);
+
+    /// Period mean and spread of the energy.
+    void energy(const PhasedSolution &solution, PeriodicSolutionMeasures &result) const;
+
+    /// Period-mean energy carried by each harmonic k = 0..M (Parseval: they
+    /// add up to the mean of energy()).
+    std::vector<double> harmonic_energies(const PhasedSolution &solution) const;
+
+    /// Largest and least contact force, least gap and largest |lambda g| at
+    /// the active set's samples, against the wall at `gap`; `sign` is s.
+    void force_and_gap(const PhasedSolution &solution, const ActiveSet &samples, double sign, double gap,
+                       PeriodicSolutionMeasures &result) const;
+
+  private:
+    unsigned int harmonics_;
+    /// cos m tau and sin m tau, m = 0..2M, at the 4 (2M + 1) points where the
+    /// energy over the period is evaluated (row-major, m x points).
+    std::vector<double> energy_cos_, energy_sin_;
+  };
+} // namespace nsm

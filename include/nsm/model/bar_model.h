@@ -1,0 +1,39 @@
+// The physical bar: material, length and the cross-section law A(x).
+#pragma once
+
+#include <nsm/scene/scene.h>
+
+#include <memory>
+#include <vector>
+
+namespace dealii
+{
+  template <int dim>
+  class FunctionParser;
+}
+
+namespace nsm
+{
+  class BarModel
+  {
+  public:
+    /// Parses the cross-section expression; throws InputError if it is
+    /// malformed or not positive at a fine sampling of [0, L].
+    explicit BarModel(const Scene::Bar &bar);
+    ~BarModel();
+
+    double length() const { return length_; }
+    double young_modulus() const { return young_modulus_; }
+    double density() const { return density_; }
+
+    /// A(x); throws InputError if A(x) <= 0 or not finite.
+    double cross_section(double x) const;
+
+  private:
+    double                                     length_;
+    double                                     young_modulus_;
+    double                                     density_;
+    std::string                                expression_;
+    std::unique_ptr<dealii::FunctionParser<1>> section_;
+  };
+} // namespace nsm

@@ -1,0 +1,38 @@
+// The CSV tables of one run's results: spectrum, receptance, backbone (with
+// its verification in time), tongues and internal resonances.
+#pragma once
+
+#include <nsm/continuation/continuation.h>
+#include <nsm/base/csv.h>
+#include <nsm/scene/scene.h>
+#include <nsm/verification/time_verification.h>
+
+#include <optional>
+#include <vector>
+
+namespace nsm
+{
+  class Discretisation;
+  class Receptance;
+
+  /// One entry per backbone point; empty for a point not verified in time.
+  using Verifications = std::vector<std::optional<PointVerification>>;
+
+  /// spectrum.csv: the first `modes` clamped-free and clamped-clamped
+  /// eigenfrequencies.
+  CsvTable spectrum_table(const Discretisation &d, unsigned int modes);
+
+  /// receptance.csv: gamma and d gamma / d omega^2 at Output/Receptance
+  /// frequencies.
+  CsvTable receptance_table(const Receptance &receptance, const Scene &scene);
+
+  /// backbone.csv: one row per point; the verification columns only if
+  /// `verifications` is not empty.
+  CsvTable backbone_table(const Backbone &backbone, const Verifications &verifications);
+
+  /// tongues.csv: one row per tongue.
+  CsvTable tongue_table(const Backbone &backbone);
+
+  /// resonances.csv: the internal resonances w_j / k in the range.
+  CsvTable resonance_table(const std::vector<InternalResonance> &resonances);
+} // namespace nsm

@@ -1,0 +1,219 @@
+// A scene: every parameter of one run, read once from a ParameterHandler file
+// and validated before any work is done.
+#pragma once
+
+#include <nsm/base/errors.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace dealii
+{
+  class ParameterHandler;
+} // namespace dealii
+
+namespace nsm
+{
+  enum class ForceSign
+  {
+    physical, ///< the wall pushes the bar in -x: u_N = -gamma lambda
+    seed_eq5  ///< the paper's eq. (5) literally: u_N = +gamma lambda
+  };
+
+  enum class Refinement
+  {
+    none,
+    graded,
+    adaptive
+  };
+
+  enum class ReceptanceMethod
+  {
+    direct,
+    modal
+  };
+
+  enum class HarmonicBasis
+  {
+    cosine,
+    full
+  };
+
+  enum class Integration
+  {
+    sampled,
+    exact
+  };
+
+  enum class ContinuationMethod
+  {
+    sequential,
+    arclength
+  };
+
+  /// Every parameter of one run. Each part declares its own subsection, with
+  /// the bounds in the Patterns and the default stated once (the member
+  /// initialisers below), and parses it back with the checks that involve
+  /// more than one parameter.
+  struct Scene
+  {
+    /// Dimensional inputs (L, E, rho, A(x), g0, alpha) lie in
+    /// [1 / magnitude_limit, magnitude_limit]: the products and quotients the
+    /// run forms of them (frequencies, energies, contact forces) then stay
+    /// finite and above the underflow threshold.
+    static constexpr double magnitude_limit = 1e20;
+    /// Frequencies (Omega, receptance and field frequencies, bands) lie in
+    /// [0, frequency_limit]: w^2 times the mass matrix stays finite.
+    static constexpr double frequency_limit = 1e100;
+
+    struct Bar
+    {
+      double      length        = 1.0;
+      double      young_modulus = 1.0;
+      double      density       = 1.0;
+      std::string cross_section = "1.5 - x";
+
+      static void declare(dealii::ParameterHandler &prm);
+      void        parse(dealii::ParameterHandler &prm);
+    } bar;
+
+    struct Contact
+    {
+      bool      enabled = true;
+      double    gap     = 1e-3;
+      double    alpha   = 1.0;
+      ForceSign sign    = ForceSign::physical;
+
+      static void declare(dealii::ParameterHandler &prm);
+      void        parse(dealii::ParameterHandler &prm);
+    } contact;
+
+    struct Discretisation
+    {
+      unsigned int degree             = 1;
+      unsigned int cells              = 4000;
+      unsigned int quadrature_points  = 0; ///< 0: degree + 2
+      double       roundoff_limit     = 1e-7;
+      Refinement   refinement         = Refinement::none;
+      double       graded_ratio       = 0.8;
+      unsigned int graded_layers      = 0;
+      unsigned int adaptive_steps     = 10;
+      double       adaptive_tolerance = 1e-8;
+      double       adaptive_fraction  = 0.3;
+      double       adaptive_band_max  = 0.0; ///< 0: derived from the scene
+
+      /// Smallest cell size, relative to L, that keeps the round-off floor
+      /// eps p^2 L / h_min of the stiffness matrix within `roundoff_limit`.
+      double smallest_cell() const;
+
+      static void declare(dealii::ParameterHandler &prm);
+      void        parse(dealii::ParameterHandler &prm);
+    } discretisation;
+
+    struct Receptance
+    {
+      ReceptanceMethod method = ReceptanceMethod::direct;
+      unsigned int     modes  = 0; ///< modal basis size, 0 = all
+
+      static void declare(dealii::ParameterHandler &prm);
+      void        parse(dealii::ParameterHandler &prm);
+    } receptance;
+
+    struct HarmonicBalance
+    {
+      unsigned int  harmonics      = 40;
+      unsigned int  time_samples   = 0; ///< 0: chosen from the harmonics
+      HarmonicBasis basis          = HarmonicBasis::cosine;
+      Integration   integration    = Integration::exact;
+      double        tolerance      = 1e-10;
+      unsigned int  max_iterations = 12;
+      std::string   line_search    = "Full Step";
+
+      static void declare(dealii::ParameterHandler &prm);
+      void        parse(dealii::ParameterHandler &prm);
+    } harmonic_balance;
+
+    struct Continuation
+    {
+      ContinuationMethod method         = ContinuationMethod::sequential;
+      unsigned int       mode           = 1;
+      double             omega_min      = 0.0;
+      double             omega_max      = 2.2;
+      double             energy_max     = 1.0;
+      double             initial_step   = 1e-3;
+      double             min_step       = 1e-6;
+      double             max_step       = 1e-2;
+      unsigned int       max_steps      = 2000;
+      double             grazing_offset = 1e-5;
+      double             tongue_share   = 0.02;
+      double             tongue_energy_ratio = 2.0;
+      double             max_contact_change  = 0.01;
+      double             max_solution_change = 0.2;
+      double             leap_energy_ratio   = 4.0;
+      double             search_reach        = 0.05;
+      bool               leap_from_fewer_harmonics = true;
+
+      static void declare(dealii::ParameterHandler &prm);
+      void        parse(dealii::ParameterHandler &prm);
+    } continuation;
+
+    struct Output
+    {
+      std::string         directory      = "output";
+      unsigned int        spectrum_modes = 0;
+      std::vector<double> receptance_frequencies;
+      bool                backbone       = false;
+      std::vector<double> fields_at;              ///< Omega of each field
+      unsigned int        fields_every       = 0; ///< every n-th backbone point; 0 = none
+      unsigned int        field_time_samples = 0; ///< 0: 2 (2 M + 1)
+      bool                vtk                = false;
+      bool                plots              = false;
+      double              progress_every     = 5.0; ///< seconds; 0 = never
+      bool                verify_in_time     = false;
+      unsigned int        verify_every       = 1;
+      unsigned int        verify_periods     = 5;
+      unsigned int        verify_steps       = 4000; ///< time steps per period
+      double              verify_tolerance   = 0.01; ///< largest periodicity defect of a verified point
+
+      bool fields() const { return !fields_at.empty() || fields_every > 0; }
+
+      static void declare(dealii::ParameterHandler &prm);
+      void        parse(dealii::ParameterHandler &prm);
+    } output;
+
+    /// Reads and validates a scene file; throws InputError.
+    static Scene from_file(const std::string &path);
+
+    /// Parses and validates a scene from `prm`, which holds a scene file read
+    /// by read_scene_file (perhaps with values changed since); `origin` names
+    /// it in messages. A study (`is_study`) may ask for plots without a
+    /// backbone or fields: it plots its own table. Throws InputError.
+    static Scene from_parameters(dealii::ParameterHandler &prm, const std::string &origin,
+                                 bool is_study = false);
+
+    /// Declares every parameter with its default, bounds and documentation.
+    static void declare(dealii::ParameterHandler &prm);
+
+    /// Time samples actually used by the harmonic balance.
+    unsigned int time_samples() const;
+
+    /// Time samples per period of the fields (CSV, snapshots, plots).
+    unsigned int field_time_samples() const;
+
+    /// Largest frequency at which the run evaluates the receptance: the
+    /// poles below it are counted, and give the internal resonances.
+    double receptance_band() const;
+
+    /// The band over which adaptive refinement resolves the receptance.
+    double refinement_band() const;
+
+  private:
+    /// Checks between subsections.
+    void check_consistency(bool is_study) const;
+  };
+
+  /// Parses "0, 0.5, 2:3:11" (a:b:n = n values from a to b) into a list.
+  std::vector<double> parse_frequency_list(const std::string &text,
+                                           const std::string &parameter);
+} // namespace nsm

@@ -1,0 +1,108 @@
+// nsm-bar SCENE.prm: argument handling only; the work is in run_scene(),
+// or in run_study() for a scene that is a study.
+#include <nsm/app/pipeline.h>
+#include <nsm/scene/scene.h>
+#include <nsm/base/threads.h>
+#include <nsm/study/study.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <iostream>
+#include <optional>
+#include <string>
+
+namespace
+{
+  /// Runs the scene (a study under MPI); returns the exit code, the error
+  /// printed.
+  int run(int &argc, char **&argv, const std::string &path,
+          std::optional<dealii::Utilities::MPI::MPI_InitFinalize> &mpi)
+  {
+    try
+      {
+        const nsm::StudyScene file = nsm::StudyScene::from_file(path);
+        if (!file.study.enabled())
+          {
+            std::cout << "nsm-bar: scene " << path << '\n';
+            nsm::print_report(nsm::run_scene(file.scene), std::cout);
+            return 0;
+          }
+        mpi.emplace(argc, argv, 1);
+        const bool           root   = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+        const nsm::RunReport report = nsm::run_study(path, file);
+        if (root)
+          {
+            std::cout << "nsm-bar: study " << path << '\n';
+            nsm::print_report(report, std::cout);
+          }
+        return 0;
+      }
+    catch (const nsm::InputError &e)
+      {
+        std::cerr << "nsm-bar: input error: " << e.what() << '\n';
+        return 2;
+      }
+    catch (const nsm::OutputError &e)
+      {
+        std::cerr << "nsm-bar: output error: " << e.what() << '\n';
+        return 5;
+      }
+    catch (const nsm::NumericalError &e)
+      {
+        std::cerr << "nsm-bar: numerical failure: " << e.what() << '\n';
+        return 3;
+      }
+    catch (const std::exception &e)
+      {
+        std::cerr << "nsm-bar: error: " << e.what() << '\n';
+        return 4;
+      }
+    catch (const char *message) // NOX throws these
+      {
+        std::cerr << "nsm-bar: numerical failure: " << message << '\n';
+        return 3;
+      }
+    catch (...)
+      {
+        std::cerr << "nsm-bar: error: an exception of unknown type\n";
+        return 4;
+      }
+  }
+} // namespace
+
+int main(int argc, char **argv)
+{
+  const std::string usage =
+    "usage: nsm-bar [SCENE.prm]   (default: " NSM_DEFAULT_SCENE ")\n"
+    "       mpirun -np R nsm-bar STUDY.prm\n"
+    "       nsm-bar --print-parameters\n";
+  if (argc > 2)
+    {
+      std::cerr << usage;
+      return 2;
+    }
+  const std::string argument = argc == 2 ? argv[1] : NSM_DEFAULT_SCENE;
+  if (argument == "--help" || argument == "-h")
+    {
+      std::cout << usage
+                << "exit codes: 0 done, 2 bad input, 3 numerical failure, 4 other error, 5 a file could "
+                   "not be written whole\n";
+      return 0;
+    }
+  if (argument == "--print-parameters")
+    {
+      dealii::ParameterHandler prm;
+      nsm::StudyScene::declare(prm);
+      prm.print_parameters(std::cout, dealii::ParameterHandler::PRM);
+      return 0;
+    }
+  nsm::use_one_thread();
+  std::optional<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
+  const int code = run(argc, argv, argument, mpi);
+  // A rank that failed alone would leave the others waiting in a collective;
+  // bad input fails on every rank alike.
+  if (code != 0 && code != 2 && mpi && dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+    MPI_Abort(MPI_COMM_WORLD, code);
+  return code;
+}

@@ -1,0 +1,298 @@
+#include <nsm/model/adaptive_refinement.h>
+#include <nsm/model/bar_model.h>
+#include <nsm/continuation/continuation.h>
+#include <nsm/output/field_output.h>
+#include <nsm/verification/fields.h>
+#include <nsm/harmonic_balance/harmonic_balance.h>
+#include <nsm/output/output_directory.h>
+#include <nsm/model/discretisation.h>
+#include <nsm/app/pipeline.h>
+#include <nsm/output/plots.h>
+#include <nsm/base/progress.h>
+#include <nsm/model/receptance.h>
+#include <nsm/output/result_tables.h>
+#include <nsm/verification/time_verification.h>
+
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/base/timer.h>
+
+#include <algorithm>
+#include <iomanip>
+#include <memory>
+#include <ostream>
+#include <sstream>
+
+namespace nsm
+{
+  namespace
+  {
+    std::string describe(const Discretisation &d)
+    {
+      std::ostringstream s;
+      s << "discretisation: FE_Q(" << d.fe().degree << "), " << d.n_cells()
+        << " cells, " << d.n_dofs() << " DoFs, h in [" << d.min_cell_size()
+        << ", " << d.max_cell_size() << "]";
+      return s.str();
+    }
+
+    /// A field asked for at an Omega where the computed branch is a tongue.
+    std::string tongue_field_note(const BackbonePoint &p)
+    {
+      std::ostringstream s;
+      s.precision(6);
+      s << "field at Omega = " << p.omega << " is on the resonance tongue of w_" << p.resonance.mode << " / "
+        << p.resonance.harmonic << " = " << p.resonance.omega << ", not on the main branch (energy "
+        << p.measures.energy << ", above the main branch beyond it by more than Tongue share)";
+      return s.str();
+    }
+
+    /// A field is solved on the computed branch; beyond its first or last
+    /// point (before grazing, or past where it was lost) Newton could only
+    /// land on something that was not traced, so the Omega is refused.
+    void require_on_branch(const Backbone &backbone, const double omega)
+    {
+      const double low = *backbone.omega_reached(-1), high = *backbone.omega_reached(1);
+      if (omega >= low && omega <= high)
+        return;
+      std::ostringstream s;
+      s.precision(8);
+      s << "parameter 'Output/Fields at' = " << omega << " is out of range: allowed within the computed branch, "
+        << low << " to " << high << " (how it ended: " << backbone_end_name(backbone.end) << ")";
+      throw InputError(s.str());
+    }
+
+    /// The summary line of a field's verification.
+    std::string field_verification(const PeriodicField &field, const Discretisation &discretisation, const Scene &scene)
+    {
+      const PointVerification v = verify_in_time(field, discretisation, scene);
+      std::ostringstream      s;
+      s.precision(6);
+      s << "field at Omega = " << field.omega() << " verified in time: one-period defect / g0 "
+        << v.time.periodicity_defect << " (" << (v.verified ? "periodic" : "NOT periodic")
+        << " to Verify tolerance), after " << scene.output.verify_periods << " periods "
+        << v.time.periodicity_defect_end << ", impulse ratio " << v.impulse_ratio;
+      return s.str();
+    }
+
+    /// "verification in time: ..." for the run summary.
+    std::string verification_summary(const Verifications &verifications, const Scene &scene)
+    {
+      std::vector<double> defects;
+      unsigned int        flagged = 0;
+      for (const auto &v : verifications)
+        if (v)
+          {
+            defects.push_back(v->time.periodicity_defect);
+            flagged += !v->verified;
+          }
+      std::sort(defects.begin(), defects.end());
+      std::ostringstream s;
+      s << "verification in time: " << defects.size() << " points, " << flagged
+        << " not periodic to Verify tolerance = " << scene.output.verify_tolerance;
+      if (!defects.empty())
+        s << "; one-period defect / g0: median " << defects[defects.size() / 2] << ", max " << defects.back();
+      return s.str();
+    }
+
+    /// The stages of one run, in order; each adds its wall and CPU time
+    /// (deal.II's Timer) to the report, and its tables, fields and notes to
+    /// the report or the output stage.
+    class SceneRun
+    {
+    public:
+      SceneRun(const Scene &scene, RunReport &report)
+        : scene_(scene)
+        , report_(report)
+      {}
+
+      void mesh(const BarModel &bar)
+      {
+        timed("mesh and assembly", [&] {
+          discretisation_ = std::make_unique<Discretisation>(bar, scene_.discretisation);
+        });
+        if (scene_.discretisation.refinement == Refinement::adaptive)
+          timed("adaptive refinement", [&] {
+            Progress progress("adaptive refinement", scene_.output.progress_every);
+            for (std::string &note :
+                 refine_adaptively(*discretisation_, scene_.discretisation, scene_.refinement_band(), &progress))
+              report_.notes.push_back(std::move(note));
+          });
+        report_.notes.push_back(describe(*discretisation_));
+      }
+
+      void spectrum()
+      {
+        timed("spectrum", [&] {
+          tables_.push_back(spectrum_table(*discretisation_, scene_.output.spectrum_modes));
+        });
+      }
+
+      void set_up_receptance()
+      {
+        timed("receptance set-up", [&] {
+          receptance_ = std::make_unique<Receptance>(*discretisation_, scene_.receptance, scene_.receptance_band());
+        });
+      }
+
+      void receptance()
+      {
+        timed("receptance", [&] { tables_.push_back(receptance_table(*receptance_, scene_)); });
+      }
+
+      void harmonic_balance()
+      {
+        timed("harmonic balance", [&] {
+          hb_         = std::make_unique<HarmonicBalance>(scene_, *receptance_);
+          resonances_ = internal_resonances(*receptance_, scene_);
+          backbone_   = compute_backbone(*hb_, scene_, resonances_);
+          report_.notes.push_back(backbone_note());
+          for (const std::string &event : backbone_.events)
+            report_.notes.push_back("  " + event);
+        });
+      }
+
+      void verify_in_time()
+      {
+        timed("verification in time", [&] {
+          Progress progress("verification in time", scene_.output.progress_every);
+          verifications_ = verify_backbone(*hb_, *discretisation_, backbone_, scene_, progress);
+          report_.notes.push_back(verification_summary(verifications_, scene_));
+        });
+      }
+
+      void backbone_tables()
+      {
+        tables_.push_back(backbone_table(backbone_, verifications_));
+        tables_.push_back(tongue_table(backbone_));
+        tables_.push_back(resonance_table(resonances_));
+      }
+
+      void fields()
+      {
+        timed("fields", [&] {
+          const auto &o = scene_.output;
+          Progress    progress("fields", o.progress_every);
+          const auto  report_count = [&] { return std::to_string(fields_.size()) + " fields"; };
+          for (const double omega : o.fields_at)
+            {
+              require_on_branch(backbone_, omega);
+              fields_.emplace_back(*hb_, *discretisation_, solve_on_branch(*hb_, scene_, backbone_, omega),
+                                   scene_.contact.sign);
+              if (const BackbonePoint &p = fields_.back().point(); p.branch == Branch::tongue)
+                report_.notes.push_back(tongue_field_note(p));
+              if (o.verify_in_time)
+                report_.notes.push_back(field_verification(fields_.back(), *discretisation_, scene_));
+              progress.update(report_count);
+            }
+          for (std::size_t i = 0; o.fields_every > 0 && i < backbone_.points.size(); i += o.fields_every)
+            {
+              fields_.emplace_back(*hb_, *discretisation_, backbone_.points[i], scene_.contact.sign);
+              progress.update(report_count);
+            }
+        });
+      }
+
+      /// Writes the tables and fields into the directory's staging area.
+      void write(const std::string &directory)
+      {
+        timed("output", [&] {
+          for (const CsvTable &table : tables_)
+            report_.files.push_back(write_csv(directory, table));
+          const FieldOutputOptions options{scene_.field_time_samples(), scene_.output.vtk, scene_.output.plots};
+          Progress progress("output", scene_.output.progress_every);
+          for (std::size_t i = 0; i < fields_.size(); ++i)
+            {
+              for (std::string &f : write_field(directory, i, fields_[i], *discretisation_, options))
+                report_.files.push_back(std::move(f));
+              progress.update([&] {
+                return std::to_string(i + 1) + " of " + std::to_string(fields_.size()) + " fields written";
+              });
+            }
+          if (!fields_.empty())
+            for (std::string &f : write_field_collection(directory, fields_, scene_.output.vtk))
+              report_.files.push_back(std::move(f));
+        });
+      }
+
+      void plots(const std::string &directory)
+      {
+        timed("plots", [&] {
+          for (std::string &f : make_plots(scene_.contact, directory))
+            report_.files.push_back(std::move(f));
+        });
+      }
+
+    private:
+      template <typename Work>
+      void timed(const std::string &name, Work &&work)
+      {
+        dealii::Timer timer;
+        work();
+        timer.stop();
+        report_.stages.push_back({name, timer.wall_time(), timer.cpu_time()});
+      }
+
+      std::string backbone_note() const
+      {
+        std::ostringstream s;
+        s << "backbone: " << backbone_.points.size() << " points (" << backbone_.main_points() << " main, "
+          << backbone_.points.size() - backbone_.main_points() << " on " << backbone_.tongues.size()
+          << " tongues), " << backbone_.leaps << " leaps, " << backbone_.folds.size() << " folds, "
+          << hb_->n_unknowns() << " unknowns";
+        return s.str();
+      }
+
+      const Scene                    &scene_;
+      RunReport                      &report_;
+      std::vector<CsvTable>           tables_;
+      std::unique_ptr<Discretisation> discretisation_;
+      std::unique_ptr<Receptance>     receptance_;
+      std::unique_ptr<HarmonicBalance> hb_;
+      std::vector<InternalResonance>  resonances_;
+      Backbone                        backbone_;
+      Verifications                   verifications_;
+      std::vector<PeriodicField>      fields_;
+    };
+  } // namespace
+
+  RunReport run_scene(const Scene &scene)
+  {
+    const bool needs_spectrum   = scene.output.spectrum_modes > 0;
+    const bool needs_receptance = !scene.output.receptance_frequencies.empty();
+    const bool needs_fields     = scene.output.fields();
+    const bool needs_backbone   = scene.output.backbone || needs_fields;
+    RunReport  report;
+    // The cross-section is checked even when nothing else is to be done.
+    const BarModel bar(scene.bar);
+    if (!needs_spectrum && !needs_receptance && !needs_backbone)
+      {
+        report.notes.push_back("the scene requests no output: nothing to do");
+        return report;
+      }
+
+    // Checked before any work: an unwritable directory is known now.
+    OutputDirectory output(scene.output.directory);
+    SceneRun        run(scene, report);
+    run.mesh(bar);
+    if (needs_spectrum)
+      run.spectrum();
+    if (needs_receptance || needs_backbone)
+      run.set_up_receptance();
+    if (needs_receptance)
+      run.receptance();
+    if (needs_backbone)
+      run.harmonic_balance();
+    if (scene.output.verify_in_time)
+      run.verify_in_time();
+    if (scene.output.backbone)
+      run.backbone_tables();
+    if (needs_fields)
+      run.fields();
+    run.write(output.staging());
+    if (scene.output.plots)
+      run.plots(output.staging());
+    report.files = output.commit(report.files);
+    return report;
+  }
+
+} // namespace nsm

@@ -1,0 +1,59 @@
+#include <nsm/continuation/backbone.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace nsm
+{
+  bool in_omega_range(const Scene &scene, const double omega)
+  {
+    return omega >= scene.continuation.omega_min && omega <= scene.continuation.omega_max;
+  }
+
+  double branch_direction(const Scene &scene)
+  {
+    return scene.contact.sign == ForceSign::physical ? 1.0 : -1.0;
+  }
+
+  const char *backbone_end_name(const BackboneEnd end)
+  {
+    switch (end)
+      {
+        case BackboneEnd::range:
+          return "range";
+        case BackboneEnd::max_steps:
+          return "max_steps";
+        case BackboneEnd::lost:
+          return "lost";
+        case BackboneEnd::energy_max:
+          return "energy_max";
+        case BackboneEnd::refused:
+          return "refused";
+      }
+    return "";
+  }
+
+  std::optional<double> Backbone::omega_reached(const double direction) const
+  {
+    if (points.empty())
+      return std::nullopt;
+    const auto furthest = std::max_element(points.begin(), points.end(), [&](const auto &a, const auto &b) {
+      return direction * a.omega < direction * b.omega;
+    });
+    return furthest->omega;
+  }
+
+  unsigned int Backbone::main_points() const
+  {
+    return std::count_if(points.begin(), points.end(),
+                         [](const BackbonePoint &p) { return p.branch == Branch::main; });
+  }
+
+  const InternalResonance &nearest_resonance(const std::vector<InternalResonance> &resonances,
+                                             const double                          omega)
+  {
+    return *std::min_element(resonances.begin(), resonances.end(), [&](const auto &a, const auto &b) {
+      return std::abs(a.omega - omega) < std::abs(b.omega - omega);
+    });
+  }
+} // namespace nsm

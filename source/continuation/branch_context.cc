@@ -1,0 +1,158 @@
+#include <nsm/continuation/branch_context.h>
+#include <nsm/continuation/continuation.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace nsm
+{
+  std::string event_message(const std::string                    &what,
+                            const double                          omega,
+                            const std::vector<InternalResonance> &resonances)
+  {
+    std::ostringstream s;
+    s.precision(8);
+    s << what << " at Omega = " << omega;
+    if (!resonances.empty())
+      {
+        const auto &r = nearest_resonance(resonances, omega);
+        s << "; nearest internal resonance w_" << r.mode << " / " << r.harmonic << " = " << r.omega;
+      }
+    return s.str();
+  }
+
+  std::size_t last_segment_start(const Backbone &backbone)
+  {
+    std::size_t first = backbone.points.size() - 1;
+    while (first > 0 && backbone.points[first - 1].segment == backbone.points.back().segment)
+      --first;
+    return first;
+  }
+
+  double least_energy_behind(const BranchContext &context, const Backbone &backbone, const double omega,
+                             const double reach)
+  {
+    double least = std::numeric_limits<double>::infinity();
+    for (const BackbonePoint &p : backbone.points)
+      if (std::abs(p.omega - omega) <= reach && !context.beyond(p.omega, omega))
+        least = std::min(least, p.measures.energy);
+    return least;
+  }
+
+  std::vector<double> interpolated_guess(const BackbonePoint &a, const BackbonePoint &b, const double omega)
+  {
+    const double        run = b.omega - a.omega;
+    const double        t   = run == 0 ? 0 : (omega - a.omega) / run;
+    std::vector<double> guess(a.x.size());
+    for (std::size_t i = 0; i < guess.size(); ++i)
+      guess[i] = (1 - t) * a.x[i] + t * b.x[i];
+    return guess;
+  }
+
+  namespace
+  {
+    /// A leap starts far from the solution: Newton with a line search and
+    /// twice the iterations.
+    Scene::HarmonicBalance leap_parameters(Scene::HarmonicBalance params)
+    {
+      params.line_search    = "Polynomial";
+      params.max_iterations *= 2;
+      return params;
+    }
+  } // namespace
+
+  BranchContext::BranchContext(HarmonicBalance               &hb,
+                               const Scene                   &scene,
+                               std::vector<InternalResonance> resonances)
+    : hb(hb)
+    , scene(scene)
+    , resonances(std::move(resonances))
+    , direction(branch_direction(scene))
+    , near_end(direction > 0 ? scene.continuation.omega_min : scene.continuation.omega_max)
+    , far_end(direction > 0 ? scene.continuation.omega_max : scene.continuation.omega_min)
+    , newton_(hb, scene.harmonic_balance)
+    , leap_newton_(hb, leap_parameters(scene.harmonic_balance))
+    , progress_("continuation", scene.output.progress_every)
+  {}
+
+  bool BranchContext::make_point(const std::vector<double> &x, const double omega, const double residual,
+                                 const unsigned int iterations, const unsigned int segment,
+                                 BackbonePoint &point)
+  {
+    if (!(residual <= scene.harmonic_balance.tolerance))
+      return false;
+    hb.set_omega(omega);
+    const PeriodicSolutionMeasures m = hb.measure(x);
+    if (!(m.contact_fraction > 0 && m.max_contact_force > 0 && m.energy > 0 &&
+          std::isfinite(m.energy_spread)))
+      return false;
+    // mu is added to a residual row: beyond the residual's tolerance it is a
+    // forcing the motion needs, not round-off (at most 2e-13 measured).
+    if (hb.has_unfolding() && std::abs(x[1]) > scene.harmonic_balance.tolerance)
+      return false;
+    point = {segment, omega, m, iterations, residual, x};
+    return true;
+  }
+
+  bool BranchContext::solve(const double omega, const std::vector<double> &guess,
+                            const unsigned int segment, BackbonePoint &point, const bool leaping)
+  {
+    bool converged = false, at_limit = false;
+    for (NewtonSolver *solver : {&newton_, &leap_newton_})
+      {
+        const NewtonResult r = solver->solve(omega, guess);
+        if (r.converged && make_point(r.x, omega, r.residual, r.iterations, segment, point))
+          return true;
+        converged = converged || r.converged;
+        at_limit  = at_limit || r.at_iteration_limit;
+        if (!leaping)
+          break;
+      }
+    last_failure_ = at_limit ? SolveFailure::iteration_limit : converged ? SolveFailure::no_contact : SolveFailure::stalled;
+    return false;
+  }
+
+  bool BranchContext::full(const Backbone &backbone)
+  {
+    progress_.update([&] {
+      std::ostringstream s;
+      // M tells the branch with half the harmonics (leap.h) from the run's own.
+      s << "M = " << scene.harmonic_balance.harmonics << ", " << backbone.points.size()
+        << " points, Omega = " << backbone.points.back().omega << " (range " << near_end << " to " << far_end
+        << "), " << backbone.leaps << " leaps";
+      return s.str();
+    });
+    return backbone.points.size() >= scene.continuation.max_steps;
+  }
+
+  double BranchContext::max_step() const
+  {
+    return std::min(scene.continuation.max_step, span / 10);
+  }
+
+  NewtonCost BranchContext::newton_cost() const
+  {
+    NewtonCost total = newton_.cost();
+    total += leap_newton_.cost();
+    if (fewer_harmonics_)
+      total += fewer_harmonics_->newton_cost;
+    return total;
+  }
+
+  const Backbone *BranchContext::fewer_harmonics()
+  {
+    const unsigned int harmonics = scene.harmonic_balance.harmonics;
+    if (!scene.continuation.leap_from_fewer_harmonics || harmonics < 2)
+      return nullptr;
+    if (!fewer_harmonics_)
+      {
+        Scene fewer                       = scene;
+        fewer.harmonic_balance.harmonics = harmonics / 2;
+        HarmonicBalance model(fewer, hb.receptance());
+        fewer_harmonics_ = std::make_unique<Backbone>(compute_backbone(model, fewer, resonances));
+      }
+    return fewer_harmonics_.get();
+  }
+} // namespace nsm

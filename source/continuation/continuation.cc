@@ -1,0 +1,159 @@
+#include <nsm/continuation/arclength_steps.h>
+#include <nsm/continuation/branch_context.h>
+#include <nsm/continuation/continuation.h>
+#include <nsm/continuation/grazing_start.h>
+#include <nsm/continuation/leap.h>
+#include <nsm/continuation/main_branch.h>
+#include <nsm/continuation/range_end.h>
+#include <nsm/continuation/sequential_steps.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace nsm
+{
+  std::vector<InternalResonance> internal_resonances(const Receptance &receptance,
+                                                     const Scene      &scene)
+  {
+    const auto                    &c   = scene.continuation;
+    const unsigned int             top = scene.harmonic_balance.harmonics;
+    std::vector<InternalResonance> found;
+    for (unsigned int j = 0; j < receptance.poles().size(); ++j)
+      for (unsigned int k = 1; k <= top; ++k)
+        {
+          const double w = std::sqrt(receptance.poles()[j]);
+          if (w <= top * c.omega_max && in_omega_range(scene, w / k))
+            found.push_back({w / k, j + 1, k});
+        }
+    std::sort(found.begin(), found.end(),
+              [](const auto &a, const auto &b) { return a.omega < b.omega; });
+    return found;
+  }
+
+  namespace
+  {
+    /// Segments joined by leaps over folds and tongues, until the range,
+    /// Max steps, or a leap that finds no branch.
+    void trace(BranchContext &context, Backbone &backbone)
+    {
+      for (unsigned int segment = 0;; ++segment)
+        {
+          const bool sequential = context.scene.continuation.method == ContinuationMethod::sequential ||
+                                  context.beyond(context.near_end, backbone.points.back().omega);
+          SegmentEnd end = sequential ? sequential_segment(context, backbone, segment) :
+                                        arclength_segment(context, backbone, segment);
+          if (end == SegmentEnd::approach)
+            end = arclength_segment(context, backbone, segment);
+          const double omega = backbone.points.back().omega;
+          if (end == SegmentEnd::range)
+            {
+              backbone.events.push_back(event_message(
+                context.in_range(omega) ? "end of the Omega range" : "left the Omega range", omega));
+              if (context.in_range(omega))
+                find_branch_below_at_end(context, backbone, segment);
+              return;
+            }
+          if (end == SegmentEnd::max_steps)
+            {
+              backbone.end = BackboneEnd::max_steps;
+              return backbone.events.push_back(event_message("Max steps reached", omega));
+            }
+          if (end == SegmentEnd::refused)
+            {
+              backbone.end = BackboneEnd::refused;
+              return;
+            }
+          backbone.folds.push_back(omega);
+          backbone.events.push_back(event_message(end == SegmentEnd::fold ?
+                                                    "branch folds (continuation stalls)" :
+                                                    "resonance tongue above Energy max",
+                                                  omega, context.resonances));
+          if (!leap(context, backbone, segment + 1))
+            return;
+          context.first_fold.reset();
+        }
+    }
+  } // namespace
+
+  Backbone compute_backbone(HarmonicBalance                      &hb,
+                            const Scene                          &scene,
+                            const std::vector<InternalResonance> &resonances)
+  {
+    Backbone      backbone;
+    BranchContext context(hb, scene, resonances);
+    backbone.points.push_back(start_at_grazing(context, backbone));
+    trace(context, backbone);
+    backbone.newton_cost = context.newton_cost();
+    // Points traced on the way from grazing to the range are not written.
+    auto &p = backbone.points;
+    p.erase(std::remove_if(p.begin(), p.end(),
+                           [&](const BackbonePoint &q) { return !in_omega_range(scene, q.omega); }),
+            p.end());
+    label_branches(hb, scene, p);
+    backbone.tongues = collect_tongues(p);
+    return backbone;
+  }
+} // namespace nsm
+
+namespace nsm
+{
+  namespace
+  {
+    /// The point nearest to omega with side * (its Omega - omega) >= 0
+    /// (either side for 0); null if none.
+    const BackbonePoint *nearest_on_side(const std::vector<BackbonePoint> &points, const double omega,
+                                         const int side)
+    {
+      const BackbonePoint *best = nullptr;
+      for (const BackbonePoint &q : points)
+        if (side * (q.omega - omega) >= 0 && (!best || std::abs(q.omega - omega) < std::abs(best->omega - omega)))
+          best = &q;
+      return best;
+    }
+  } // namespace
+
+  BackbonePoint solve_on_branch(HarmonicBalance &hb,
+                                const Scene     &scene,
+                                const Backbone  &backbone,
+                                const double     omega,
+                                const bool       main_only)
+  {
+    const auto   &p = backbone.points;
+    BranchContext context(hb, scene, {});
+    BackbonePoint point;
+    const auto    eligible = [&](const BackbonePoint &q) { return !main_only || q.branch == Branch::main; };
+    const auto    labelled = [&]() -> BackbonePoint & {
+      label_point(hb, scene, p, point);
+      return point;
+    };
+    // Between two points of one segment, the solution must continue the branch
+    // from both, as a step would; Newton from their interpolation can land on
+    // another branch.
+    const auto between = [&](const BackbonePoint &a, const BackbonePoint &b) {
+      return context.solve(omega, interpolated_guess(a, b, omega), a.segment, point) &&
+             stays_on_branch(a, point, scene.continuation) && stays_on_branch(b, point, scene.continuation);
+    };
+    for (std::size_t i = 0; i + 1 < p.size(); ++i)
+      if (p[i].segment == p[i + 1].segment && (p[i].omega - omega) * (p[i + 1].omega - omega) <= 0 &&
+          eligible(p[i]) && eligible(p[i + 1]) && between(p[i], p[i + 1]))
+        return labelled();
+    // Omega in the gap a leap left, or Newton failed between the points: as a
+    // leap does, with a line search, from the nearest points below and above
+    // and from the impulsive guess.
+    if (!main_only && !p.empty())
+      {
+        for (const BackbonePoint *q : {nearest_on_side(p, omega, -1), nearest_on_side(p, omega, 1)})
+          if (q && context.solve(omega, q->x, q->segment, point, true))
+            return labelled();
+        hb.set_omega(omega);
+        const std::vector<double> guess = hb.grazing_guess();
+        if (!guess.empty() && context.solve(omega, guess, nearest_on_side(p, omega, 0)->segment, point, true))
+          return labelled();
+      }
+    std::ostringstream s;
+    s.precision(10);
+    s << "no converged solution on the computed branch at Omega = " << omega;
+    throw NumericalError(s.str());
+  }
+} // namespace nsm

@@ -1,0 +1,94 @@
+#include <nsm/continuation/grazing_start.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace nsm
+{
+  namespace
+  {
+    /// Six significant digits, whatever the scale (energies go down to 1e-20
+    /// with small gaps).
+    std::string text(const double value)
+    {
+      std::ostringstream s;
+      s.precision(6);
+      s << value;
+      return s.str();
+    }
+
+    /// The branch leaves grazing beyond the range's far end: the range holds
+    /// none of it, whatever Newton does.
+    [[noreturn]] void range_misses_branch(const BranchContext &context, const unsigned int mode, const double w,
+                                          const double start)
+    {
+      const bool        up = context.direction > 0;
+      std::ostringstream s;
+      s.precision(6);
+      s << "parameter 'Continuation/" << (up ? "Omega max" : "Omega min") << "' = " << context.far_end
+        << " is out of range: allowed " << (up ? "above" : "below") << " Omega = " << start
+        << ", where the branch of clamped-free mode " << mode << " (w = " << w << ") leaves grazing "
+        << (up ? "upwards (Contact/Force sign = physical)" : "downwards (Contact/Force sign = seed-eq5)");
+      throw InputError(s.str());
+    }
+
+    [[noreturn]] void no_start(const BranchContext &context, const unsigned int mode, const double w)
+    {
+      std::ostringstream s;
+      s << "no converged non-trivial solution within Continuation/Search reach = "
+        << text(context.scene.continuation.search_reach) << " (relative) of grazing of clamped-free mode " << mode
+        << " (w = " << w << ") and before the end of Continuation/Omega min..max"
+        << "; Contact/Alpha = " << context.scene.contact.alpha << " gives alpha gamma(0) = "
+        << context.scene.contact.alpha * context.hb.receptance()(0.0).gamma
+        << " (the contact law's switch lambda - alpha g balances force and gap for alpha "
+           "gamma(0) near 1, where the start converges most easily)";
+      throw NumericalError(s.str());
+    }
+  } // namespace
+
+  BackbonePoint start_at_grazing(BranchContext &context, Backbone &backbone)
+  {
+    const auto                &c     = context.scene.continuation;
+    const unsigned int         mode  = c.mode;
+    const std::vector<double> &poles = context.hb.receptance().poles();
+    if (mode > poles.size())
+      {
+        const std::string band = "Harmonics x Omega max = " +
+                                 text(context.scene.harmonic_balance.harmonics * c.omega_max);
+        throw InputError("parameter 'Continuation/Mode' = " + std::to_string(mode) + " is out of range: " +
+                         (poles.empty() ? "no clamped-free mode lies below " + band + "; allowed: a larger Omega max" :
+                                          "allowed 1 to " + std::to_string(poles.size()) +
+                                            " (clamped-free modes below " + band + ")"));
+      }
+    const double w = std::sqrt(poles[mode - 1]);
+    // The contact lasts a vanishing share of the period at grazing; Search
+    // reach (5 %) of w_j away the branch is far beyond its grazing end. A
+    // start before the range is traced up to it; one beyond it has no point
+    // in it.
+    if (const double start = w * (1 + context.direction * c.grazing_offset); context.beyond(start, context.far_end))
+      range_misses_branch(context, mode, w, start);
+    for (double offset = c.grazing_offset; offset < c.search_reach; offset *= 2)
+      {
+        const double omega = w * (1 + context.direction * offset);
+        if (context.beyond(omega, context.far_end))
+          break;
+        context.hb.set_omega(omega);
+        const std::vector<double> guess = context.hb.grazing_guess();
+        BackbonePoint             point;
+        if (guess.empty() || !context.solve(omega, guess, 0, point))
+          continue;
+        std::ostringstream s;
+        s.precision(10);
+        s << "start at grazing of clamped-free mode " << mode << " (w = " << w << ") at Omega = " << omega;
+        backbone.events.push_back(s.str());
+        if (point.measures.energy > c.energy_max)
+          throw InputError("parameter 'Continuation/Energy max' = " + text(c.energy_max) +
+                           " is out of range: allowed above the energy at grazing, " +
+                           text(point.measures.energy));
+        const bool before = context.beyond(context.near_end, omega);
+        context.span      = std::abs(context.far_end - (before ? context.near_end : omega));
+        return point;
+      }
+    no_start(context, mode, w);
+  }
+} // namespace nsm

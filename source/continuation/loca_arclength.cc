@@ -1,0 +1,193 @@
+#include <nsm/continuation/loca_arclength.h>
+#include <nsm/harmonic_balance/nox_hb_system.h>
+
+#include <LOCA.H>
+#include <LOCA_MultiContinuation_ExtendedVector.H>
+#include <Teuchos_oblackholestream.hpp>
+
+#include <cmath>
+
+namespace nsm
+{
+  namespace
+  {
+    /// LOCA's LAPACK group with dR/dW from the HB module instead of finite
+    /// differences, and its linear solves timed.
+    class HbGroup : public LOCA::LAPACK::Group
+    {
+    public:
+      HbGroup(const Teuchos::RCP<LOCA::GlobalData> &data, HbInterface &interface,
+              const HarmonicBalance &hb)
+        : LOCA::LAPACK::Group(data, interface)
+        , interface_(interface)
+        , hb_(hb)
+      {}
+      HbGroup(const HbGroup &source, NOX::CopyType type)
+        : LOCA::LAPACK::Group(source, type)
+        , interface_(source.interface_)
+        , hb_(source.hb_)
+      {}
+
+      NOX::Abstract::Group::ReturnType
+      applyJacobianInverseMultiVector(Teuchos::ParameterList           &params,
+                                      const NOX::Abstract::MultiVector &input,
+                                      NOX::Abstract::MultiVector       &result) const override
+      {
+        const auto start = std::chrono::steady_clock::now();
+        const auto status =
+          LOCA::LAPACK::Group::applyJacobianInverseMultiVector(params, input, result);
+        hb_.record_linear_solve(seconds_since(start));
+        return status;
+      }
+
+      Teuchos::RCP<NOX::Abstract::Group> clone(NOX::CopyType type) const override
+      {
+        return Teuchos::rcp(new HbGroup(*this, type));
+      }
+
+      NOX::Abstract::Group::ReturnType
+      computeDfDpMulti(const std::vector<int> &parameters,
+                       NOX::Abstract::MultiVector &dfdp,
+                       bool is_valid_f) override
+      {
+        if (!is_valid_f)
+          {
+            if (computeF() != NOX::Abstract::Group::Ok)
+              return NOX::Abstract::Group::Failed;
+            dfdp[0] = getF();
+          }
+        interface_.setParams(getParams());
+        const auto &x = dynamic_cast<const NOX::LAPACK::Vector &>(getX());
+        for (unsigned int i = 0; i < parameters.size(); ++i)
+          if (!interface_.compute_domega(dynamic_cast<NOX::LAPACK::Vector &>(dfdp[i + 1]), x))
+            return NOX::Abstract::Group::Failed;
+        return NOX::Abstract::Group::Ok;
+      }
+
+    private:
+      HbInterface           &interface_;
+      const HarmonicBalance &hb_;
+    };
+
+    /// Fails a LOCA step whose iterate has left contact: the trivial motion
+    /// solves the HB equations at every Omega, and a step onto it must be
+    /// retried shorter rather than accepted.
+    class StaysInContact : public NOX::StatusTest::Generic
+    {
+    public:
+      explicit StaysInContact(HarmonicBalance &hb)
+        : hb_(hb)
+      {}
+
+      NOX::StatusTest::StatusType checkStatus(const NOX::Solver::Generic &problem,
+                                              NOX::StatusTest::CheckType) override
+      {
+        const auto &extended =
+          dynamic_cast<const LOCA::MultiContinuation::ExtendedVector &>(
+            problem.getSolutionGroup().getX());
+        const auto &x = dynamic_cast<const NOX::LAPACK::Vector &>(*extended.getXVec());
+        hb_.set_omega(extended.getScalar(0));
+        status_ = hb_.contact_fraction(HbInterface::to_std(x)) > 0 ? NOX::StatusTest::Unconverged :
+                                                                     NOX::StatusTest::Failed;
+        return status_;
+      }
+
+      NOX::StatusTest::StatusType getStatus() const override { return status_; }
+
+      std::ostream &print(std::ostream &stream, int indent) const override
+      {
+        return stream << std::string(indent, ' ') << status_ << " iterate in contact\n";
+      }
+
+    private:
+      HarmonicBalance            &hb_;
+      NOX::StatusTest::StatusType status_ = NOX::StatusTest::Unevaluated;
+    };
+
+    /// LOCA's parameters: pseudo-arclength in Omega from `start` over the
+    /// scene's range and step bounds, Newton as at fixed Omega, and LOCA's
+    /// own messages discarded.
+    Teuchos::RCP<Teuchos::ParameterList>
+    arclength_parameters(const Scene &scene, const BackbonePoint &start, const double initial_step)
+    {
+      const auto  &c         = scene.continuation;
+      const double direction = branch_direction(scene);
+      auto         params    = Teuchos::rcp(new Teuchos::ParameterList);
+      auto        &stepper   = params->sublist("LOCA").sublist("Stepper");
+      stepper.set("Continuation Method", "Arc Length");
+      stepper.set("Continuation Parameter", "Omega");
+      stepper.set("Initial Value", start.omega);
+      stepper.set("Max Value", c.omega_max);
+      stepper.set("Min Value", c.omega_min);
+      stepper.set("Max Steps", static_cast<int>(c.max_steps));
+      stepper.set("Max Nonlinear Iterations", static_cast<int>(scene.harmonic_balance.max_iterations));
+      stepper.set("Compute Eigenvalues", false);
+      params->sublist("LOCA").sublist("Predictor").set("Method", "Tangent");
+      // Unscaled arclength: a step of length ds changes Omega by at most ds,
+      // so Max step bounds the Omega increments as in sequential stepping.
+      stepper.set("Enable Arc Length Scaling", false);
+      auto &step = params->sublist("LOCA").sublist("Step Size");
+      step.set("Method", "Adaptive");
+      step.set("Aggressiveness", 1.0);
+      step.set("Initial Step Size", direction * initial_step);
+      step.set("Min Step Size", c.min_step);
+      step.set("Max Step Size", c.max_step);
+      set_newton_parameters(params->sublist("NOX"), scene.harmonic_balance);
+      params->sublist("NOX").sublist("Printing").set("Output Information", NOX::Utils::Error);
+      params->sublist("LOCA").sublist("Utilities").set("Output Information", NOX::Utils::Error);
+      // LOCA always writes a failed step (Min step reached) to its error stream;
+      // the run handles it as a fold and says so in its summary.
+      const Teuchos::RCP<std::ostream> discard = Teuchos::rcp(new Teuchos::oblackholestream);
+      params->sublist("NOX").sublist("Printing").set("Error Stream", discard);
+      return params;
+    }
+  } // namespace
+
+  bool run_arclength(HarmonicBalance                                  &hb,
+                     const Scene                                      &scene,
+                     const BackbonePoint                              &start,
+                     const double                                      initial_step,
+                     const std::function<bool(const BackbonePoint &)> &accept)
+  {
+    const auto params   = arclength_parameters(scene, start, initial_step);
+    auto       data     = LOCA::createGlobalData(params);
+    bool       finished = true;
+    {
+      HbInterface interface(hb, start.x);
+      interface.set_omega(start.omega);
+      auto group = Teuchos::rcp(new HbGroup(data, interface, hb));
+      LOCA::ParameterVector parameters;
+      parameters.addParameter("Omega", start.omega);
+      group->setParams(parameters);
+
+      struct Stop
+      {};
+      unsigned int step_count = 0;
+      interface.on_step = [&](const std::vector<double> &x, double omega) {
+        if (step_count++ == 0)
+          return; // LOCA reports its start point first: already accepted
+        hb.set_omega(omega);
+        std::vector<double> residual;
+        hb.evaluate(x, &residual, nullptr, nullptr);
+        double norm = 0;
+        for (const double r : residual)
+          norm += r * r;
+        BackbonePoint point{start.segment, omega, hb.measure(x), 0, std::sqrt(norm), x};
+        if (!accept(point))
+          throw Stop();
+      };
+      auto status = Teuchos::rcp(new NOX::StatusTest::Combo(NOX::StatusTest::Combo::OR));
+      status->addStatusTest(newton_status(scene.harmonic_balance, 0.1));
+      status->addStatusTest(Teuchos::rcp(new StaysInContact(hb)));
+      LOCA::Stepper locaStepper(data, group, status, params);
+      try
+        {
+          finished = locaStepper.run() == LOCA::Abstract::Iterator::Finished;
+        }
+      catch (const Stop &)
+        {}
+    }
+    LOCA::destroyGlobalData(data);
+    return finished;
+  }
+} // namespace nsm

@@ -1,0 +1,215 @@
+#include <nsm/continuation/main_branch.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace nsm
+{
+  namespace
+  {
+    /// harmonic_excess() with the total energy given.
+    double excess(const std::vector<double> &energies, const unsigned int k, const double total)
+    {
+      // k = 0 is the static part, k = 1 the fundamental, and k = 2 has no
+      // oscillating neighbour below it.
+      if (k < 3 || k >= energies.size())
+        return 0;
+      // The geometric mean of the same-parity neighbours follows a smooth
+      // decay, and the odd-even alternation of symmetric motions.
+      const bool   above    = k + 2 < energies.size();
+      const double envelope = above ? std::sqrt(energies[k - 2] * energies[k + 2]) : energies[k - 2];
+      return (energies[k] - envelope) / total;
+    }
+
+    double total_of(const std::vector<double> &energies)
+    {
+      return std::accumulate(energies.begin(), energies.end(), 0.0);
+    }
+
+    /// The labels' one rule: more than `share` above the envelope (the least
+    /// energy at the point's Omega or beyond) is a tongue.
+    bool exceeds_envelope(const double energy, const double envelope, const double share)
+    {
+      return energy > (1 + share) * envelope;
+    }
+  } // namespace
+
+  double harmonic_excess(const std::vector<double> &energies, const unsigned int k)
+  {
+    return excess(energies, k, total_of(energies));
+  }
+
+  SpectralExcess spectral_excess(const std::vector<double> &energies)
+  {
+    const double   total = total_of(energies);
+    SpectralExcess worst{0, -std::numeric_limits<double>::infinity()};
+    for (unsigned int k = 3; k < energies.size(); ++k)
+      if (const double share = excess(energies, k, total); share > worst.share)
+        worst = {k, share};
+    return worst.harmonic == 0 ? SpectralExcess{0, 0.0} : worst;
+  }
+
+  InternalResonance resonance_of(const Receptance &receptance, const unsigned int k, const double omega)
+  {
+    const std::vector<double> &poles = receptance.poles();
+    unsigned int               j     = 0;
+    for (unsigned int i = 1; i < poles.size(); ++i)
+      if (std::abs(std::sqrt(poles[i]) - k * omega) < std::abs(std::sqrt(poles[j]) - k * omega))
+        j = i;
+    return poles.empty() ? InternalResonance{0, 0, k} :
+                           InternalResonance{std::sqrt(poles[j]) / k, j + 1, k};
+  }
+
+  std::vector<bool> above_envelope(const std::vector<BackbonePoint> &points,
+                                   const double                      direction,
+                                   const double                      share)
+  {
+    std::vector<std::size_t> order(points.size());
+    std::iota(order.begin(), order.end(), 0);
+    // From the far end back, so that the running minimum is the envelope;
+    // points at one Omega share it.
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return direction * points[a].omega > direction * points[b].omega;
+    });
+    std::vector<bool> above(points.size());
+    double            least = std::numeric_limits<double>::infinity();
+    for (std::size_t n = 0; n < order.size();)
+      {
+        std::size_t end = n;
+        while (end < order.size() && points[order[end]].omega == points[order[n]].omega)
+          least = std::min(least, points[order[end++]].measures.energy);
+        for (; n < end; ++n)
+          above[order[n]] = exceeds_envelope(points[order[n]].measures.energy, least, share);
+      }
+    return above;
+  }
+
+  std::vector<bool> behind_front(const std::vector<BackbonePoint> &points,
+                                 const double                      direction,
+                                 const std::vector<bool>          &above)
+  {
+    std::vector<bool> behind(points.size());
+    double            front = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < points.size(); ++i)
+      {
+        if (i > 0 && points[i].segment != points[i - 1].segment)
+          front = -std::numeric_limits<double>::infinity();
+        if (above[i])
+          continue;
+        behind[i] = direction * points[i].omega < front;
+        if (!behind[i])
+          front = direction * points[i].omega;
+      }
+    return behind;
+  }
+
+  namespace
+  {
+    /// The resonance a tongue point belongs to: the harmonic that stands out
+    /// of its spectrum (the fundamental with fewer than 4 harmonics, when
+    /// none can).
+    InternalResonance tongue_resonance(HarmonicBalance &hb, const BackbonePoint &point)
+    {
+      hb.set_omega(point.omega);
+      const unsigned int k = spectral_excess(hb.harmonic_energies(point.x)).harmonic;
+      return resonance_of(hb.receptance(), std::max(k, 1u), point.omega);
+    }
+
+    /// The fundamental near the branch's own mode is the branch itself, not an
+    /// internal resonance: an excursion named so (with fewer than 4
+    /// harmonics, where none can stand out) is the branch's own shape.
+    bool is_internal(const InternalResonance &r, const Scene &scene)
+    {
+      return !(r.harmonic == 1 && r.mode == scene.continuation.mode);
+    }
+
+    /// A tongue point of resonance r if r names an internal resonance; main
+    /// for r = {0, 0, 0} (on the envelope) or the branch's own fundamental.
+    void mark(BackbonePoint &point, const InternalResonance &r, const Scene &scene)
+    {
+      const bool tongue = r.harmonic > 0 && is_internal(r, scene);
+      point.branch      = tongue ? Branch::tongue : Branch::main;
+      point.resonance   = tongue ? r : InternalResonance{0, 0, 0};
+    }
+
+    /// Per point: above the envelope or behind its segment's front.
+    std::vector<bool> off_main(const std::vector<BackbonePoint> &points, const Scene &scene)
+    {
+      const double            direction = branch_direction(scene);
+      const std::vector<bool> above     = above_envelope(points, direction, scene.continuation.tongue_share);
+      const std::vector<bool> behind    = behind_front(points, direction, above);
+      std::vector<bool>       off(points.size());
+      for (std::size_t i = 0; i < points.size(); ++i)
+        off[i] = above[i] || behind[i];
+      return off;
+    }
+  } // namespace
+
+  void label_branches(HarmonicBalance &hb, const Scene &scene, std::vector<BackbonePoint> &points)
+  {
+    const std::vector<bool> off = off_main(points, scene);
+    for (std::size_t first = 0; first < points.size();)
+      {
+        std::size_t end = first;
+        while (end < points.size() && off[end])
+          ++end;
+        if (end == first)
+          {
+            mark(points[first++], {0, 0, 0}, scene);
+            continue;
+          }
+        const auto top = std::max_element(points.begin() + first, points.begin() + end,
+                                          [](const BackbonePoint &a, const BackbonePoint &b) {
+                                            return a.measures.energy < b.measures.energy;
+                                          });
+        const InternalResonance r = tongue_resonance(hb, *top);
+        for (; first < end; ++first)
+          mark(points[first], r, scene);
+      }
+  }
+
+  void label_point(HarmonicBalance                  &hb,
+                   const Scene                      &scene,
+                   const std::vector<BackbonePoint> &points,
+                   BackbonePoint                    &point)
+  {
+    const double direction = branch_direction(scene);
+    double       least     = point.measures.energy;
+    for (const BackbonePoint &q : points)
+      if (direction * (q.omega - point.omega) >= 0)
+        least = std::min(least, q.measures.energy);
+    mark(point,
+         exceeds_envelope(point.measures.energy, least, scene.continuation.tongue_share) ?
+           tongue_resonance(hb, point) :
+           InternalResonance{0, 0, 0},
+         scene);
+    hb.set_omega(point.omega);
+  }
+
+  std::vector<Tongue> collect_tongues(const std::vector<BackbonePoint> &points)
+  {
+    std::vector<Tongue> tongues;
+    for (std::size_t i = 0; i < points.size(); ++i)
+      {
+        const BackbonePoint &p = points[i];
+        if (p.branch != Branch::tongue)
+          continue;
+        const BackbonePoint *before = i > 0 ? &points[i - 1] : nullptr;
+        const bool continues = before && before->branch == Branch::tongue &&
+                               before->resonance.mode == p.resonance.mode &&
+                               before->resonance.harmonic == p.resonance.harmonic;
+        if (!continues)
+          {
+            const double foot = before ? before->omega : p.omega;
+            tongues.push_back({p.resonance, foot, foot, 0, 0});
+          }
+        Tongue &t    = tongues.back();
+        t.max_energy = std::max(t.max_energy, p.measures.energy);
+        ++t.points;
+        t.foot_end = i + 1 < points.size() ? points[i + 1].omega : p.omega;
+      }
+    return tongues;
+  }
+} // namespace nsm

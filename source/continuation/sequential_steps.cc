@@ -1,0 +1,76 @@
+#include <nsm/continuation/sequential_steps.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace nsm
+{
+  bool stays_on_branch(const BackbonePoint &from, const BackbonePoint &to, const Scene::Continuation &c)
+  {
+    if (!(std::abs(to.measures.contact_fraction - from.measures.contact_fraction) <= c.max_contact_change))
+      return false;
+    double change = 0, size = 0;
+    for (std::size_t i = 0; i < from.x.size(); ++i)
+      {
+        change += (to.x[i] - from.x[i]) * (to.x[i] - from.x[i]);
+        size += from.x[i] * from.x[i];
+      }
+    return change <= c.max_solution_change * c.max_solution_change * size;
+  }
+
+  namespace
+  {
+    /// The secant through the segment's last two points, extended to omega;
+    /// the last point alone at the segment's start.
+    std::vector<double> secant_guess(const Backbone &backbone, const std::size_t first, const double omega)
+    {
+      const BackbonePoint &current = backbone.points.back();
+      std::vector<double>  guess   = current.x;
+      if (backbone.points.size() - 1 > first)
+        {
+          const BackbonePoint &previous = backbone.points[backbone.points.size() - 2];
+          const double ratio = (omega - current.omega) / (current.omega - previous.omega);
+          for (unsigned int i = 0; i < guess.size(); ++i)
+            guess[i] += ratio * (current.x[i] - previous.x[i]);
+        }
+      return guess;
+    }
+  } // namespace
+
+  SegmentEnd sequential_segment(BranchContext &context, Backbone &backbone, const unsigned int segment)
+  {
+    const auto       &c     = context.scene.continuation;
+    double            step  = std::min(c.initial_step, context.max_step());
+    const std::size_t first = backbone.points.size() - 1;
+    while (!context.full(backbone))
+      {
+        const BackbonePoint &current = backbone.points.back();
+        if (current.omega == context.far_end)
+          return SegmentEnd::range;
+        const bool before = context.beyond(context.near_end, current.omega);
+        if (!before && c.method == ContinuationMethod::arclength)
+          return SegmentEnd::approach;
+        double omega = current.omega + context.direction * step;
+        if (before && context.beyond(omega, context.near_end))
+          omega = context.near_end;
+        if (context.beyond(omega, context.far_end))
+          omega = context.far_end;
+        BackbonePoint point;
+        if (context.solve(omega, secant_guess(backbone, first, omega), segment, point) &&
+            stays_on_branch(current, point, c))
+          {
+            if (point.measures.energy > c.energy_max)
+              return SegmentEnd::tongue;
+            if (point.newton_iterations <= 4)
+              step = std::min(1.5 * step, context.max_step());
+            backbone.points.push_back(std::move(point));
+            continue;
+          }
+        // Shrink fast: at a fold every smaller step fails too.
+        step /= 4;
+        if (step < c.min_step)
+          return SegmentEnd::fold;
+      }
+    return SegmentEnd::max_steps;
+  }
+} // namespace nsm

@@ -1,0 +1,222 @@
+#include <nsm/harmonic_balance/harmonic_balance.h>
+#include <nsm/harmonic_balance/trigonometric.h>
+
+#include <chrono>
+#include <cmath>
+
+namespace nsm
+{
+  namespace
+  {
+    /// Adds the wall time of its scope to a counter.
+    class ScopedTimer
+    {
+    public:
+      explicit ScopedTimer(double &seconds)
+        : seconds_(seconds)
+        , start_(std::chrono::steady_clock::now())
+      {}
+      ~ScopedTimer()
+      {
+        seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+      }
+
+    private:
+      double                               &seconds_;
+      std::chrono::steady_clock::time_point start_;
+    };
+
+    /// The exact rule samples q only to bracket its roots: 8 points per
+    /// period of the highest harmonic, plus the extremum checks in roots().
+    unsigned int samples_of(const Scene &scene)
+    {
+      return scene.harmonic_balance.integration == Integration::sampled ? scene.time_samples() :
+                                                                          8 * scene.harmonic_balance.harmonics + 8;
+    }
+  } // namespace
+
+  HarmonicBalance::HarmonicBalance(const Scene &scene, const Receptance &receptance)
+    : receptance_(receptance)
+    , harmonics_(scene.harmonic_balance.harmonics)
+    , basis_(scene.harmonic_balance.basis)
+    , integration_(scene.harmonic_balance.integration)
+    , sign_(scene.contact.sign == ForceSign::physical ? 1.0 : -1.0)
+    , alpha_(scene.contact.alpha)
+    , gap_(scene.contact.gap)
+    , functions_(harmonic_basis(harmonics_, basis_ == HarmonicBasis::full))
+    , active_set_(functions_, integration_, samples_of(scene))
+    , measures_(harmonics_)
+  {
+    gamma0_       = receptance(0.0).gamma;
+    force_scale_  = gap_ / gamma0_;
+    alpha_gamma0_ = alpha_ * gamma0_;
+  }
+
+  void HarmonicBalance::set_omega(const double omega)
+  {
+    if (omega == omega_)
+      return;
+    const ScopedTimer timer(cost_.receptance_seconds);
+    cost_.frequencies += harmonics_ + 1;
+    omega_ = omega;
+    phases_.resize(harmonics_ + 1);
+    for (unsigned int k = 0; k <= harmonics_; ++k)
+      {
+        double w = k * omega;
+        ReceptanceValue value;
+        try
+          {
+            value = receptance_(w);
+          }
+        catch (const NumericalError &)
+          {
+            // Exactly on a pole: theta is continuous there, so a frequency
+            // 1e-13 off it gives theta to that accuracy.
+            w *= 1 + 1e-13;
+            value = receptance_(w);
+          }
+        const double g     = value.gamma;
+        const double norm  = std::sqrt(1 + g * g);
+        const double flip  = receptance_.poles_below(w) % 2 ? -1.0 : 1.0;
+        HarmonicPhase &phase = phases_[k];
+        phase.cos            = flip / norm;
+        phase.sin            = flip * g / norm;
+        phase.omega2         = w * w;
+        phase.dtheta_domega2 = value.dgamma_domega2 / (norm * norm);
+        phase.dtheta_domega  = phase.dtheta_domega2 * 2 * k * k * omega;
+      }
+  }
+
+  std::vector<double> HarmonicBalance::contact_coefficients(const std::vector<double> &x) const
+  {
+    std::vector<double> v(n_unknowns());
+    for (unsigned int i = 0; i < n_unknowns(); ++i)
+      {
+        const HarmonicPhase &p = phases_[functions_.order[i]];
+        v[i] = x[i] * (p.cos - sign_ * alpha_ * p.sin);
+      }
+    if (has_unfolding())
+      v[1] = 0;
+    v[0] -= alpha_gamma0_;
+    return v;
+  }
+
+  void HarmonicBalance::evaluate(const std::vector<double> &x,
+                                 std::vector<double>       *residual,
+                                 std::vector<double>       *jacobian,
+                                 std::vector<double>       *domega) const
+  {
+    const unsigned int n = n_unknowns();
+    const ScopedTimer  timer(jacobian || domega ? cost_.jacobian_seconds : cost_.residual_seconds);
+    ++(jacobian || domega ? cost_.jacobians : cost_.residuals);
+    const std::vector<double> v = contact_coefficients(x);
+    std::vector<double>       gram;
+    active_set_.gram(v, gram);
+    const auto is_unfolding = [&](unsigned int i) { return has_unfolding() && i == 1; };
+
+    if (residual)
+      {
+        residual->assign(n, 0.0);
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            double projection = 0;
+            for (unsigned int j = 0; j < n; ++j)
+              projection += gram[i * n + j] * v[j];
+            (*residual)[i] = (is_unfolding(i) ? x[i] : x[i] * phases_[functions_.order[i]].cos) - projection;
+          }
+      }
+    if (jacobian)
+      {
+        jacobian->assign(n * n, 0.0);
+        for (unsigned int j = 0; j < n; ++j)
+          {
+            const HarmonicPhase &p = phases_[functions_.order[j]];
+            const double d = is_unfolding(j) ? 0.0 : p.cos - sign_ * alpha_ * p.sin;
+            for (unsigned int i = 0; i < n; ++i)
+              (*jacobian)[i + j * n] = -gram[i * n + j] * d;
+            (*jacobian)[j + j * n] += is_unfolding(j) ? 1.0 : p.cos;
+          }
+      }
+    if (domega)
+      {
+        domega->assign(n, 0.0);
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            if (is_unfolding(i))
+              continue;
+            const HarmonicPhase &p = phases_[functions_.order[i]];
+            (*domega)[i] -= x[i] * p.sin * p.dtheta_domega;
+            const double dd = (-p.sin - sign_ * alpha_ * p.cos) * p.dtheta_domega;
+            for (unsigned int r = 0; r < n; ++r)
+              (*domega)[r] -= gram[r * n + i] * dd * x[i];
+          }
+      }
+  }
+
+  std::vector<double> HarmonicBalance::grazing_guess() const
+  {
+    // lambda = I delta(tau): a_0 = I / (2 pi), a_k = I / pi (cosines); the
+    // displacement at tau = 0, -s sum gamma_k a_k, must equal the gap.
+    double sum = 0;
+    for (unsigned int k = 0; k <= harmonics_; ++k)
+      sum += phases_[k].sin / phases_[k].cos / (k == 0 ? two_pi : M_PI);
+    const double impulse = -gap_ / (sign_ * sum);
+    if (!(impulse > 0) || !std::isfinite(impulse))
+      return {};
+    std::vector<double> x(n_unknowns(), 0.0);
+    for (unsigned int i = 0; i < n_unknowns(); ++i)
+      if (!functions_.sine[i])
+        {
+          const double a = impulse / (functions_.order[i] == 0 ? two_pi : M_PI);
+          x[i] = a / phases_[functions_.order[i]].cos / force_scale_; // c = a / cos(theta)
+        }
+    return x;
+  }
+
+  FourierCoefficients HarmonicBalance::coefficients(const std::vector<double> &x) const
+  {
+    FourierCoefficients result;
+    for (unsigned int i = 0; i < n_unknowns(); ++i)
+      {
+        const HarmonicPhase &p = phases_[functions_.order[i]];
+        const double c = has_unfolding() && i == 1 ? 0.0 : force_scale_ * x[i];
+        result.order.push_back(functions_.order[i]);
+        result.is_sine.push_back(functions_.sine[i]);
+        result.force.push_back(c * p.cos);
+        result.displacement.push_back(-sign_ * c * p.sin);
+      }
+    return result;
+  }
+
+  std::vector<double> HarmonicBalance::coefficients_only(const std::vector<double> &x) const
+  {
+    std::vector<double> coefficient(x);
+    if (has_unfolding())
+      coefficient[1] = 0;
+    return coefficient;
+  }
+
+  std::vector<double> HarmonicBalance::harmonic_energies(const std::vector<double> &x) const
+  {
+    const std::vector<double> coefficient = coefficients_only(x);
+    return measures_.harmonic_energies({functions_, phases_, coefficient, force_scale_, omega_});
+  }
+
+  double HarmonicBalance::contact_fraction(const std::vector<double> &x) const
+  {
+    std::vector<double> gram;
+    return active_set_.gram(contact_coefficients(x), gram);
+  }
+
+  PeriodicSolutionMeasures HarmonicBalance::measure(const std::vector<double> &x) const
+  {
+    const std::vector<double> coefficient = coefficients_only(x);
+    const PhasedSolution      solution{functions_, phases_, coefficient, force_scale_, omega_};
+    PeriodicSolutionMeasures  result{};
+    measures_.energy(solution, result);
+    measures_.force_and_gap(solution, active_set_, sign_, gap_, result);
+    std::vector<double> gram;
+    result.contact_fraction = active_set_.gram(contact_coefficients(x), gram);
+    return result;
+  }
+} // namespace nsm

@@ -1,0 +1,34 @@
+#include <nsm/harmonic_balance/nox_hb_system.h>
+
+namespace nsm
+{
+  double seconds_since(std::chrono::steady_clock::time_point start)
+  {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
+  Teuchos::RCP<NOX::StatusTest::Generic>
+  newton_status(const Scene::HarmonicBalance &params, const double tightening)
+  {
+    auto combo = Teuchos::rcp(new NOX::StatusTest::Combo(NOX::StatusTest::Combo::OR));
+    // Unscaled 2-norm: the same norm the points are accepted and written with.
+    combo->addStatusTest(Teuchos::rcp(
+      new NOX::StatusTest::NormF(params.tolerance * tightening, NOX::StatusTest::NormF::Unscaled)));
+    combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::MaxIters(params.max_iterations)));
+    // Newton on the exact rule converges quadratically once it converges at
+    // all: a residual that has not halved in 6 steps in a row, or has blown
+    // up, will not converge (and costs most of the time at folds).
+    combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::Stagnation(6, 0.5)));
+    combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::Divergence(1e8)));
+    combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::FiniteValue));
+    return combo;
+  }
+
+  void set_newton_parameters(Teuchos::ParameterList &nox, const Scene::HarmonicBalance &params)
+  {
+    nox.set("Nonlinear Solver", "Line Search Based");
+    nox.sublist("Direction").set("Method", "Newton");
+    nox.sublist("Line Search").set("Method", params.line_search);
+    nox.sublist("Printing").set("Output Information", NOX::Utils::Error);
+  }
+} // namespace nsm

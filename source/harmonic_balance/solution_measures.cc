@@ -1,0 +1,123 @@
+#include <nsm/harmonic_balance/solution_measures.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace nsm
+{
+  SolutionMeasures::SolutionMeasures(const unsigned int harmonics)
+    : harmonics_(harmonics)
+  {
+    std::vector<double> c, s;
+    const unsigned int  top = 2 * harmonics_ + 1, points = 4 * top;
+    energy_cos_.resize(top * points);
+    energy_sin_.resize(top * points);
+    for (unsigned int t = 0; t < points; ++t)
+      {
+        trig_table(two_pi * t / points, top, c, s);
+        for (unsigned int m = 0; m < top; ++m)
+          {
+            energy_cos_[m * points + t] = c[m];
+            energy_sin_[m * points + t] = s[m];
+          }
+      }
+  }
+
+  void SolutionMeasures::energy(const PhasedSolution &solution, PeriodicSolutionMeasures &result) const
+  {
+    const TrigonometricBasis  &functions = solution.functions;
+    const std::vector<double> &x         = solution.x;
+    const unsigned int         n = functions.size(), top = 2 * harmonics_ + 1;
+    const double               f2 = solution.scale * solution.scale, w2 = solution.omega * solution.omega;
+
+    // Energy over the period as a trigonometric polynomial: with h_k the
+    // receptance field, h_k^T M h_l = (gamma_k - gamma_l) / (w_k^2 - w_l^2),
+    // which in the angle variables reads sin(theta_k - theta_l) / (...).
+    std::vector<double> ec(top, 0.0), es(top, 0.0);
+    const auto add = [&](double weight) {
+      return [&, weight](bool sine, int m, double c) { (sine ? es : ec)[m] += weight * c; };
+    };
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        {
+          const HarmonicPhase &p = solution.phases[functions.order[i]], &q = solution.phases[functions.order[j]];
+          const double         cc = x[i] * x[j] * f2;
+          double               mass, stiffness;
+          if (functions.order[i] == functions.order[j])
+            {
+              mass      = p.dtheta_domega2;
+              stiffness = p.sin * p.cos + p.omega2 * p.dtheta_domega2;
+            }
+          else
+            {
+              const double d = p.omega2 - q.omega2;
+              mass      = (p.sin * q.cos - p.cos * q.sin) / d;
+              stiffness = (p.omega2 * p.sin * q.cos - q.omega2 * p.cos * q.sin) / d;
+            }
+          // strain: phi_i phi_j; kinetic: W^2 phi_i' phi_j' (derivatives in tau).
+          product_terms(functions.sine[i], functions.order[i], functions.sine[j], functions.order[j],
+                        add(0.5 * cc * stiffness));
+          const double ki = functions.order[i], kj = functions.order[j];
+          const double sign_i = functions.sine[i] ? 1.0 : -1.0, sign_j = functions.sine[j] ? 1.0 : -1.0;
+          product_terms(!functions.sine[i], functions.order[i], !functions.sine[j], functions.order[j],
+                        add(0.5 * cc * w2 * mass * ki * kj * sign_i * sign_j));
+        }
+
+    result.energy = ec[0];
+    const unsigned int  points = 4 * top;
+    std::vector<double> e(points, 0.0);
+    for (unsigned int m = 0; m < top; ++m)
+      for (unsigned int t = 0; t < points; ++t)
+        e[t] += ec[m] * energy_cos_[m * points + t] + es[m] * energy_sin_[m * points + t];
+    const double e_min = *std::min_element(e.begin(), e.end());
+    const double e_max = *std::max_element(e.begin(), e.end());
+    result.energy_spread = (e_max - e_min) / result.energy;
+  }
+
+  std::vector<double> SolutionMeasures::harmonic_energies(const PhasedSolution &solution) const
+  {
+    // a^2 (gamma + 2 w^2 gamma') / 4 per cosine or sine (a_0^2 gamma(0) / 2),
+    // in the angle variables a^2 gamma = c^2 sin cos, a^2 gamma' = c^2 dtheta/dw^2.
+    const TrigonometricBasis &functions = solution.functions;
+    std::vector<double>       energies(harmonics_ + 1, 0.0);
+    for (unsigned int i = 0; i < functions.size(); ++i)
+      {
+        const HarmonicPhase &p = solution.phases[functions.order[i]];
+        const double         c = solution.scale * solution.x[i];
+        energies[functions.order[i]] +=
+          c * c * (p.sin * p.cos + 2 * p.omega2 * p.dtheta_domega2) / (functions.order[i] == 0 ? 2.0 : 4.0);
+      }
+    return energies;
+  }
+
+  void SolutionMeasures::force_and_gap(const PhasedSolution &solution, const ActiveSet &samples, const double sign,
+                                       const double gap, PeriodicSolutionMeasures &result) const
+  {
+    const TrigonometricBasis  &functions = solution.functions;
+    const std::vector<double> &x         = solution.x;
+    double lambda_max = -std::numeric_limits<double>::max(), lambda_min = -lambda_max;
+    double gap_min = lambda_min, complementarity = 0;
+    const unsigned int         n = functions.size(), count = samples.n_samples();
+    const std::vector<double> &table = samples.table();
+    for (unsigned int t = 0; t < count; ++t)
+      {
+        double lambda = 0, u = 0;
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            const HarmonicPhase &p = solution.phases[functions.order[i]];
+            lambda += x[i] * p.cos * table[i * count + t];
+            u -= sign * x[i] * p.sin * table[i * count + t];
+          }
+        lambda *= solution.scale, u *= solution.scale;
+        const double g = gap - u;
+        lambda_max = std::max(lambda_max, lambda), lambda_min = std::min(lambda_min, lambda);
+        gap_min = std::min(gap_min, g);
+        complementarity = std::max(complementarity, std::abs(lambda * g));
+      }
+    result.max_contact_force   = lambda_max;
+    result.min_force           = lambda_min / lambda_max;
+    result.min_gap             = gap_min / gap;
+    result.max_complementarity = complementarity / (lambda_max * gap);
+  }
+} // namespace nsm

@@ -1,0 +1,115 @@
+#include <nsm/scene/scene.h>
+#include <nsm/scene/scene_entries.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+
+namespace nsm
+{
+  namespace
+  {
+    using dealii::ParameterHandler;
+    namespace Patterns = dealii::Patterns;
+    using namespace scene_entries;
+  } // namespace
+
+  void Scene::Output::declare(ParameterHandler &prm)
+  {
+    const Output d;
+    prm.enter_subsection("Output");
+    prm.declare_entry("Directory",
+                      d.directory,
+                      Patterns::Anything(),
+                      "Output directory: a new one, or one that an earlier run wrote. A run "
+                      "writes into a hidden sibling and swaps it in at the end, so the "
+                      "directory holds the previous complete output or the new one.");
+    prm.declare_entry("Spectrum modes",
+                      text(d.spectrum_modes),
+                      Patterns::Integer(0, 100000),
+                      "Eigenfrequencies written to spectrum.csv; 0 = none.");
+    prm.declare_entry("Receptance frequencies",
+                      "",
+                      Patterns::Anything(),
+                      "Frequencies of receptance.csv: numbers and ranges a:b:n separated by "
+                      "commas, in [0, 1e100]; empty = none.");
+    prm.declare_entry("Backbone", text(d.backbone), Patterns::Bool(), "Write backbone.csv and resonances.csv.");
+    prm.declare_entry("Fields at",
+                      "",
+                      Patterns::Anything(),
+                      "Omega of the mode fields, solved exactly there on the branch: numbers "
+                      "and ranges a:b:n in [Omega min, Omega max]; empty = none.");
+    prm.declare_entry("Fields every",
+                      text(d.fields_every),
+                      Patterns::Integer(0, 1000000),
+                      "Also a field at every n-th backbone point; 0 = none.");
+    prm.declare_entry("Field time samples",
+                      text(d.field_time_samples),
+                      Patterns::Integer(0, 100000),
+                      "Samples per period of the fields (CSV rows, snapshots, plots, and the "
+                      "space-time mesh); 0 = 2 (2 M + 1); else at least 4.");
+    prm.declare_entry("VTK",
+                      text(d.vtk),
+                      Patterns::Bool(),
+                      "ParaView files of the fields: space-time .vtu, .pvd of 1D snapshots, "
+                      "fields.pvd.");
+    prm.declare_entry("Plots",
+                      text(d.plots),
+                      Patterns::Bool(),
+                      "PNG plots: backbone.png, and per field a space-time colour map and the "
+                      "contact end over one period.");
+    prm.declare_entry("Progress every",
+                      text(d.progress_every),
+                      Patterns::Double(0, 1e6),
+                      "Seconds between progress lines on stderr during long stages "
+                      "(continuation, adaptive refinement, fields, verification); 0 = never.");
+    prm.declare_entry("Verify in time",
+                      text(d.verify_in_time),
+                      Patterns::Bool(),
+                      "Integrate backbone points in time on the same FE model with the physical "
+                      "wall and write how far they are from periodic (backbone.csv); needs "
+                      "Backbone = true.");
+    prm.declare_entry("Verify every",
+                      text(d.verify_every),
+                      Patterns::Integer(1, 1000000),
+                      "Verify every n-th backbone point (the fields' points always).");
+    prm.declare_entry("Verify periods", text(d.verify_periods), Patterns::Integer(1, 1000), "Periods integrated.");
+    prm.declare_entry("Verify steps",
+                      text(d.verify_steps),
+                      Patterns::Integer(16, 10000000),
+                      "Time steps per period of the verification (Newmark, average acceleration).");
+    prm.declare_entry("Verify tolerance",
+                      text(d.verify_tolerance),
+                      Patterns::Double(1e-12, 1e3),
+                      "A point whose one-period defect max |u(T) - u(0)| / g0 exceeds this is "
+                      "flagged verified = false.");
+    prm.leave_subsection();
+  }
+
+  void Scene::Output::parse(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    directory = prm.get("Directory");
+    require(!directory.empty(), "Output/Directory", "a non-empty path", "''");
+    spectrum_modes = get_unsigned(prm, "Spectrum modes");
+    receptance_frequencies =
+      parse_frequency_list(prm.get("Receptance frequencies"), "Output/Receptance frequencies");
+    backbone     = prm.get_bool("Backbone");
+    fields_at    = parse_frequency_list(prm.get("Fields at"), "Output/Fields at");
+    fields_every = get_unsigned(prm, "Fields every");
+    field_time_samples = get_unsigned(prm, "Field time samples");
+    require(field_time_samples == 0 || field_time_samples >= 4,
+            "Output/Field time samples",
+            "0 or an integer in [4, 100000]",
+            std::to_string(field_time_samples));
+    vtk            = prm.get_bool("VTK");
+    plots          = prm.get_bool("Plots");
+    progress_every = prm.get_double("Progress every");
+    verify_in_time   = prm.get_bool("Verify in time");
+    verify_every     = get_unsigned(prm, "Verify every");
+    verify_periods   = get_unsigned(prm, "Verify periods");
+    verify_steps     = get_unsigned(prm, "Verify steps");
+    verify_tolerance = prm.get_double("Verify tolerance");
+    prm.leave_subsection();
+  }
+} // namespace nsm

@@ -1,0 +1,390 @@
+#include <nsm/continuation/continuation.h>
+#include <nsm/base/csv.h>
+#include <nsm/output/plots.h>
+#include <nsm/base/progress.h>
+#include <nsm/study/study.h>
+#include <nsm/study/study_combinations.h>
+#include <nsm/study/study_reference.h>
+#include <nsm/study/study_row.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/timer.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+
+namespace nsm
+{
+  namespace
+  {
+    namespace fs = std::filesystem;
+
+    std::string file_text(const std::string &path)
+    {
+      std::ifstream      in(path);
+      std::ostringstream text;
+      text << in.rdbuf();
+      return text.str();
+    }
+
+    /// Checks that Output/Directory is new, empty, or holds this base
+    /// scene's study; returns the rows it already holds, by key.
+    std::map<std::vector<std::string>, std::vector<CsvCell>>
+    earlier_rows(const std::string &directory, const std::string &scene_text,
+                 const std::vector<std::string> &columns, const std::size_t key_size)
+    {
+      std::map<std::vector<std::string>, std::vector<CsvCell>> rows;
+      const std::string recorded = directory + "/study.scene";
+      std::error_code   error;
+      if (!fs::exists(directory, error) || fs::is_empty(directory, error))
+        return rows;
+      if (!fs::is_regular_file(recorded) || file_text(recorded) != scene_text)
+        throw InputError("parameter 'Output/Directory' = " + directory +
+                         " is not allowed: it holds files but not a study of this scene "
+                         "(study.scene differs); allowed: a new or empty directory, or this study's");
+      const CsvTable table = read_csv(directory + "/study.csv");
+      if (!table.columns.empty() && table.columns != columns)
+        throw InputError("parameter 'Output/Directory' = " + directory +
+                         ": its study.csv has other columns; allowed: a new or empty directory");
+      for (const auto &row : table.rows)
+        {
+          std::vector<std::string> key;
+          for (std::size_t c = 0; c < key_size; ++c)
+            key.push_back(text_cell(row, c));
+          rows[key] = row;
+        }
+      return rows;
+    }
+
+    /// One round's rows travel to rank 0 as text: index, then the cells,
+    /// split again by split_fields.
+    std::string pack_row(const std::size_t index, const std::vector<std::string> &cells)
+    {
+      std::string packed = std::to_string(index);
+      for (const std::string &c : cells)
+        packed += '\x1f' + c;
+      return packed;
+    }
+
+    std::size_t column_of(const CsvTable &table, const std::string &name)
+    {
+      return std::find(table.columns.begin(), table.columns.end(), name) - table.columns.begin();
+    }
+
+    /// A row's backbone_end says its continuation stopped before the range's
+    /// end (empty: the row ran no harmonic balance).
+    bool stopped_short(const std::string &end)
+    {
+      return !end.empty() && end != backbone_end_name(BackboneEnd::range);
+    }
+
+    /// The swept columns (the first key_size) that take more than one value:
+    /// they name a row. unused_value, for a value a row's run does not use,
+    /// names nothing.
+    std::vector<std::size_t> varying_columns(const CsvTable &table, const std::size_t key_size)
+    {
+      std::vector<std::size_t> varying;
+      for (std::size_t c = 0; c < key_size; ++c)
+        {
+          std::set<std::string> values;
+          for (const auto &row : table.rows)
+            if (text_cell(row, c) != unused_value)
+              values.insert(text_cell(row, c));
+          if (values.size() > 1)
+            varying.push_back(c);
+        }
+      return varying;
+    }
+
+    std::string row_name(const CsvTable                 &table,
+                         const std::vector<CsvCell>     &row,
+                         const std::vector<std::size_t> &varying)
+    {
+      std::string name;
+      for (const std::size_t c : varying)
+        if (text_cell(row, c) != unused_value)
+          name += " " + table.columns[c] + " " + text_cell(row, c);
+      return varying.empty() ? " the scene's own values (one row)" : name;
+    }
+
+    /// The run summary's answer to "what does accuracy cost": per measured
+    /// error, the rows that no other row beats in both error and median
+    /// time (the Pareto front), fastest first. Rows whose energy errors
+    /// cover part of the Backbone omegas (energy_error_partial) are left out
+    /// of the backbone error's front.
+    std::vector<std::string> pareto_notes(const CsvTable &table, const std::size_t key_size)
+    {
+      const auto column  = [&](const std::string &name) { return column_of(table, name); };
+      const auto varying = varying_columns(table, key_size);
+      const std::size_t        time = column("wall_total_median");
+      std::vector<std::string> notes;
+      for (const char *error : {"spectrum_error", "receptance_error", "energy_error_max"})
+        {
+          const bool backbone_error = std::string(error) == "energy_error_max";
+          std::vector<std::pair<double, const std::vector<CsvCell> *>> rows;
+          unsigned int                                                 partial = 0;
+          for (const auto &row : table.rows)
+            {
+              if (text_cell(row, column(error)).empty())
+                continue;
+              if (backbone_error && text_cell(row, column("energy_error_partial")) == "yes")
+                ++partial;
+              else
+                rows.emplace_back(std::stod(text_cell(row, time)), &row);
+            }
+          std::sort(rows.begin(), rows.end(),
+                    [](const auto &a, const auto &b) { return a.first < b.first; });
+          double best = std::numeric_limits<double>::infinity();
+          for (const auto &[seconds_taken, row] : rows)
+            if (const double e = std::stod(text_cell(*row, column(error))); e < best)
+              {
+                best = e;
+                std::ostringstream note;
+                note.precision(3);
+                note << "  " << error << " " << e << " in " << seconds_taken << " s:"
+                     << row_name(table, *row, varying);
+                notes.push_back(note.str());
+              }
+          if (partial > 0)
+            notes.push_back("  (" + std::string(error) + ": " + std::to_string(partial) +
+                            (partial == 1 ? " row left out, its continuation" : " rows left out, their continuation") +
+                            " ended inside the Backbone omegas: energy_error_partial)");
+        }
+      if (!notes.empty())
+        notes.insert(notes.begin(), "the fastest row to each error (median time):");
+      return notes;
+    }
+
+    std::string seconds(const double s)
+    {
+      std::ostringstream out;
+      out.precision(3);
+      out << s << " s";
+      return out.str();
+    }
+  } // namespace
+
+  namespace
+  {
+    /// "1 row", "2 rows".
+    std::string counted(const std::size_t n, const std::string &noun)
+    {
+      return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+    }
+
+    /// "; n combinations left out: ..." if study_combinations left any out.
+    std::string left_out_note(const StudyParameters &study, const std::size_t rows)
+    {
+      std::size_t swept = 1;
+      for (const StudyParameters::Sweep &s : study.sweeps)
+        swept *= std::max<std::size_t>(1, s.values.size());
+      if (swept == rows)
+        return "";
+      return "; " + std::to_string(swept - rows) +
+             " combinations left out: each repeats an earlier row's run (Time samples under exact "
+             "integration, graded or adaptive parameters of another refinement)";
+    }
+
+    /// The study's fine backbone reference, if it asks for one: rank 0
+    /// computes it (or finds it kept); every rank then reads it once, and
+    /// rank 0 adds the summary's lines to `notes`. A failure on rank 0 stops
+    /// all.
+    std::optional<FineReference> shared_fine_reference(const std::string &path, const StudyScene &base,
+                                                       const MPI_Comm comm, std::vector<std::string> &notes)
+    {
+      if (base.study.reference_cells.empty())
+        return std::nullopt;
+      const std::vector<StudyScene> levels = reference_levels(path, base);
+      const bool               root   = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+      std::string              origin, failure;
+      if (root)
+        try
+          {
+            origin = keep_fine_reference(levels, base.scene.output.directory);
+          }
+        catch (const std::exception &e)
+          {
+            failure = e.what();
+          }
+      failure = dealii::Utilities::MPI::broadcast(comm, failure, 0);
+      if (!failure.empty())
+        throw NumericalError("the fine reference (Study/Reference cells) failed: " + failure);
+      const CsvTable table = read_csv(base.scene.output.directory + "/reference.csv");
+      if (root)
+        notes = fine_reference_notes(table, levels, origin);
+      return read_fine_reference(table, levels);
+    }
+    /// A study's rows on this rank: those study.csv already holds, those
+    /// missing, and the rounds over the ranks that compute them.
+    class StudyRun
+    {
+    public:
+      StudyRun(const std::string &path, const StudyScene &base)
+        : base_(base)
+        , combinations_(study_combinations(path, base))
+        , scene_text_(study_fingerprint(path, base))
+      {
+        for (const StudyParameters::Sweep &s : base.study.sweeps)
+          table_.columns.push_back(s.column);
+        key_size_ = table_.columns.size();
+        for (const std::string &c : study_row_columns(base.study))
+          table_.columns.push_back(c);
+        rows_ = earlier_rows(directory(), scene_text_, table_.columns, key_size_);
+        for (std::size_t i = 0; i < combinations_.size(); ++i)
+          if (rows_.count(combinations_[i].key) == 0)
+            missing_.push_back(i);
+        in_combination_order();
+      }
+
+      bool root() const { return rank_ == 0; }
+
+      const std::string &directory() const { return base_.scene.output.directory; }
+
+      /// The wall and CPU time since the study began (deal.II's Timer).
+      StageTiming timing() const { return {"study", timer_.wall_time(), timer_.cpu_time()}; }
+
+      /// Rank 0 creates the directory and records the base scene: every
+      /// rank has checked the same input, and only rank 0 writes.
+      void prepare_directory() const
+      {
+        if (!root())
+          return;
+        std::error_code error;
+        fs::create_directories(directory(), error);
+        if (error)
+          throw InputError("parameter 'Output/Directory' = " + directory() + " cannot be created: " +
+                           error.message() + "; allowed: a new or empty directory, or this study's");
+        write_atomically(directory() + "/study.scene", [&](std::ostream &out) { out << scene_text_; });
+      }
+
+      /// Deals the missing rows out over the ranks in rounds; after each,
+      /// rank 0 rewrites study.csv and prints the progress.
+      void run_missing_rows(const FineReference *fine)
+      {
+        Progress progress("study", base_.scene.output.progress_every);
+        for (std::size_t round = 0; round < missing_.size(); round += ranks_)
+          {
+            const std::size_t mine = round + rank_;
+            std::string       packed;
+            if (mine < missing_.size())
+              {
+                const StudyCombination  &c     = combinations_[missing_[mine]];
+                std::vector<std::string> cells = c.key;
+                for (std::string &cell : measure_study_row(c.scene, fine))
+                  cells.push_back(std::move(cell));
+                packed = pack_row(missing_[mine], cells);
+              }
+            const std::vector<std::string> gathered = dealii::Utilities::MPI::gather(comm_, packed, 0);
+            if (!root())
+              continue;
+            keep_rows(gathered);
+            write_csv(directory(), table_);
+            progress.update([&] { return progress_line(std::min(missing_.size(), round + ranks_)); });
+          }
+      }
+
+      /// The summary's lines (rank 0): rows, the fine reference's lines,
+      /// then the Pareto front.
+      std::vector<std::string> notes(const std::vector<std::string> &reference_notes) const
+      {
+        std::ostringstream note;
+        note << "study: " << counted(combinations_.size(), "row") << ", " << missing_.size() << " run now on "
+             << counted(ranks_, "rank") << ", " << resumed() << " from an earlier run, " << failed_ << " failed; "
+             << counted(ended_early(), "row") << " ended before the Omega range's end (backbone_end)"
+             << left_out_note(base_.study, combinations_.size());
+        std::vector<std::string> lines{note.str()};
+        lines.insert(lines.end(), reference_notes.begin(), reference_notes.end());
+        for (std::string &line : pareto_notes(table_, key_size_))
+          lines.push_back(std::move(line));
+        return lines;
+      }
+
+    private:
+      std::size_t resumed() const { return combinations_.size() - missing_.size(); }
+
+      /// The rows of study.csv, earlier runs' too, whose continuation ended
+      /// before the range's end.
+      std::size_t ended_early() const
+      {
+        const std::size_t c = column_of(table_, "backbone_end");
+        return std::count_if(table_.rows.begin(), table_.rows.end(), [&](const std::vector<CsvCell> &row) {
+          return stopped_short(text_cell(row, c));
+        });
+      }
+
+      /// Rank 0 keeps the gathered rows of one round.
+      void keep_rows(const std::vector<std::string> &gathered)
+      {
+        for (const std::string &p : gathered)
+          if (!p.empty())
+            {
+              std::vector<std::string> cells = split_fields(p, '\x1f');
+              cells.erase(cells.begin());
+              failed_ += cells[key_size_] != "ok";
+              std::vector<std::string> key(cells.begin(), cells.begin() + key_size_);
+              rows_[key] = std::vector<CsvCell>(cells.begin(), cells.end());
+            }
+        in_combination_order();
+      }
+
+      /// study.csv holds the rows computed so far (earlier runs' too), in
+      /// combination order.
+      void in_combination_order()
+      {
+        table_.rows.clear();
+        for (const StudyCombination &c : combinations_)
+          if (const auto row = rows_.find(c.key); row != rows_.end())
+            table_.rows.push_back(row->second);
+      }
+
+      std::string progress_line(const std::size_t done) const
+      {
+        const double t = timer_.wall_time();
+        return std::to_string(resumed() + done) + " of " + std::to_string(combinations_.size()) + " rows (" +
+               std::to_string(resumed()) + " from an earlier run), " + seconds(t) + " elapsed, about " +
+               seconds(t / done * (missing_.size() - done)) + " left";
+      }
+
+      const MPI_Comm                      comm_  = MPI_COMM_WORLD;
+      const unsigned int                  ranks_ = dealii::Utilities::MPI::n_mpi_processes(comm_);
+      const unsigned int                  rank_  = dealii::Utilities::MPI::this_mpi_process(comm_);
+      const dealii::Timer                 timer_; ///< started first, so it counts the set-up too
+      const StudyScene &base_;
+      const std::vector<StudyCombination> combinations_;
+      const std::string                   scene_text_;
+      CsvTable                            table_{"study.csv", {}, {}};
+      std::size_t                         key_size_ = 0;
+      std::map<std::vector<std::string>, std::vector<CsvCell>> rows_;
+      std::vector<std::size_t>            missing_;
+      unsigned int                        failed_ = 0;
+    };
+  } // namespace
+
+  RunReport run_study(const std::string &path, const StudyScene &base)
+  {
+    StudyRun study(path, base);
+    study.prepare_directory();
+    std::vector<std::string>           reference_notes;
+    const std::optional<FineReference> fine = shared_fine_reference(path, base, MPI_COMM_WORLD, reference_notes);
+    study.run_missing_rows(fine ? &*fine : nullptr);
+
+    RunReport report;
+    report.stages.push_back(study.timing());
+    if (!study.root())
+      return report;
+    report.notes = study.notes(reference_notes);
+    report.files = {study.directory() + "/study.csv", study.directory() + "/study.scene"};
+    if (fine)
+      report.files.push_back(study.directory() + "/reference.csv");
+    if (base.scene.output.plots)
+      for (std::string &f : make_plots(base.scene.contact, study.directory()))
+        report.files.push_back(std::move(f));
+    return report;
+  }
+} // namespace nsm

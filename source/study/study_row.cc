@@ -1,0 +1,190 @@
+#include <nsm/study/study_measures.h>
+#include <nsm/study/study_row.h>
+
+#include <deal.II/base/timer.h>
+
+#include <algorithm>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <sstream>
+
+namespace nsm
+{
+  namespace
+  {
+    std::string column_name(std::string stage)
+    {
+      std::replace(stage.begin(), stage.end(), ' ', '_');
+      std::replace(stage.begin(), stage.end(), '-', '_');
+      return "wall_" + stage;
+    }
+
+    std::string text(const double value)
+    {
+      std::ostringstream s;
+      s.precision(std::numeric_limits<double>::max_digits10);
+      s << value;
+      return s.str();
+    }
+
+    std::string text(const std::optional<double> &value) { return value ? text(*value) : ""; }
+
+    /// A line "Name:   value kB" of /proc/self/status, in MiB.
+    double status_mib(const std::string &name)
+    {
+      std::ifstream status("/proc/self/status");
+      for (std::string line; std::getline(status, line);)
+        if (line.rfind(name + ":", 0) == 0)
+          return std::stod(line.substr(name.size() + 1)) / 1024;
+      return 0;
+    }
+
+    /// Resets the peak resident set size to the current one (Linux: "5" to
+    /// clear_refs) and returns it, so that the row's own peak is the
+    /// difference.
+    double reset_peak_memory()
+    {
+      std::ofstream("/proc/self/clear_refs") << "5";
+      return status_mib("VmRSS");
+    }
+
+    double median(std::vector<double> v)
+    {
+      std::sort(v.begin(), v.end());
+      return v[v.size() / 2];
+    }
+
+    /// The costs of a row's repeated runs, and how the last one ended.
+    struct RepeatedRuns
+    {
+      RowMeasures                      measures;
+      std::string                      status = "ok";
+      std::vector<double>              totals, cpu;
+      std::vector<std::vector<double>> stage_walls = std::vector<std::vector<double>>(study_stages().size());
+    };
+
+    /// Runs `scene` Study/Repeats times, or until a run fails: a failure's
+    /// status is kept as one CSV cell, and its measures left empty.
+    RepeatedRuns repeat_runs(const StudyScene &row, const RowReference &reference)
+    {
+      using Timer = dealii::TimerOutput;
+      std::ostringstream quiet;
+      RepeatedRuns       runs;
+      for (unsigned int r = 0; r < row.study.repeats && runs.status == "ok"; ++r)
+        {
+          Timer timer(quiet, Timer::never, Timer::cpu_and_wall_times);
+          try
+            {
+              runs.measures = measure_run(row, reference, timer);
+            }
+          catch (const NumericalError &e)
+            {
+              runs.status = std::string("failed: ") + e.what();
+            }
+          catch (const char *message) // NOX throws these
+            {
+              runs.status = std::string("failed: ") + message;
+            }
+          const auto walls = timer.get_summary_data(Timer::total_wall_time);
+          const auto cpus  = timer.get_summary_data(Timer::total_cpu_time);
+          double     total = 0, total_cpu = 0;
+          for (std::size_t s = 0; s < study_stages().size(); ++s)
+            {
+              const auto it = walls.find(study_stages()[s]);
+              runs.stage_walls[s].push_back(it == walls.end() ? 0.0 : it->second);
+              total += runs.stage_walls[s].back();
+            }
+          for (const auto &entry : cpus)
+            total_cpu += entry.second;
+          runs.totals.push_back(total);
+          runs.cpu.push_back(total_cpu);
+        }
+      if (runs.status != "ok")
+        runs.measures = RowMeasures();
+      std::replace(runs.status.begin(), runs.status.end(), ',', ';');
+      std::replace(runs.status.begin(), runs.status.end(), '\n', ' ');
+      return runs;
+    }
+  } // namespace
+
+  std::vector<std::string> study_row_columns(const StudyParameters &study)
+  {
+    std::vector<std::string> columns = {"status", "reference", "dofs", "final_cells", "hb_unknowns",
+                                        "time_samples_used", "spectrum_error", "receptance_error",
+                                        "energy_error_max", "energy_error_median", "force_error_max",
+                                        "contact_fraction_error_max", "main_energy_error_median",
+                                        "main_energy_error_q90", "main_time_defect_median",
+                                        "main_time_defect_max", "energy_points",
+                                        "main_points", "newton_iterations", "failed_solves",
+                                        "backbone_end", "omega_reached", "energy_error_partial",
+                                        "peak_memory_mib", "wall_total_min", "wall_total_median",
+                                        "wall_total_max", "cpu_total_median"};
+    for (const std::string &stage : study_stages())
+      columns.push_back(column_name(stage));
+    for (const double omega : study.backbone_omega_values)
+      {
+        std::ostringstream name;
+        name.precision(12);
+        name << "energy_at_" << omega;
+        columns.push_back(name.str());
+      }
+    return columns;
+  }
+
+  std::vector<std::optional<MainBranchPoint>> main_branch_at(const StudyScene &row)
+  {
+    std::ostringstream  quiet;
+    dealii::TimerOutput timer(quiet, dealii::TimerOutput::never, dealii::TimerOutput::wall_times);
+    // Without a reference, measure_run skips the spectrum and receptance errors
+    // the study's rows measure, and without verification the time
+    // integration: a reference level needs only its backbone.
+    StudyScene level           = row;
+    level.study.verify_in_time = false;
+    return measure_run(level, no_reference(level), timer).points;
+  }
+
+  std::vector<std::string> measure_study_row(const StudyScene &run, const FineReference *fine)
+  {
+    const RowReference reference = reference_of(run, fine);
+    const double       resident  = reset_peak_memory();
+    RepeatedRuns       runs      = repeat_runs(run, reference);
+    RowMeasures       &m         = runs.measures;
+    const auto        &totals    = runs.totals;
+
+    std::vector<std::string> row = {runs.status,
+                                    reference.name,
+                                    std::to_string(m.dofs),
+                                    std::to_string(m.cells),
+                                    std::to_string(m.hb_unknowns),
+                                    m.time_samples ? std::to_string(m.time_samples) : std::string(),
+                                    text(m.spectrum_error),
+                                    text(m.receptance_error),
+                                    text(m.energy_error_max),
+                                    text(m.energy_error_median),
+                                    text(m.force_error_max),
+                                    text(m.contact_fraction_error_max),
+                                    text(m.main_error_median),
+                                    text(m.main_error_q90),
+                                    text(m.time_defect_median),
+                                    text(m.time_defect_max),
+                                    std::to_string(m.energy_points),
+                                    std::to_string(m.main_points),
+                                    std::to_string(m.newton_iterations),
+                                    std::to_string(m.failed_solves),
+                                    m.backbone_end,
+                                    text(m.omega_reached),
+                                    m.energy_error_partial ? (*m.energy_error_partial ? "yes" : "no") : "",
+                                    text(status_mib("VmHWM") - resident),
+                                    text(*std::min_element(totals.begin(), totals.end())),
+                                    text(median(totals)),
+                                    text(*std::max_element(totals.begin(), totals.end())),
+                                    text(median(runs.cpu))};
+    for (const std::vector<double> &walls : runs.stage_walls)
+      row.push_back(text(median(walls)));
+    m.points.resize(run.study.backbone_omega_values.size());
+    for (const std::optional<MainBranchPoint> &p : m.points)
+      row.push_back(p ? text(p->energy) : "");
+    return row;
+  }
+} // namespace nsm
