@@ -176,8 +176,7 @@ namespace nsm
           for (const double omega : o.fields_at)
             {
               require_on_branch(backbone_, omega);
-              fields_.emplace_back(*hb_, *discretisation_, solve_on_branch(*hb_, scene_, backbone_, omega),
-                                   scene_.contact.sign);
+              fields_.emplace_back(*hb_, *discretisation_, solve_on_branch(*hb_, scene_, backbone_, omega));
               if (const BackbonePoint &p = fields_.back().point(); p.branch == Branch::tongue)
                 report_.notes.push_back(tongue_field_note(p));
               if (o.verify_in_time)
@@ -186,7 +185,7 @@ namespace nsm
             }
           for (std::size_t i = 0; o.fields_every > 0 && i < backbone_.points.size(); i += o.fields_every)
             {
-              fields_.emplace_back(*hb_, *discretisation_, backbone_.points[i], scene_.contact.sign);
+              fields_.emplace_back(*hb_, *discretisation_, backbone_.points[i]);
               progress.update(report_count);
             }
         });

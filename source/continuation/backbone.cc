@@ -1,4 +1,5 @@
 #include <nsm/continuation/backbone.h>
+#include <nsm/model/contact_law.h>
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +13,7 @@ namespace nsm
 
   double branch_direction(const Scene &scene)
   {
-    return scene.contact.sign == ForceSign::physical ? 1.0 : -1.0;
+    return ContactLaw(scene.contact).sign();
   }
 
   const char *backbone_end_name(const BackboneEnd end)

@@ -40,16 +40,14 @@ namespace nsm
     , harmonics_(scene.harmonic_balance.harmonics)
     , basis_(scene.harmonic_balance.basis)
     , integration_(scene.harmonic_balance.integration)
-    , sign_(scene.contact.sign == ForceSign::physical ? 1.0 : -1.0)
-    , alpha_(scene.contact.alpha)
-    , gap_(scene.contact.gap)
+    , law_(scene.contact)
     , functions_(harmonic_basis(harmonics_, basis_ == HarmonicBasis::full))
     , active_set_(functions_, integration_, samples_of(scene))
     , measures_(harmonics_)
   {
     gamma0_       = receptance(0.0).gamma;
-    force_scale_  = gap_ / gamma0_;
-    alpha_gamma0_ = alpha_ * gamma0_;
+    force_scale_  = law_.gap() / gamma0_;
+    alpha_gamma0_ = law_.alpha() * gamma0_;
   }
 
   void HarmonicBalance::set_omega(const double omega)
@@ -93,7 +91,7 @@ namespace nsm
     for (unsigned int i = 0; i < n_unknowns(); ++i)
       {
         const HarmonicPhase &p = phases_[functions_.order[i]];
-        v[i] = x[i] * (p.cos - sign_ * alpha_ * p.sin);
+        v[i] = x[i] * law_.indicator_weight(p.cos, p.sin);
       }
     if (has_unfolding())
       v[1] = 0;
@@ -131,7 +129,7 @@ namespace nsm
         for (unsigned int j = 0; j < n; ++j)
           {
             const HarmonicPhase &p = phases_[functions_.order[j]];
-            const double d = is_unfolding(j) ? 0.0 : p.cos - sign_ * alpha_ * p.sin;
+            const double d = is_unfolding(j) ? 0.0 : law_.indicator_weight(p.cos, p.sin);
             for (unsigned int i = 0; i < n; ++i)
               (*jacobian)[i + j * n] = -gram[i * n + j] * d;
             (*jacobian)[j + j * n] += is_unfolding(j) ? 1.0 : p.cos;
@@ -146,7 +144,7 @@ namespace nsm
               continue;
             const HarmonicPhase &p = phases_[functions_.order[i]];
             (*domega)[i] -= x[i] * p.sin * p.dtheta_domega;
-            const double dd = (-p.sin - sign_ * alpha_ * p.cos) * p.dtheta_domega;
+            const double dd = law_.indicator_weight_slope(p.cos, p.sin) * p.dtheta_domega;
             for (unsigned int r = 0; r < n; ++r)
               (*domega)[r] -= gram[r * n + i] * dd * x[i];
           }
@@ -160,7 +158,7 @@ namespace nsm
     double sum = 0;
     for (unsigned int k = 0; k <= harmonics_; ++k)
       sum += phases_[k].sin / phases_[k].cos / (k == 0 ? two_pi : M_PI);
-    const double impulse = -gap_ / (sign_ * sum);
+    const double impulse = -law_.gap() / (law_.sign() * sum);
     if (!(impulse > 0) || !std::isfinite(impulse))
       return {};
     std::vector<double> x(n_unknowns(), 0.0);
@@ -183,7 +181,7 @@ namespace nsm
         result.order.push_back(functions_.order[i]);
         result.is_sine.push_back(functions_.sine[i]);
         result.force.push_back(c * p.cos);
-        result.displacement.push_back(-sign_ * c * p.sin);
+        result.displacement.push_back(law_.displacement_coefficient(c, p.sin));
       }
     return result;
   }
@@ -214,7 +212,7 @@ namespace nsm
     const PhasedSolution      solution{functions_, phases_, coefficient, force_scale_, omega_};
     PeriodicSolutionMeasures  result{};
     measures_.energy(solution, result);
-    measures_.force_and_gap(solution, active_set_, sign_, gap_, result);
+    measures_.force_and_gap(solution, active_set_, law_, result);
     std::vector<double> gram;
     result.contact_fraction = active_set_.gram(contact_coefficients(x), gram);
     return result;

@@ -91,8 +91,8 @@ namespace nsm
     return energies;
   }
 
-  void SolutionMeasures::force_and_gap(const PhasedSolution &solution, const ActiveSet &samples, const double sign,
-                                       const double gap, PeriodicSolutionMeasures &result) const
+  void SolutionMeasures::force_and_gap(const PhasedSolution &solution, const ActiveSet &samples,
+                                       const ContactLaw &law, PeriodicSolutionMeasures &result) const
   {
     const TrigonometricBasis  &functions = solution.functions;
     const std::vector<double> &x         = solution.x;
@@ -107,17 +107,17 @@ namespace nsm
           {
             const HarmonicPhase &p = solution.phases[functions.order[i]];
             lambda += x[i] * p.cos * table[i * count + t];
-            u -= sign * x[i] * p.sin * table[i * count + t];
+            u -= law.sign() * x[i] * p.sin * table[i * count + t];
           }
         lambda *= solution.scale, u *= solution.scale;
-        const double g = gap - u;
+        const double g = law.gap_at(u);
         lambda_max = std::max(lambda_max, lambda), lambda_min = std::min(lambda_min, lambda);
         gap_min = std::min(gap_min, g);
         complementarity = std::max(complementarity, std::abs(lambda * g));
       }
     result.max_contact_force   = lambda_max;
     result.min_force           = lambda_min / lambda_max;
-    result.min_gap             = gap_min / gap;
-    result.max_complementarity = complementarity / (lambda_max * gap);
+    result.min_gap             = gap_min / law.gap();
+    result.max_complementarity = complementarity / (lambda_max * law.gap());
   }
 } // namespace nsm

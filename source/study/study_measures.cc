@@ -109,7 +109,7 @@ namespace nsm
       std::vector<double> defects;
       for (const BackbonePoint &p : m.solved)
         {
-          const PeriodicField field(hb, d, p, scene.contact.sign);
+          const PeriodicField field(hb, d, p);
           defects.push_back(verify_in_time(field, d, scene).time.periodicity_defect);
         }
       if (defects.empty())

@@ -5,13 +5,9 @@
 
 namespace nsm
 {
-  PeriodicField::PeriodicField(HarmonicBalance       &hb,
-                               const Discretisation  &discretisation,
-                               const BackbonePoint   &point,
-                               const ForceSign        sign)
+  PeriodicField::PeriodicField(HarmonicBalance &hb, const Discretisation &discretisation, const BackbonePoint &point)
     : point_(point)
   {
-    const double s = sign == ForceSign::physical ? 1.0 : -1.0;
     hb.set_omega(point.omega);
     coefficients_ = hb.coefficients(point.x);
     std::map<unsigned int, dealii::Vector<double>> fields; // one solve per k
@@ -24,7 +20,7 @@ namespace nsm
         const double                  gamma = h[discretisation.contact_dof()];
         dealii::Vector<double>        u(h);
         u *= std::abs(gamma) >= 1 ? coefficients_.displacement[i] / gamma :
-                                    -s * coefficients_.force[i];
+                                    hb.law().displacement(1.0, coefficients_.force[i]);
         harmonic_fields_.push_back(std::move(u));
       }
   }

@@ -53,10 +53,10 @@ namespace nsm
   } // namespace
 
   ContactTimeIntegrator::ContactTimeIntegrator(const Discretisation &discretisation,
-                                               const double          gap,
+                                               const ContactLaw     &law,
                                                const double          period,
                                                const unsigned int    steps_per_period)
-    : gap_(gap)
+    : law_(law)
     , dt_(period / steps_per_period)
     , steps_(steps_per_period)
     , contact_(discretisation.contact_dof())
@@ -102,13 +102,13 @@ namespace nsm
   void ContactTimeIntegrator::make_admissible(dealii::Vector<double> &u) const
   {
     u[clamp_] = 0;
-    if (u[contact_] <= gap_)
+    if (!law_.penetrates(u[contact_]))
       return;
     dealii::Vector<double> shape(u.size());
     shape[contact_] = 1;
     static_solver_.solve(shape);
-    u.add(-(u[contact_] - gap_) / shape[contact_], shape);
-    u[contact_] = gap_; // exactly on the wall, not one rounding beyond it
+    u.add(law_.gap_at(u[contact_]) / shape[contact_], shape);
+    u[contact_] = law_.gap(); // exactly on the wall, not one rounding beyond it
   }
 
   double ContactTimeIntegrator::energy(const dealii::Vector<double> &u, const dealii::Vector<double> &v) const
@@ -131,11 +131,11 @@ namespace nsm
     // Free of the wall unless that puts the contact DoF beyond it; on the
     // wall, lambda is the force that holds it there.
     double lambda = 0;
-    if (next[contact_] > gap_)
+    if (law_.penetrates(next[contact_]))
       {
-        lambda = (gap_ - next[contact_]) / contact_response_[contact_];
+        lambda = law_.gap_at(next[contact_]) / contact_response_[contact_];
         next.add(lambda, contact_response_);
-        next[contact_] = gap_;
+        next[contact_] = law_.gap();
       }
     // a_{n+1} = 4/dt^2 (u_{n+1} - u_n - dt v_n) - a_n, v_{n+1} = v_n + dt/2 (a_n + a_{n+1})
     dealii::Vector<double> acceleration(next);
@@ -174,7 +174,7 @@ namespace nsm
       double d = 0;
       for (unsigned int i = 0; i < u.size(); ++i)
         d = std::max(d, std::abs(u[i] - u0[i]));
-      return d / gap_;
+      return d / law_.gap();
     };
     for (unsigned int p = 0; p < periods; ++p)
       {
@@ -197,7 +197,7 @@ namespace nsm
   PointVerification verify_in_time(const PeriodicField &field, const Discretisation &discretisation, const Scene &scene)
   {
     const auto                 &o = scene.output;
-    const ContactTimeIntegrator integrator(discretisation, scene.contact.gap, field.period(), o.verify_steps);
+    const ContactTimeIntegrator integrator(discretisation, ContactLaw(scene.contact), field.period(), o.verify_steps);
     dealii::Vector<double>      u = field.displacement(0.0);
     integrator.make_admissible(u);
     PointVerification result{integrator.run(u, field.velocity(0.0), o.verify_periods), 0, false};
@@ -221,7 +221,7 @@ namespace nsm
     for (std::size_t i = 0; i < results.size(); ++i)
       if (i % o.verify_every == 0 || (o.fields_every > 0 && i % o.fields_every == 0))
         {
-          const PeriodicField field(hb, discretisation, backbone.points[i], scene.contact.sign);
+          const PeriodicField field(hb, discretisation, backbone.points[i]);
           results[i] = verify_in_time(field, discretisation, scene);
           progress.update([&] {
             return "point " + std::to_string(i + 1) + " of " + std::to_string(results.size());

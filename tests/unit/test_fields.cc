@@ -24,7 +24,7 @@ TEST(Fields, FieldEnergyAndContactDisplacementMatchTheHarmonicBalance)
       testing_helpers::HbModel model(scene);
       const auto               backbone = model.backbone();
       const auto              &point    = backbone.points.back();
-      const nsm::PeriodicField field(model.hb, model.discretisation, point, sign);
+      const nsm::PeriodicField field(model.hb, model.discretisation, point);
 
       const auto        &k = model.discretisation.stiffness(), &m = model.discretisation.mass();
       const unsigned int samples = 200;

@@ -13,6 +13,14 @@ namespace
 {
   constexpr double g0 = 1e-3;
 
+  /// The rigid wall at g0.
+  nsm::ContactLaw wall()
+  {
+    nsm::Scene::Contact contact;
+    contact.gap = g0;
+    return nsm::ContactLaw(contact);
+  }
+
   /// The uniform bar's exact mode (exact_bar.h) on a mesh of FE_Q(1), and the
   /// integration of its period. The impulse per period is 2 (u* - g0).
   struct ExactMode
@@ -22,7 +30,7 @@ namespace
       , scene(testing_helpers::bar_scene("1", 1, cells))
       , bar(scene.bar)
       , discretisation(bar, scene.discretisation)
-      , integrator(discretisation, g0, period, steps)
+      , integrator(discretisation, wall(), period, steps)
       , u(discretisation.n_dofs())
       , v(discretisation.n_dofs())
       , exact_impulse(2 * (exact.peak - g0))
@@ -122,7 +130,7 @@ TEST(TimeVerification, RedistributedMassKeepsTheBarsMassAndLeavesTheContactDofWi
       auto                      scene = testing_helpers::bar_scene("1.5 - x", degree, 20);
       const nsm::BarModel       bar(scene.bar);
       const nsm::Discretisation d(bar, scene.discretisation);
-      const nsm::ContactTimeIntegrator integrator(d, g0, 3.5, 100);
+      const nsm::ContactTimeIntegrator integrator(d, wall(), 3.5, 100);
       dealii::Vector<double>    zero(d.n_dofs()), ones(d.n_dofs()), contact(d.n_dofs());
       ones = 1;
       ones[d.clamped_dof()] = 0;
@@ -153,7 +161,7 @@ namespace
     testing_helpers::HbModel  model(scene);
     const auto                backbone = model.backbone();
     const nsm::PeriodicField field(model.hb, model.discretisation,
-                                    nsm::solve_on_branch(model.hb, scene, backbone, omega), sign);
+                                    nsm::solve_on_branch(model.hb, scene, backbone, omega));
     return nsm::verify_in_time(field, model.discretisation, scene);
   }
 } // namespace

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <nsm/harmonic_balance/active_set.h>
+#include <nsm/model/contact_law.h>
 #include <nsm/model/receptance.h>
 #include <nsm/scene/scene.h>
 #include <nsm/harmonic_balance/solution_measures.h>
@@ -92,6 +93,9 @@ namespace nsm
 
     const Receptance &receptance() const { return receptance_; }
 
+    /// The contact law it balances.
+    const ContactLaw &law() const { return law_; }
+
     const HarmonicBalanceCost &cost() const { return cost_; }
 
     void record_linear_solve(double seconds) const
@@ -116,9 +120,7 @@ namespace nsm
     HarmonicBasis       basis_;
     Integration         integration_;
     double              alpha_gamma0_; ///< alpha gamma(0): q's constant term
-    double              sign_;         ///< s
-    double              alpha_;
-    double              gap_;
+    ContactLaw          law_;
     double              gamma0_;
     double              force_scale_;
     TrigonometricBasis  functions_;

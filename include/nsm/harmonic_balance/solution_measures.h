@@ -5,6 +5,7 @@
 #pragma once
 
 #include <nsm/harmonic_balance/active_set.h>
+#include <nsm/model/contact_law.h>
 #include <nsm/harmonic_balance/trigonometric.h>
 
 #include <vector>
@@ -59,8 +60,8 @@ namespace nsm
     std::vector<double> harmonic_energies(const PhasedSolution &solution) const;
 
     /// Largest and least contact force, least gap and largest |lambda g| at
-    /// the active set's samples, against the wall at `gap`; `sign` is s.
-    void force_and_gap(const PhasedSolution &solution, const ActiveSet &samples, double sign, double gap,
+    /// the active set's samples, against the wall of the contact law.
+    void force_and_gap(const PhasedSolution &solution, const ActiveSet &samples, const ContactLaw &law,
                        PeriodicSolutionMeasures &result) const;
 
   private:

@@ -19,11 +19,8 @@ namespace nsm
     /// u_i = h_k (b_i / gamma_k), with h_k = (K - (kW)^2 M)^{-1} e_N: the
     /// receptance field scaled to the contact displacement, bounded at a pole
     /// of gamma (where b_i stays finite); near a zero of gamma, where b_i and
-    /// gamma_k both vanish, the same u_i is -s h_k a_i.
-    PeriodicField(HarmonicBalance       &hb,
-                  const Discretisation  &discretisation,
-                  const BackbonePoint   &point,
-                  ForceSign              sign);
+    /// gamma_k both vanish, the same u_i is -s h_k a_i (hb's contact law).
+    PeriodicField(HarmonicBalance &hb, const Discretisation &discretisation, const BackbonePoint &point);
 
     double omega() const { return point_.omega; }
     double period() const;

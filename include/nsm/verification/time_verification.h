@@ -7,6 +7,7 @@
 // balance at every t_{n+1}, on the wall or free of it.
 #pragma once
 
+#include <nsm/model/contact_law.h>
 #include <nsm/base/band_cholesky.h>
 #include <nsm/model/discretisation.h>
 #include <nsm/verification/fields.h>
@@ -34,7 +35,7 @@ namespace nsm
   {
   public:
     ContactTimeIntegrator(const Discretisation &discretisation,
-                          double                gap,
+                          const ContactLaw     &law,
                           double                period,
                           unsigned int          steps_per_period);
 
@@ -67,7 +68,8 @@ namespace nsm
     /// 4/dt^2 M~ + K, the matrix of each step.
     dealii::SparseMatrix<double> step_matrix() const;
 
-    const double                    gap_, dt_;
+    const ContactLaw                law_;
+    const double                    dt_;
     const unsigned int              steps_;
     const unsigned int              contact_, clamp_;
     dealii::SparseMatrix<double>    mass_;      ///< redistributed: no row or column at the contact DoF
