@@ -2,6 +2,7 @@
 // or in run_study() for a scene that is a study.
 #include <nsm/app/pipeline.h>
 #include <nsm/scene/scene.h>
+#include <nsm/base/interruption.h>
 #include <nsm/base/threads.h>
 #include <nsm/study/study.h>
 
@@ -28,7 +29,11 @@ namespace
             nsm::print_report(nsm::run_scene(file.scene), std::cout);
             return 0;
           }
+        // A study stops at the next row boundary on SIGINT or SIGTERM: the
+        // rows written so far are kept, and a rerun resumes.
+        // (after MPI_Init, which sets handlers of its own).
         mpi.emplace(argc, argv, 1);
+        nsm::catch_stop_signals();
         const bool           root   = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
         const nsm::RunReport report = nsm::run_study(path, file);
         if (root)
@@ -36,7 +41,12 @@ namespace
             std::cout << "nsm-bar: study " << path << '\n';
             nsm::print_report(report, std::cout);
           }
-        return 0;
+        if (report.stopped_by == 0)
+          return 0;
+        if (root)
+          std::cerr << "nsm-bar: stopped by " << nsm::stop_signal_name(report.stopped_by)
+                    << "; study.csv holds the rows done, a rerun computes the others\n";
+        return nsm::stop_exit_code(report.stopped_by);
       }
     catch (const nsm::InputError &e)
       {
@@ -102,7 +112,7 @@ int main(int argc, char **argv)
   const int code = run(argc, argv, argument, mpi);
   // A rank that failed alone would leave the others waiting in a collective;
   // bad input fails on every rank alike.
-  if (code != 0 && code != 2 && mpi && dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+  if (code != 0 && code != 2 && code < 128 && mpi && dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
     MPI_Abort(MPI_COMM_WORLD, code);
   return code;
 }

@@ -1,3 +1,4 @@
+#include <nsm/continuation/constants.h>
 #include <nsm/continuation/arclength_steps.h>
 #include <nsm/continuation/loca_arclength.h>
 #include <nsm/continuation/sequential_steps.h>
@@ -132,10 +133,19 @@ namespace nsm
     };
   } // namespace
 
+  SegmentEnd ArclengthSteps::trace(BranchContext &context, Backbone &backbone, const unsigned int segment) const
+  {
+    if (context.beyond(context.near_end, backbone.points.back().omega))
+      if (const SegmentEnd end = sequential_segment(context, backbone, segment, true); end != SegmentEnd::approach)
+        return end;
+    return arclength_segment(context, backbone, segment);
+  }
+
   SegmentEnd arclength_segment(BranchContext &context, Backbone &backbone, const unsigned int segment)
   {
     const auto &c = context.scene.continuation;
-    for (double step = std::min(c.initial_step, context.max_step()); step >= c.min_step; step /= 4)
+    for (double step = std::min(c.initial_step, context.max_step()); step >= c.min_step;
+         step /= continuation_constants::step_shrink)
       if (const SegmentEnd end = ArclengthRun(context, backbone, segment).run(step); end != SegmentEnd::jump)
         return end;
     return SegmentEnd::fold;

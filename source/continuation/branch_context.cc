@@ -1,3 +1,4 @@
+#include <nsm/continuation/constants.h>
 #include <nsm/continuation/branch_context.h>
 #include <nsm/continuation/continuation.h>
 
@@ -58,7 +59,7 @@ namespace nsm
     Scene::HarmonicBalance leap_parameters(Scene::HarmonicBalance params)
     {
       params.line_search    = "Polynomial";
-      params.max_iterations *= 2;
+      params.max_iterations *= continuation_constants::leap_iteration_factor;
       return params;
     }
   } // namespace
@@ -129,7 +130,7 @@ namespace nsm
 
   double BranchContext::max_step() const
   {
-    return std::min(scene.continuation.max_step, span / 10);
+    return std::min(scene.continuation.max_step, span / continuation_constants::steps_per_span);
   }
 
   NewtonCost BranchContext::newton_cost() const

@@ -1,10 +1,10 @@
-#include <nsm/continuation/arclength_steps.h>
 #include <nsm/continuation/branch_context.h>
 #include <nsm/continuation/continuation.h>
 #include <nsm/continuation/grazing_start.h>
 #include <nsm/continuation/leap.h>
 #include <nsm/continuation/main_branch.h>
 #include <nsm/continuation/range_end.h>
+#include <nsm/continuation/segment_tracer.h>
 #include <nsm/continuation/sequential_steps.h>
 
 #include <algorithm>
@@ -37,14 +37,10 @@ namespace nsm
     /// Max steps, or a leap that finds no branch.
     void trace(BranchContext &context, Backbone &backbone)
     {
+      const std::unique_ptr<SegmentTracer> method = make_segment_tracer(context.scene.continuation.method);
       for (unsigned int segment = 0;; ++segment)
         {
-          const bool sequential = context.scene.continuation.method == ContinuationMethod::sequential ||
-                                  context.beyond(context.near_end, backbone.points.back().omega);
-          SegmentEnd end = sequential ? sequential_segment(context, backbone, segment) :
-                                        arclength_segment(context, backbone, segment);
-          if (end == SegmentEnd::approach)
-            end = arclength_segment(context, backbone, segment);
+          const SegmentEnd end   = method->trace(context, backbone, segment);
           const double omega = backbone.points.back().omega;
           if (end == SegmentEnd::range)
             {

@@ -1,3 +1,4 @@
+#include <nsm/continuation/constants.h>
 #include <nsm/continuation/grazing_start.h>
 
 #include <cmath>
@@ -67,7 +68,7 @@ namespace nsm
     // in it.
     if (const double start = w * (1 + context.direction * c.grazing_offset); context.beyond(start, context.far_end))
       range_misses_branch(context, mode, w, start);
-    for (double offset = c.grazing_offset; offset < c.search_reach; offset *= 2)
+    for (double offset = c.grazing_offset; offset < c.search_reach; offset *= continuation_constants::search_growth)
       {
         const double omega = w * (1 + context.direction * offset);
         if (context.beyond(omega, context.far_end))

@@ -1,3 +1,4 @@
+#include <nsm/continuation/constants.h>
 #include <nsm/continuation/leap.h>
 
 #include <algorithm>
@@ -69,107 +70,155 @@ namespace nsm
         return s.str();
       }
     };
+      /// One leap from the front of the segment that ended: its guesses in
+    /// turn, each step a method of its own (leap.h says in which order).
+    class Leap
+    {
+    public:
+      Leap(BranchContext &context, Backbone &backbone, const unsigned int segment)
+        : context_(context)
+        , backbone_(backbone)
+        , c_(context.scene.continuation)
+        , segment_(segment)
+        , first_(last_segment_start(backbone))
+        , front_(backbone.points[leap_front(context, backbone, first_)])
+        , reach_(c_.search_reach * front_.omega)
+        // A front high on a tongue (a previous leap may have landed there)
+        // must not bar the way back down: landings may go as low as the least
+        // energy written within reach behind the front, divided by Leap
+        // energy ratio.
+        , least_(least_energy_behind(context, backbone, front_.omega, reach_))
+      {}
+
+      /// The last resort, where the previous leap landed on a tongue that ends
+      /// in a fold no guess gets past, is the last point before that leap. A
+      /// branch that goes on above Energy max is not lost: fewer harmonics
+      /// would not bring it back below.
+      bool run()
+      {
+        if (from_guesses(false) || (first_ > 0 && from_guesses(true)) ||
+            (!tally_.left_energy_range() && from_fewer_harmonics()))
+          return true;
+        record_loss();
+        return false;
+      }
+
+    private:
+      /// Newton from a guess; the first landing within the energy bounds
+      /// starts the new segment.
+      bool lands(const double omega, const std::vector<double> &guess, const char *how)
+      {
+        BackbonePoint point;
+        if (tally_.solves++ == 0 || context_.beyond(omega, tally_.furthest))
+          tally_.furthest = omega;
+        if (!context_.solve(omega, guess, segment_, point, true))
+          {
+            tally_.failed(context_.last_failure());
+            return false;
+          }
+        const double e = point.measures.energy, energy = front_.measures.energy;
+        if (!(e < c_.leap_energy_ratio * energy && e > least_ / c_.leap_energy_ratio))
+          ++tally_.outside;
+        else if (!(e <= c_.energy_max))
+          ++tally_.above_energy_max;
+        else
+          {
+            backbone_.events.push_back(event_message(how, omega));
+            ++backbone_.leaps;
+            backbone_.points.push_back(std::move(point));
+            return true;
+          }
+        return false;
+      }
+
+      /// Omega at `distance` beyond the front, the range's far end at most.
+      double beyond_front(const double distance) const
+      {
+        const double omega = front_.omega + context_.direction * distance;
+        return context_.beyond(omega, context_.far_end) ? context_.far_end : omega;
+      }
+
+      /// Guesses at distances growing from Initial step to the reach beyond
+      /// the front: the front, the segment's first point and the impulsive
+      /// guess, or (`last_resort`) the last point before the segment alone.
+      bool from_guesses(const bool last_resort)
+      {
+        for (double distance = c_.initial_step; distance <= reach_ && context_.beyond(context_.far_end, front_.omega);
+             distance *= continuation_constants::search_growth)
+          {
+            const double omega = beyond_front(distance);
+            context_.hb.set_omega(omega);
+            const std::vector<std::vector<double>> guesses =
+              last_resort ? std::vector<std::vector<double>>{backbone_.points[first_ - 1].x} :
+                            std::vector<std::vector<double>>{front_.x, backbone_.points[first_].x,
+                                                             context_.hb.grazing_guess()};
+            for (const std::vector<double> &guess : guesses)
+              if (!guess.empty() && lands(omega, guess,
+                                          last_resort ? "leapt to a new segment from the fold before the tongue" :
+                                                        "leapt to a new segment"))
+                return true;
+            if (omega == context_.far_end)
+              break;
+          }
+        return false;
+      }
+
+      /// The main points of the branch with half the harmonics within reach
+      /// beyond the front, nearest first.
+      std::vector<const BackbonePoint *> fewer_harmonics_near_front()
+      {
+        std::vector<const BackbonePoint *> near;
+        const Backbone                    *fewer = context_.fewer_harmonics();
+        if (!fewer)
+          return near;
+        for (const BackbonePoint &q : fewer->points)
+          if (q.branch == Branch::main && context_.beyond(q.omega, front_.omega) &&
+              std::abs(q.omega - front_.omega) <= reach_)
+            near.push_back(&q);
+        std::sort(near.begin(), near.end(), [&](const BackbonePoint *a, const BackbonePoint *b) {
+          return std::abs(a->omega - front_.omega) < std::abs(b->omega - front_.omega);
+        });
+        return near;
+      }
+
+      /// Each of those points at its own Omega, its higher harmonics zero.
+      bool from_fewer_harmonics()
+      {
+        for (const BackbonePoint *q : fewer_harmonics_near_front())
+          {
+            std::vector<double> guess(context_.hb.n_unknowns(), 0.0);
+            std::copy(q->x.begin(), q->x.end(), guess.begin());
+            if (lands(q->omega, guess, "leapt to a new segment from the branch with half the harmonics"))
+              return true;
+          }
+        return false;
+      }
+
+      /// How the backbone ended, and what the leap's Newton solves ended in.
+      void record_loss()
+      {
+        const bool above = tally_.left_energy_range();
+        backbone_.end    = above ? BackboneEnd::energy_max : BackboneEnd::lost;
+        backbone_.events.push_back(
+          event_message(above ? "branch goes on only above Energy max after the fold" : "branch lost after the fold",
+                        front_.omega) +
+          tally_.text(least_ / c_.leap_energy_ratio, c_.leap_energy_ratio * front_.measures.energy, c_.energy_max,
+                      context_.scene.harmonic_balance.max_iterations));
+      }
+
+      BranchContext                &context_;
+      Backbone                     &backbone_;
+      const Scene::Continuation    &c_;
+      const unsigned int            segment_;
+      const std::size_t             first_;
+      const BackbonePoint           front_;
+      const double                  reach_, least_;
+      LeapTally                     tally_;
+    };
   } // namespace
 
   bool leap(BranchContext &context, Backbone &backbone, const unsigned int segment)
   {
-    const auto         &c      = context.scene.continuation;
-    const std::size_t   first  = last_segment_start(backbone);
-    const BackbonePoint front  = backbone.points[leap_front(context, backbone, first)];
-    const double        energy = front.measures.energy;
-    const double        reach  = c.search_reach * front.omega;
-    // A front high on a tongue (a previous leap may have landed there) must
-    // not bar the way back down: landings may go as low as the least energy
-    // written within reach behind the front, divided by Leap energy ratio.
-    const double least = least_energy_behind(context, backbone, front.omega, reach);
-
-    // Newton from a guess; the first landing within the energy bounds starts
-    // the new segment.
-    LeapTally  tally;
-    const auto landed = [&](const double omega, const std::vector<double> &guess, const char *how) {
-      BackbonePoint point;
-      if (tally.solves++ == 0 || context.beyond(omega, tally.furthest))
-        tally.furthest = omega;
-      if (!context.solve(omega, guess, segment, point, true))
-        {
-          tally.failed(context.last_failure());
-          return false;
-        }
-      const double e = point.measures.energy;
-      if (!(e < c.leap_energy_ratio * energy && e > least / c.leap_energy_ratio))
-        ++tally.outside;
-      else if (!(e <= c.energy_max))
-        ++tally.above_energy_max;
-      else
-        {
-          backbone.events.push_back(event_message(how, omega));
-          ++backbone.leaps;
-          backbone.points.push_back(std::move(point));
-          return true;
-        }
-      return false;
-    };
-    // Guesses at growing distances beyond the front.
-    const auto land = [&](const bool last_resort) {
-      for (double distance = c.initial_step;
-           distance <= reach && context.beyond(context.far_end, front.omega);
-           distance *= 2)
-        {
-          const double omega = context.beyond(front.omega + context.direction * distance, context.far_end) ?
-                                 context.far_end :
-                                 front.omega + context.direction * distance;
-          context.hb.set_omega(omega);
-          const std::vector<std::vector<double>> guesses =
-            last_resort ? std::vector<std::vector<double>>{backbone.points[first - 1].x} :
-                          std::vector<std::vector<double>>{front.x, backbone.points[first].x,
-                                                           context.hb.grazing_guess()};
-          for (const std::vector<double> &guess : guesses)
-            if (!guess.empty() &&
-                landed(omega, guess,
-                       last_resort ? "leapt to a new segment from the fold before the tongue" :
-                                     "leapt to a new segment"))
-              return true;
-          if (omega == context.far_end)
-            break;
-        }
-      return false;
-    };
-    // The main points of the branch with half the harmonics within reach,
-    // nearest first, their higher harmonics zero.
-    const auto land_from_fewer_harmonics = [&]() {
-      const Backbone *fewer = context.fewer_harmonics();
-      if (!fewer)
-        return false;
-      std::vector<const BackbonePoint *> near;
-      for (const BackbonePoint &q : fewer->points)
-        if (q.branch == Branch::main && context.beyond(q.omega, front.omega) &&
-            std::abs(q.omega - front.omega) <= reach)
-          near.push_back(&q);
-      std::sort(near.begin(), near.end(), [&](const BackbonePoint *a, const BackbonePoint *b) {
-        return std::abs(a->omega - front.omega) < std::abs(b->omega - front.omega);
-      });
-      for (const BackbonePoint *q : near)
-        {
-          std::vector<double> guess(context.hb.n_unknowns(), 0.0);
-          std::copy(q->x.begin(), q->x.end(), guess.begin());
-          if (landed(q->omega, guess, "leapt to a new segment from the branch with half the harmonics"))
-            return true;
-        }
-      return false;
-    };
-    // The last resort, where the previous leap landed on a tongue that ends in
-    // a fold no guess gets past: the last point before that leap, before the
-    // tongue. A branch that goes on above Energy max is not lost: fewer
-    // harmonics would not bring it back below.
-    if (land(false) || (first > 0 && land(true)) || (!tally.left_energy_range() && land_from_fewer_harmonics()))
-      return true;
-    backbone.end = tally.left_energy_range() ? BackboneEnd::energy_max : BackboneEnd::lost;
-    backbone.events.push_back(
-      event_message(tally.left_energy_range() ? "branch goes on only above Energy max after the fold" :
-                                                "branch lost after the fold",
-                    front.omega) +
-      tally.text(least / c.leap_energy_ratio, c.leap_energy_ratio * energy, c.energy_max,
-                 context.scene.harmonic_balance.max_iterations));
-    return false;
+    return Leap(context, backbone, segment).run();
   }
 } // namespace nsm

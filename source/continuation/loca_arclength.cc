@@ -1,3 +1,4 @@
+#include <nsm/continuation/constants.h>
 #include <nsm/continuation/loca_arclength.h>
 #include <nsm/harmonic_balance/nox_hb_system.h>
 
@@ -128,7 +129,7 @@ namespace nsm
       stepper.set("Enable Arc Length Scaling", false);
       auto &step = params->sublist("LOCA").sublist("Step Size");
       step.set("Method", "Adaptive");
-      step.set("Aggressiveness", 1.0);
+      step.set("Aggressiveness", continuation_constants::loca_aggressiveness);
       step.set("Initial Step Size", direction * initial_step);
       step.set("Min Step Size", c.min_step);
       step.set("Max Step Size", c.max_step);
@@ -177,7 +178,7 @@ namespace nsm
           throw Stop();
       };
       auto status = Teuchos::rcp(new NOX::StatusTest::Combo(NOX::StatusTest::Combo::OR));
-      status->addStatusTest(newton_status(scene.harmonic_balance, 0.1));
+      status->addStatusTest(newton_status(scene.harmonic_balance, continuation_constants::loca_corrector_tolerance_factor));
       status->addStatusTest(Teuchos::rcp(new StaysInContact(hb)));
       LOCA::Stepper locaStepper(data, group, status, params);
       try

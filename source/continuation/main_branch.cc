@@ -1,3 +1,4 @@
+#include <nsm/continuation/constants.h>
 #include <nsm/continuation/main_branch.h>
 
 #include <algorithm>
@@ -12,9 +13,7 @@ namespace nsm
     /// harmonic_excess() with the total energy given.
     double excess(const std::vector<double> &energies, const unsigned int k, const double total)
     {
-      // k = 0 is the static part, k = 1 the fundamental, and k = 2 has no
-      // oscillating neighbour below it.
-      if (k < 3 || k >= energies.size())
+      if (k < continuation_constants::first_compared_harmonic || k >= energies.size())
         return 0;
       // The geometric mean of the same-parity neighbours follows a smooth
       // decay, and the odd-even alternation of symmetric motions.
@@ -45,7 +44,7 @@ namespace nsm
   {
     const double   total = total_of(energies);
     SpectralExcess worst{0, -std::numeric_limits<double>::infinity()};
-    for (unsigned int k = 3; k < energies.size(); ++k)
+    for (unsigned int k = continuation_constants::first_compared_harmonic; k < energies.size(); ++k)
       if (const double share = excess(energies, k, total); share > worst.share)
         worst = {k, share};
     return worst.harmonic == 0 ? SpectralExcess{0, 0.0} : worst;

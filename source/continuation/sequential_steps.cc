@@ -1,3 +1,4 @@
+#include <nsm/continuation/constants.h>
 #include <nsm/continuation/sequential_steps.h>
 
 #include <algorithm>
@@ -37,7 +38,8 @@ namespace nsm
     }
   } // namespace
 
-  SegmentEnd sequential_segment(BranchContext &context, Backbone &backbone, const unsigned int segment)
+  SegmentEnd sequential_segment(BranchContext &context, Backbone &backbone, const unsigned int segment,
+                                const bool hand_over)
   {
     const auto       &c     = context.scene.continuation;
     double            step  = std::min(c.initial_step, context.max_step());
@@ -48,7 +50,7 @@ namespace nsm
         if (current.omega == context.far_end)
           return SegmentEnd::range;
         const bool before = context.beyond(context.near_end, current.omega);
-        if (!before && c.method == ContinuationMethod::arclength)
+        if (!before && hand_over)
           return SegmentEnd::approach;
         double omega = current.omega + context.direction * step;
         if (before && context.beyond(omega, context.near_end))
@@ -61,13 +63,12 @@ namespace nsm
           {
             if (point.measures.energy > c.energy_max)
               return SegmentEnd::tongue;
-            if (point.newton_iterations <= 4)
-              step = std::min(1.5 * step, context.max_step());
+            if (point.newton_iterations <= continuation_constants::easy_iterations)
+              step = std::min(continuation_constants::step_growth * step, context.max_step());
             backbone.points.push_back(std::move(point));
             continue;
           }
-        // Shrink fast: at a fold every smaller step fails too.
-        step /= 4;
+        step /= continuation_constants::step_shrink;
         if (step < c.min_step)
           return SegmentEnd::fold;
       }

@@ -1,6 +1,7 @@
 #include <nsm/continuation/continuation.h>
 #include <nsm/base/csv.h>
 #include <nsm/output/plots.h>
+#include <nsm/base/interruption.h>
 #include <nsm/base/progress.h>
 #include <nsm/study/study.h>
 #include <nsm/study/study_combinations.h>
@@ -281,24 +282,36 @@ namespace nsm
                 packed = pack_row(missing_[mine], cells);
               }
             const std::vector<std::string> gathered = dealii::Utilities::MPI::gather(comm_, packed, 0);
-            if (!root())
-              continue;
-            keep_rows(gathered);
-            write_csv(directory(), table_);
-            progress.update([&] { return progress_line(std::min(missing_.size(), round + ranks_)); });
+            if (root())
+              {
+                keep_rows(gathered);
+                write_csv(directory(), table_);
+                ran_ = std::min(missing_.size(), round + ranks_);
+                progress.update([&] { return progress_line(ran_); });
+              }
+            // A stop asked of any rank stops every rank after the same round.
+            if ((stopped_by_ = dealii::Utilities::MPI::max(stop_signal(), comm_)) != 0)
+              return;
           }
       }
+
+      /// The signal that stopped the study after a round; 0 if none did.
+      int stopped_by() const { return stopped_by_; }
 
       /// The summary's lines (rank 0): rows, the fine reference's lines,
       /// then the Pareto front.
       std::vector<std::string> notes(const std::vector<std::string> &reference_notes) const
       {
         std::ostringstream note;
-        note << "study: " << counted(combinations_.size(), "row") << ", " << missing_.size() << " run now on "
+        note << "study: " << counted(combinations_.size(), "row") << ", " << ran_ << " run now on "
              << counted(ranks_, "rank") << ", " << resumed() << " from an earlier run, " << failed_ << " failed; "
              << counted(ended_early(), "row") << " ended before the Omega range's end (backbone_end)"
              << left_out_note(base_.study, combinations_.size());
         std::vector<std::string> lines{note.str()};
+        if (stopped_by_)
+          lines.push_back(std::string("stopped by ") + stop_signal_name(stopped_by_) + " after " +
+                          std::to_string(resumed() + ran_) + " of " + counted(combinations_.size(), "row") +
+                          ": a rerun of the same scene computes the others");
         lines.insert(lines.end(), reference_notes.begin(), reference_notes.end());
         for (std::string &line : pareto_notes(table_, key_size_))
           lines.push_back(std::move(line));
@@ -363,6 +376,8 @@ namespace nsm
       std::map<std::vector<std::string>, std::vector<CsvCell>> rows_;
       std::vector<std::size_t>            missing_;
       unsigned int                        failed_ = 0;
+      int                                 stopped_by_ = 0;
+      std::size_t                         ran_        = 0; ///< rows computed in this run
     };
   } // namespace
 
@@ -376,6 +391,7 @@ namespace nsm
 
     RunReport report;
     report.stages.push_back(study.timing());
+    report.stopped_by = study.stopped_by();
     if (!study.root())
       return report;
     report.notes = study.notes(reference_notes);

@@ -1,13 +1,20 @@
 #!/usr/bin/env python3
 """Plants deliberate bugs, one at a time, and checks that the suite catches each.
 
-usage: run_mutations.py [WORK_DIRECTORY]   (default /tmp/nsm-mutations)
-Copies the tracked sources of this repository into WORK_DIRECTORY/src, builds
-them once, checks that the unmutated suite passes, then for each mutation:
-applies it, rebuilds (only what it touches), runs CTest, and restores the
-file. Fails unless every mutation makes at least one test fail. Run by
-.ci/run, not part of CTest.
+usage: run_mutations.py [WORK_DIRECTORY] [--only REGEX] [--sample N]
+       run_mutations.py --in-place [--only REGEX] [--sample N]
+Copies the tracked sources of this repository into WORK_DIRECTORY/src
+(default /tmp/nsm-mutations), builds them once and checks that the unmutated
+suite passes; with --in-place (CI, on a disposable clone) it mutates this
+tree itself and rebuilds build/, which ./test.sh has just built and tested.
+Then for each mutation: applies it, rebuilds nsm-bar and the unit tests,
+runs CTest, and restores the file. Fails unless every mutation makes at least
+one test fail. --only runs the mutations whose name matches REGEX; --sample N
+runs an N-th of them, those whose index is the commit count modulo N, so that
+N consecutive commits run every one. Not part of CTest.
 """
+import argparse
+import signal
 import os
 import re
 import shutil
@@ -19,13 +26,15 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 
 # (name, file, text, replacement): the text must occur exactly once.
 MUTATIONS = [
-    ("wall at g0 / 2", "source/harmonic_balance/harmonic_balance.cc",
-     ", gap_(scene.contact.gap)", ", gap_(0.5 * scene.contact.gap)"),
-    ("gap doubled", "source/harmonic_balance/harmonic_balance.cc",
-     ", gap_(scene.contact.gap)", ", gap_(2 * scene.contact.gap)"),
-    ("force sign flipped", "source/harmonic_balance/harmonic_balance.cc",
-     "sign_(scene.contact.sign == ForceSign::physical ? 1.0 : -1.0)",
-     "sign_(scene.contact.sign == ForceSign::physical ? -1.0 : 1.0)"),
+    ("harmonic balance's wall at g0 / 2", "source/harmonic_balance/harmonic_balance.cc",
+     "force_scale_  = law_.gap() / gamma0_;", "force_scale_  = 0.5 * law_.gap() / gamma0_;"),
+    ("harmonic balance's gap doubled", "source/harmonic_balance/harmonic_balance.cc",
+     "force_scale_  = law_.gap() / gamma0_;", "force_scale_  = 2 * law_.gap() / gamma0_;"),
+    ("the contact law's gap 10 % off", "source/model/contact_law.cc",
+     "    : gap_(contact.gap)", "    : gap_(1.1 * contact.gap)"),
+    ("force sign flipped", "source/model/contact_law.cc",
+     "sign_(contact.sign == ForceSign::physical ? 1.0 : -1.0)",
+     "sign_(contact.sign == ForceSign::physical ? -1.0 : 1.0)"),
     ("graded layer at the clamp", "source/model/discretisation.cc",
      "sizes[i] = std::pow(params.graded_ratio, i - first + 1);",
      "sizes[params.cells - 1 - i] = std::pow(params.graded_ratio, i - first + 1);"),
@@ -44,7 +53,7 @@ MUTATIONS = [
      "f -= near.contact_residues[j] / (lambda[j] - s);",
      "f -= 0 * near.contact_residues[j] / (lambda[j] - s);"),
     ("verification's wall at 2 g0", "source/verification/time_verification.cc",
-     "    : gap_(gap)", "    : gap_(2 * gap)"),
+     "    : law_(law)", "    : law_(ContactLaw(Scene::Contact{true, 2 * law.gap(), law.alpha(), ForceSign::physical}))"),
     ("verification loses the contact DoF's mass", "source/verification/time_verification.cc",
      "removed * std::abs(e->value()) / coupling", "0 * removed * std::abs(e->value()) / coupling"),
     ("exact taper reference with the end force's sign flipped", "source/model/exact_references.cc",
@@ -62,10 +71,10 @@ MUTATIONS = [
      "exceeds_envelope(point.measures.energy, least, scene.continuation.tongue_share) ?",
      "false ?"),
     ("leap without its last resort", "source/continuation/leap.cc",
-     "if (land(false) || (first > 0 && land(true)) ||", "if (land(false) ||"),
+     "if (from_guesses(false) || (first_ > 0 && from_guesses(true)) ||", "if (from_guesses(false) ||"),
     ("leap from the segment's first fold even behind its start", "source/continuation/leap.cc",
-     "backbone.points[leap_front(context, backbone, first)]",
-     "backbone.points[context.first_fold.value_or(backbone.points.size() - 1)]"),
+     ", front_(backbone.points[leap_front(context, backbone, first_)])",
+     ", front_(backbone.points[context.first_fold.value_or(backbone.points.size() - 1)])"),
     ("steps without the contact guard", "source/continuation/sequential_steps.cc",
      "<= c.max_contact_change))", "<= 1.0))"),
     ("a point between two of a segment need not continue them", "source/continuation/continuation.cc",
@@ -77,9 +86,9 @@ MUTATIONS = [
      "        if (p.branch == Branch::main)\n", "        if (p.branch == Branch::main || true)\n"),
     ("the range's end on a tongue's flank taken as the branch", "source/continuation/continuation.cc",
      "find_branch_below_at_end(context, backbone, segment);", "(void)segment;"),
-    ("study's time defects with the force sign flipped", "source/study/study_measures.cc",
-     "const PeriodicField field(hb, d, p, scene.contact.sign);",
-     "const PeriodicField field(hb, d, p, ForceSign::seed_eq5);"),
+    ("fields near a zero of gamma with the force sign flipped", "source/verification/fields.cc",
+     "hb.law().displacement(1.0, coefficients_.force[i]);",
+     "-hb.law().displacement(1.0, coefficients_.force[i]);"),
     ("the search at the range's end without the main points' guesses", "source/continuation/range_end.cc",
      "if (!above[i] && std::abs(", "if (false && std::abs("),
     ("a range's end climbing a tongue not searched", "source/continuation/range_end.cc",
@@ -91,7 +100,7 @@ MUTATIONS = [
     ("a lost branch blames no Newton solve on Max iterations", "source/harmonic_balance/newton_solver.cc",
      "status != NOX::StatusTest::Converged && iterations >= impl_->max_iterations}", "false}"),
     ("a study's row whose branch was lost reads as one that reached the range", "source/continuation/leap.cc",
-     "    backbone.end = tally.left_energy_range() ? BackboneEnd::energy_max : BackboneEnd::lost;\n", ""),
+     "        backbone_.end    = above ? BackboneEnd::energy_max : BackboneEnd::lost;\n", ""),
     ("a branch that rises above Energy max called lost", "source/continuation/leap.cc",
      "bool left_energy_range() const { return above_energy_max > 0; }",
      "bool left_energy_range() const { return false; }"),
@@ -111,8 +120,8 @@ MUTATIONS = [
     ("one front for all segments", "source/continuation/main_branch.cc",
      "if (i > 0 && points[i].segment != points[i - 1].segment)", "if (false)"),
     ("a leap from fewer harmonics starts from tongue points too", "source/continuation/leap.cc",
-     "if (q.branch == Branch::main && context.beyond(q.omega, front.omega) &&",
-     "if (context.beyond(q.omega, front.omega) &&"),
+     "if (q.branch == Branch::main && context_.beyond(q.omega, front_.omega) &&",
+     "if (context_.beyond(q.omega, front_.omega) &&"),
     ("a leap from fewer harmonics puts each harmonic in the next one's slot", "source/continuation/leap.cc",
      "std::copy(q->x.begin(), q->x.end(), guess.begin());",
      "std::copy(q->x.begin(), q->x.end() - 1, guess.begin() + 1);"),
@@ -142,8 +151,25 @@ def failed_tests(build, log):
     return failures
 
 
-def main():
-    work = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else "/tmp/nsm-mutations")
+def commit_count():
+    result = subprocess.run(["git", "rev-list", "--count", "HEAD"], cwd=ROOT, capture_output=True, text=True)
+    return int(result.stdout) if result.returncode == 0 else 0
+
+
+def selected(args):
+    chosen = list(enumerate(MUTATIONS))
+    if args.only:
+        chosen = [(i, m) for i, m in chosen if re.search(args.only, m[0])]
+    if args.sample:
+        turn = commit_count() % args.sample
+        chosen = [(i, m) for i, m in chosen if i % args.sample == turn]
+        print(f"sample {turn} of {args.sample} (commit {commit_count()}): "
+              f"{len(chosen)} of {len(MUTATIONS)} mutations", flush=True)
+    return [m for _, m in chosen]
+
+
+def copy_and_build(work):
+    """The tracked sources in work/src, built in work/build; their suite passes."""
     src, build = os.path.join(work, "src"), os.path.join(work, "build")
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(build)
@@ -153,40 +179,71 @@ def main():
         os.makedirs(os.path.dirname(os.path.join(src, path)) or src, exist_ok=True)
         shutil.copy2(os.path.join(ROOT, path), os.path.join(src, path))
     log = os.path.join(work, "build.log")
-    if run(["cmake", src, "-DCMAKE_BUILD_TYPE=Release"], build, log) or \
-            run(["make", "-j2"], build, log):
+    if run(["cmake", src, "-DCMAKE_BUILD_TYPE=Release"], build, log) or run(BUILD, build, log):
         sys.exit(f"the unmutated sources do not build: see {log}")
     baseline = failed_tests(build, os.path.join(work, "baseline.log"))
     if baseline:
         sys.exit(f"the unmutated suite fails: {baseline}")
     print("unmutated: all tests pass", flush=True)
-    survivors = []
-    for name, path, text, replacement in MUTATIONS:
-        start = time.time()
-        file = os.path.join(src, path)
-        with open(file) as f:
-            original = f.read()
-        assert original.count(text) == 1, f"{name}: the text occurs {original.count(text)} times"
+    return src, build
+
+
+# What the suite runs: the rest (benchmarks) need not be rebuilt.
+BUILD = ["make", "-j2", "nsm-bar", "unit_tests"]
+
+
+def try_mutation(mutation, src, build, work):
+    """Applies the mutation, rebuilds, runs the suite, restores the file;
+    returns the failing tests."""
+    name, path, text, replacement = mutation
+    file = os.path.join(src, path)
+    with open(file) as f:
+        original = f.read()
+    assert original.count(text) == 1, f"{name}: the text occurs {original.count(text)} times"
+    try:
         with open(file, "w") as f:
             f.write(original.replace(text, replacement))
-        try:
-            slug = re.sub(r"\W+", "_", name)
-            if run(["make", "-j2"], build, os.path.join(work, slug + ".build.log")):
-                failures = ["(does not build)"]
-            else:
-                failures = failed_tests(build, os.path.join(work, slug + ".log"))
-        finally:
-            with open(file, "w") as f:
-                f.write(original)
-        caught = bool(failures)
-        shown = ", ".join(failures[:6]) + (" ..." if len(failures) > 6 else "")
-        print(f"{'caught  ' if caught else 'SURVIVED'} {name}: {len(failures)} failing "
-              f"({shown}) [{time.time() - start:.0f} s]", flush=True)
-        if not caught:
-            survivors.append(name)
+        slug = re.sub(r"\W+", "_", name)
+        if run(BUILD, build, os.path.join(work, slug + ".build.log")):
+            return ["(does not build)"]
+        return failed_tests(build, os.path.join(work, slug + ".log"))
+    finally:
+        with open(file, "w") as f:
+            f.write(original)
+
+
+def main():
+    parser = argparse.ArgumentParser(description="Plants bugs and checks that the suite catches each.")
+    parser.add_argument("work", nargs="?", default="/tmp/nsm-mutations")
+    parser.add_argument("--in-place", action="store_true")
+    parser.add_argument("--only")
+    parser.add_argument("--sample", type=int)
+    args = parser.parse_args()
+    mutations = selected(args)
+    # A stop restores the mutated file (try_mutation's finally) before exiting.
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit("stopped"))
+    work = os.path.abspath(args.work)
+    if args.in_place:
+        src, build = ROOT, os.path.join(ROOT, "build")
+        os.makedirs(work, exist_ok=True)
+    else:
+        src, build = copy_and_build(work)
+    survivors = []
+    try:
+        for mutation in mutations:
+            start = time.time()
+            failures = try_mutation(mutation, src, build, work)
+            shown = ", ".join(failures[:6]) + (" ..." if len(failures) > 6 else "")
+            print(f"{'caught  ' if failures else 'SURVIVED'} {mutation[0]}: {len(failures)} failing "
+                  f"({shown}) [{time.time() - start:.0f} s]", flush=True)
+            if not failures:
+                survivors.append(mutation[0])
+    finally:
+        if args.in_place:  # leave build/ as the unmutated sources build it
+            run(BUILD, build, os.path.join(work, "restore.log"))
     if survivors:
         sys.exit(f"mutations not caught: {survivors}")
-    print("every mutation is caught")
+    print(f"every mutation is caught ({len(mutations)})")
 
 
 if __name__ == "__main__":

@@ -130,24 +130,58 @@ def ranks(executable, studies):
     print(f"{len(a)} rows identical, costs aside")
 
 
+def blocked_writing_stderr(pid):
+    """The process waits in write(2, ...) (Linux's /proc/PID/syscall)."""
+    try:
+        with open(f"/proc/{pid}/syscall") as f:
+            fields = f.read().split()
+    except OSError:
+        return False
+    return len(fields) > 1 and fields[0] == "1" and int(fields[1], 16) == 2
+
+
+def full_pipe():
+    """A pipe whose buffer is full: the first write to it waits for a read."""
+    read_end, write_end = os.pipe()
+    os.set_blocking(write_end, False)
+    try:
+        while True:
+            os.write(write_end, b"x" * 4096)
+    except BlockingIOError:
+        pass
+    os.set_blocking(write_end, True)  # the study's writes must wait, not fail
+    return read_end, write_end
+
+
 def resume(executable, studies):
     whole = fresh("resume_whole", studies, "resume.prm")
     run([executable, "resume.prm"], whole)
     expected = read(os.path.join(whole, "out", "study.csv"))
 
+    # The study announces each row it wrote on stderr (Progress every is
+    # tiny). With stderr a full pipe, it waits in its first announcement,
+    # after its first row: SIGTERM sent then must stop it after that row,
+    # whatever the machine's load. No timer races the study.
     directory = fresh("resume_stopped", studies, "resume.prm")
     study = os.path.join(directory, "out", "study.csv")
+    read_end, write_end = full_pipe()
     process = subprocess.Popen([executable, "resume.prm"], cwd=directory,
-                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    while process.poll() is None and not os.path.exists(study):
-        time.sleep(0.005)
+                               stdout=subprocess.DEVNULL, stderr=write_end)
+    os.close(write_end)
+    deadline = time.time() + 300
+    while not blocked_writing_stderr(process.pid):
+        assert process.poll() is None and time.time() < deadline, "the study never announced a row"
+        time.sleep(0.01)
     process.send_signal(signal.SIGTERM)
+    with os.fdopen(read_end, "rb") as pipe:
+        stderr = pipe.read().decode(errors="replace").lstrip("x")
     process.wait()
-    assert process.returncode == -signal.SIGTERM, "the study ended before SIGTERM"
+    assert process.returncode == 128 + signal.SIGTERM, (process.returncode, stderr)
+    assert stderr.strip().splitlines()[-1].startswith("nsm-bar: stopped by SIGTERM"), stderr
     stopped = read(study)  # complete CSV: read_csv would fail on a half row
     with open(study) as f:
         text = f.read()
-    assert text.endswith("\n") and 1 <= len(stopped) < len(expected), len(stopped)
+    assert text.endswith("\n") and len(stopped) == 1 < len(expected), len(stopped)
 
     result = run([executable, "resume.prm"], directory)
     done = len(stopped)

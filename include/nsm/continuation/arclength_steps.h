@@ -7,7 +7,7 @@
 // solved exactly at the end.
 #pragma once
 
-#include <nsm/continuation/branch_context.h>
+#include <nsm/continuation/segment_tracer.h>
 
 namespace nsm
 {
@@ -16,4 +16,12 @@ namespace nsm
   /// with a quarter of the step, down to Min step, where the segment ends at
   /// a fold. Records the segment's first fold in the context.
   SegmentEnd arclength_segment(BranchContext &context, Backbone &backbone, unsigned int segment);
+
+  /// Pseudo-arclength on the range; from a start before the range (grazing
+  /// below Omega min), sequential steps approach it first.
+  class ArclengthSteps : public SegmentTracer
+  {
+  public:
+    SegmentEnd trace(BranchContext &context, Backbone &backbone, unsigned int segment) const override;
+  };
 } // namespace nsm

@@ -2,7 +2,7 @@
 // predictor inside a segment, each solved by Newton at fixed Omega.
 #pragma once
 
-#include <nsm/continuation/branch_context.h>
+#include <nsm/continuation/segment_tracer.h>
 
 namespace nsm
 {
@@ -16,7 +16,18 @@ namespace nsm
   /// solve of at most 4 iterations, up to the context's max_step(), and is
   /// quartered on failure or on a jump to another branch, down to Min step
   /// (a fold). Steps stop exactly at the start of the range (coming from
-  /// before it) and at its end. With the arclength method it hands over
-  /// (`approach`) once the range is reached.
-  SegmentEnd sequential_segment(BranchContext &context, Backbone &backbone, unsigned int segment);
+  /// before it) and at its end. With `hand_over` it ends (`approach`) once
+  /// the range is reached: another method traces the range.
+  SegmentEnd sequential_segment(BranchContext &context, Backbone &backbone, unsigned int segment,
+                                bool hand_over = false);
+
+  /// The paper's method: sequential_segment.
+  class SequentialSteps : public SegmentTracer
+  {
+  public:
+    SegmentEnd trace(BranchContext &context, Backbone &backbone, unsigned int segment) const override
+    {
+      return sequential_segment(context, backbone, segment);
+    }
+  };
 } // namespace nsm

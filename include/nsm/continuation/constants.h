@@ -1,0 +1,35 @@
+// The continuation's algorithm constants, each named once with its reason.
+// What a user may need to tune is a scene parameter (Continuation/...).
+#pragma once
+
+namespace nsm::continuation_constants
+{
+  /// A step Newton solved in at most this many iterations was easy: the next
+  /// one may be longer.
+  constexpr unsigned int easy_iterations = 4;
+  /// How much longer, up to BranchContext::max_step().
+  constexpr double step_growth = 1.5;
+  /// A failed step or a jump to another branch divides the step by this: at
+  /// a fold every smaller step fails too, so the step shrinks fast.
+  constexpr double step_shrink = 4;
+  /// Steps never exceed the range covered so far divided by this, so that a
+  /// narrow range still gets points.
+  constexpr double steps_per_span = 10;
+  /// A leap starts far from the solution: its retry with a line search gets
+  /// this many times Max iterations.
+  constexpr unsigned int leap_iteration_factor = 2;
+  /// A leap's distances from the fold, and the grazing start's offsets, grow
+  /// by this factor up to Search reach: a doubling search covers the reach
+  /// in a few solves.
+  constexpr double search_growth = 2;
+  /// LOCA's adaptive step size control: its default aggressiveness.
+  constexpr double loca_aggressiveness = 1.0;
+  /// LOCA tests the norm of its extended (arclength) system: its corrector
+  /// converges to this fraction of the Newton tolerance, so that the HB
+  /// residual of a step it accepts meets the scene's tolerance.
+  constexpr double loca_corrector_tolerance_factor = 0.1;
+  /// The spectral criterion looks at harmonics from this one up: k = 0 is
+  /// the static part, 1 the fundamental, and 2 has no oscillating neighbour
+  /// of its parity below it.
+  constexpr unsigned int first_compared_harmonic = 3;
+} // namespace nsm::continuation_constants

@@ -1,0 +1,32 @@
+#include <nsm/base/interruption.h>
+
+#include <csignal>
+
+namespace nsm
+{
+  namespace
+  {
+    volatile std::sig_atomic_t requested = 0;
+
+    extern "C" void record_stop(const int signal) { requested = signal; }
+  } // namespace
+
+  void catch_stop_signals()
+  {
+    struct sigaction action = {};
+    action.sa_handler       = record_stop;
+    action.sa_flags         = SA_RESTART;
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, nullptr);
+    sigaction(SIGTERM, &action, nullptr);
+  }
+
+  int stop_signal() { return requested; }
+
+  int stop_exit_code(const int signal) { return 128 + signal; }
+
+  const char *stop_signal_name(const int signal)
+  {
+    return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal";
+  }
+} // namespace nsm
