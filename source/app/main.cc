@@ -4,6 +4,7 @@
 #include <nsm/scene/scene.h>
 #include <nsm/base/interruption.h>
 #include <nsm/base/threads.h>
+#include <nsm/scene/parameter_listing.h>
 #include <nsm/study/study.h>
 
 #include <deal.II/base/mpi.h>
@@ -86,7 +87,7 @@ int main(int argc, char **argv)
   const std::string usage =
     "usage: nsm-bar [SCENE.prm]   (default: " NSM_DEFAULT_SCENE ")\n"
     "       mpirun -np R nsm-bar STUDY.prm\n"
-    "       nsm-bar --print-parameters\n";
+    "       nsm-bar --print-parameters[=markdown]\n";
   if (argc > 2)
     {
       std::cerr << usage;
@@ -100,11 +101,14 @@ int main(int argc, char **argv)
                    "not be written whole\n";
       return 0;
     }
-  if (argument == "--print-parameters")
+  if (argument == "--print-parameters" || argument == "--print-parameters=markdown")
     {
       dealii::ParameterHandler prm;
       nsm::StudyScene::declare(prm);
-      prm.print_parameters(std::cout, dealii::ParameterHandler::PRM);
+      if (argument == "--print-parameters")
+        prm.print_parameters(std::cout, dealii::ParameterHandler::PRM);
+      else
+        nsm::print_parameters_markdown(prm, std::cout);
       return 0;
     }
   nsm::use_one_thread();

@@ -62,14 +62,15 @@ namespace nsm
     }
 
     /// The summary line of a field's verification.
-    std::string field_verification(const PeriodicField &field, const Discretisation &discretisation, const Scene &scene)
+    std::string field_verification(const PeriodicField &field, const Discretisation &discretisation,
+                                   const ContactLaw &law, const Scene::Output &output)
     {
-      const PointVerification v = verify_in_time(field, discretisation, scene);
+      const PointVerification v = verify_in_time(field, discretisation, law, output);
       std::ostringstream      s;
       s.precision(6);
       s << "field at Omega = " << field.omega() << " verified in time: one-period defect / g0 "
         << v.time.periodicity_defect << " (" << (v.verified ? "periodic" : "NOT periodic")
-        << " to Verify tolerance), after " << scene.output.verify_periods << " periods "
+        << " to Verify tolerance), after " << output.verify_periods << " periods "
         << v.time.periodicity_defect_end << ", impulse ratio " << v.impulse_ratio;
       return s.str();
     }
@@ -136,7 +137,7 @@ namespace nsm
 
       void receptance()
       {
-        timed("receptance", [&] { tables_.push_back(receptance_table(*receptance_, scene_)); });
+        timed("receptance", [&] { tables_.push_back(receptance_table(*receptance_, scene_.output)); });
       }
 
       void harmonic_balance()
@@ -155,7 +156,7 @@ namespace nsm
       {
         timed("verification in time", [&] {
           Progress progress("verification in time", scene_.output.progress_every);
-          verifications_ = verify_backbone(*hb_, *discretisation_, backbone_, scene_, progress);
+          verifications_ = verify_backbone(*hb_, *discretisation_, backbone_, scene_.output, progress);
           report_.notes.push_back(verification_summary(verifications_, scene_));
         });
       }
@@ -180,7 +181,7 @@ namespace nsm
               if (const BackbonePoint &p = fields_.back().point(); p.branch == Branch::tongue)
                 report_.notes.push_back(tongue_field_note(p));
               if (o.verify_in_time)
-                report_.notes.push_back(field_verification(fields_.back(), *discretisation_, scene_));
+                report_.notes.push_back(field_verification(fields_.back(), *discretisation_, hb_->law(), scene_.output));
               progress.update(report_count);
             }
           for (std::size_t i = 0; o.fields_every > 0 && i < backbone_.points.size(); i += o.fields_every)

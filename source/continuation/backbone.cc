@@ -6,14 +6,14 @@
 
 namespace nsm
 {
-  bool in_omega_range(const Scene &scene, const double omega)
+  bool in_omega_range(const Scene::Continuation &continuation, const double omega)
   {
-    return omega >= scene.continuation.omega_min && omega <= scene.continuation.omega_max;
+    return omega >= continuation.omega_min && omega <= continuation.omega_max;
   }
 
-  double branch_direction(const Scene &scene)
+  double branch_direction(const Scene::Contact &contact)
   {
-    return ContactLaw(scene.contact).sign();
+    return ContactLaw(contact).sign();
   }
 
   const char *backbone_end_name(const BackboneEnd end)

@@ -70,7 +70,7 @@ namespace nsm
     : hb(hb)
     , scene(scene)
     , resonances(std::move(resonances))
-    , direction(branch_direction(scene))
+    , direction(branch_direction(scene.contact))
     , near_end(direction > 0 ? scene.continuation.omega_min : scene.continuation.omega_max)
     , far_end(direction > 0 ? scene.continuation.omega_max : scene.continuation.omega_min)
     , newton_(hb, scene.harmonic_balance)

@@ -23,7 +23,7 @@ namespace nsm
       for (unsigned int k = 1; k <= top; ++k)
         {
           const double w = std::sqrt(receptance.poles()[j]);
-          if (w <= top * c.omega_max && in_omega_range(scene, w / k))
+          if (w <= top * c.omega_max && in_omega_range(c, w / k))
             found.push_back({w / k, j + 1, k});
         }
     std::sort(found.begin(), found.end(),
@@ -84,7 +84,7 @@ namespace nsm
     // Points traced on the way from grazing to the range are not written.
     auto &p = backbone.points;
     p.erase(std::remove_if(p.begin(), p.end(),
-                           [&](const BackbonePoint &q) { return !in_omega_range(scene, q.omega); }),
+                           [&](const BackbonePoint &q) { return !in_omega_range(scene.continuation, q.omega); }),
             p.end());
     label_branches(hb, scene, p);
     backbone.tongues = collect_tongues(p);

@@ -112,7 +112,7 @@ namespace nsm
     arclength_parameters(const Scene &scene, const BackbonePoint &start, const double initial_step)
     {
       const auto  &c         = scene.continuation;
-      const double direction = branch_direction(scene);
+      const double direction = branch_direction(scene.contact);
       auto         params    = Teuchos::rcp(new Teuchos::ParameterList);
       auto        &stepper   = params->sublist("LOCA").sublist("Stepper");
       stepper.set("Continuation Method", "Arc Length");

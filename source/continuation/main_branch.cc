@@ -136,7 +136,7 @@ namespace nsm
     /// Per point: above the envelope or behind its segment's front.
     std::vector<bool> off_main(const std::vector<BackbonePoint> &points, const Scene &scene)
     {
-      const double            direction = branch_direction(scene);
+      const double            direction = branch_direction(scene.contact);
       const std::vector<bool> above     = above_envelope(points, direction, scene.continuation.tongue_share);
       const std::vector<bool> behind    = behind_front(points, direction, above);
       std::vector<bool>       off(points.size());
@@ -174,7 +174,7 @@ namespace nsm
                    const std::vector<BackbonePoint> &points,
                    BackbonePoint                    &point)
   {
-    const double direction = branch_direction(scene);
+    const double direction = branch_direction(scene.contact);
     double       least     = point.measures.energy;
     for (const BackbonePoint &q : points)
       if (direction * (q.omega - point.omega) >= 0)

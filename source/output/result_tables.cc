@@ -37,10 +37,10 @@ namespace nsm
     return table;
   }
 
-  CsvTable receptance_table(const Receptance &receptance, const Scene &scene)
+  CsvTable receptance_table(const Receptance &receptance, const Scene::Output &output)
   {
     CsvTable table{"receptance.csv", {"omega", "gamma", "dgamma_domega2"}, {}};
-    for (const double w : scene.output.receptance_frequencies)
+    for (const double w : output.receptance_frequencies)
       {
         const ReceptanceValue v = receptance(w);
         table.rows.push_back({w, v.gamma, v.dgamma_domega2});

@@ -89,12 +89,12 @@ namespace nsm
     prm.declare_entry("Ratio",
                       text(d.graded_ratio),
                       Patterns::Double(1e-6, 1),
-                      "Size ratio of neighbouring cells in the graded layer.");
+                      "Size ratio of neighbouring cells in the graded layer; below 1 with Refinement = graded.");
     prm.declare_entry("Layers",
                       text(d.graded_layers),
                       Patterns::Integer(0, 1000000),
-                      "Cells at the contact end that shrink geometrically; at most Cells, and "
-                      "the smallest within the Round-off limit.");
+                      "Cells at the contact end that shrink geometrically; at least 1 with Refinement = "
+                      "graded, at most Cells, and the smallest within the Round-off limit.");
     prm.leave_subsection();
     prm.enter_subsection("Adaptive");
     prm.declare_entry("Steps", text(d.adaptive_steps), Patterns::Integer(0, 50), "Refinement steps at most.");

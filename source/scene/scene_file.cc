@@ -20,23 +20,6 @@ namespace nsm
   {
     namespace fs = std::filesystem;
 
-    /// A declared entry: its subsections, its name, its pattern.
-    struct Entry
-    {
-      std::vector<std::string> sections;
-      std::string              name;
-      std::string              default_value;
-      std::string              pattern;
-
-      std::string path() const
-      {
-        std::string p;
-        for (const std::string &s : sections)
-          p += s + "/";
-        return p + name;
-      }
-    };
-
     /// ParameterHandler's tree names replace each character that is not a
     /// letter or digit by '_' and two hexadecimal digits.
     std::string demangle(const std::string &name)
@@ -56,14 +39,15 @@ namespace nsm
 
     void collect(const boost::property_tree::ptree &tree,
                  std::vector<std::string>          &sections,
-                 std::vector<Entry>                &entries)
+                 std::vector<DeclaredEntry>        &entries)
     {
       for (const auto &[key, child] : tree)
         if (child.count("value") != 0)
           entries.push_back({sections,
                              demangle(key),
                              child.get<std::string>("default_value"),
-                             child.get<std::string>("pattern_description")});
+                             child.get<std::string>("pattern_description"),
+                             child.get<std::string>("documentation", "")});
         else
           {
             sections.push_back(demangle(key));
@@ -72,20 +56,8 @@ namespace nsm
           }
     }
 
-    std::vector<Entry> declared_entries(const dealii::ParameterHandler &prm)
-    {
-      std::stringstream json;
-      prm.print_parameters(json, dealii::ParameterHandler::JSON);
-      boost::property_tree::ptree tree;
-      boost::property_tree::read_json(json, tree);
-      std::vector<std::string> sections;
-      std::vector<Entry>       entries;
-      collect(tree, sections, entries);
-      return entries;
-    }
-
     template <typename Action>
-    void in_sections(dealii::ParameterHandler &prm, const Entry &entry, const Action &action)
+    void in_sections(dealii::ParameterHandler &prm, const DeclaredEntry &entry, const Action &action)
     {
       for (const std::string &s : entry.sections)
         prm.enter_subsection(s);
@@ -152,6 +124,18 @@ namespace nsm
     }
   } // namespace
 
+  std::vector<DeclaredEntry> declared_entries(const dealii::ParameterHandler &prm)
+  {
+    std::stringstream json;
+    prm.print_parameters(json, dealii::ParameterHandler::JSON);
+    boost::property_tree::ptree tree;
+    boost::property_tree::read_json(json, tree);
+    std::vector<std::string> sections;
+    std::vector<DeclaredEntry>       entries;
+    collect(tree, sections, entries);
+    return entries;
+  }
+
   std::string allowed_values(const std::string &description)
   {
     std::smatch match;
@@ -174,9 +158,9 @@ namespace nsm
 
     // Every entry as text first: deal.II's own pattern errors name neither
     // the subsection nor the range in words.
-    const std::vector<Entry> entries = declared_entries(prm);
+    const std::vector<DeclaredEntry> entries = declared_entries(prm);
     dealii::ParameterHandler text;
-    for (const Entry &entry : entries)
+    for (const DeclaredEntry &entry : entries)
       in_sections(text, entry, [&] {
         text.declare_entry(entry.name, entry.default_value, dealii::Patterns::Anything());
       });
@@ -193,7 +177,7 @@ namespace nsm
         throw InputError("scene '" + path + "' cannot be parsed: " + e.what());
       }
 
-    for (const Entry &entry : entries)
+    for (const DeclaredEntry &entry : entries)
       {
         std::string value;
         in_sections(text, entry, [&] { value = text.get(entry.name); });
@@ -208,11 +192,11 @@ namespace nsm
   {
     if (checks.empty())
       return;
-    const std::vector<Entry> entries = declared_entries(prm);
+    const std::vector<DeclaredEntry> entries = declared_entries(prm);
     for (const AllowedCheck &check : checks)
       {
         const auto entry = std::find_if(entries.begin(), entries.end(),
-                                        [&](const Entry &e) { return e.path() == check.entry_path; });
+                                        [&](const DeclaredEntry &e) { return e.path() == check.entry_path; });
         if (entry == entries.end())
           throw InputError("parameter '" + check.parameter + "': no scene parameter " + check.entry_path);
         if (!dealii::Patterns::pattern_factory(entry->pattern)->match(check.value))

@@ -82,7 +82,8 @@ namespace nsm
                       text(d.verify_tolerance),
                       Patterns::Double(1e-12, 1e3),
                       "A point whose one-period defect max |u(T) - u(0)| / g0 exceeds this is "
-                      "flagged verified = false.");
+                      "flagged verified = false, drawn as an open circle in backbone.png and counted in the "
+                      "summary.");
     prm.leave_subsection();
   }
 

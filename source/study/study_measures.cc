@@ -110,7 +110,7 @@ namespace nsm
       for (const BackbonePoint &p : m.solved)
         {
           const PeriodicField field(hb, d, p);
-          defects.push_back(verify_in_time(field, d, scene).time.periodicity_defect);
+          defects.push_back(verify_in_time(field, d, hb.law(), scene.output).time.periodicity_defect);
         }
       if (defects.empty())
         return;
@@ -238,7 +238,7 @@ namespace nsm
     m.newton_iterations = backbone.newton_cost.converged_iterations + backbone.newton_cost.failed_iterations;
     m.failed_solves     = backbone.newton_cost.failed_solves;
     m.backbone_end      = backbone_end_name(backbone.end);
-    m.omega_reached     = backbone.omega_reached(branch_direction(scene));
+    m.omega_reached     = backbone.omega_reached(branch_direction(scene.contact));
     m.energy_error_partial = ended_inside(backbone.end, m.omega_reached, study.backbone_omega_values);
     if (reference.mode_bar)
       main_point_errors(backbone, *reference.mode_bar, scene.contact.gap, m);

@@ -106,7 +106,10 @@ namespace nsm
     prm.declare_entry("Backbone omegas",
                       "",
                       Patterns::Anything(),
-                      "Measure the main-branch energy at these Omega, within [Omega min, Omega max].");
+                      "Measure the main-branch energy at these Omega (numbers and ranges a:b:n within [Omega min, Omega max]): "
+                      "Newton at exactly Omega from two main points of one segment that bracket it; its error "
+                      "where the exact mode is known (uniform bar, mode 1, physical sign), else against the "
+                      "fine reference (Reference cells).");
     prm.declare_entry("Reference degree",
                       "",
                       Patterns::Anything(),

@@ -194,10 +194,10 @@ namespace nsm
     return result;
   }
 
-  PointVerification verify_in_time(const PeriodicField &field, const Discretisation &discretisation, const Scene &scene)
+  PointVerification verify_in_time(const PeriodicField &field, const Discretisation &discretisation,
+                                   const ContactLaw &law, const Scene::Output &o)
   {
-    const auto                 &o = scene.output;
-    const ContactTimeIntegrator integrator(discretisation, ContactLaw(scene.contact), field.period(), o.verify_steps);
+    const ContactTimeIntegrator integrator(discretisation, law, field.period(), o.verify_steps);
     dealii::Vector<double>      u = field.displacement(0.0);
     integrator.make_admissible(u);
     PointVerification result{integrator.run(u, field.velocity(0.0), o.verify_periods), 0, false};
@@ -213,16 +213,15 @@ namespace nsm
   std::vector<std::optional<PointVerification>> verify_backbone(HarmonicBalance      &hb,
                                                                 const Discretisation &discretisation,
                                                                 const Backbone       &backbone,
-                                                                const Scene          &scene,
+                                                                const Scene::Output  &o,
                                                                 Progress             &progress)
   {
-    const auto                                    &o = scene.output;
     std::vector<std::optional<PointVerification>> results(backbone.points.size());
     for (std::size_t i = 0; i < results.size(); ++i)
       if (i % o.verify_every == 0 || (o.fields_every > 0 && i % o.fields_every == 0))
         {
           const PeriodicField field(hb, discretisation, backbone.points[i]);
-          results[i] = verify_in_time(field, discretisation, scene);
+          results[i] = verify_in_time(field, discretisation, hb.law(), o);
           progress.update([&] {
             return "point " + std::to_string(i + 1) + " of " + std::to_string(results.size());
           });

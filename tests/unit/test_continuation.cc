@@ -123,7 +123,7 @@ TEST(Backbone, SeedEq5BranchPassesThePapersFrequencyBelowW1)
   EXPECT_NEAR(at_figure.measures.energy / model.grazing(1).second, 1.0, 0.1);
   // The branch goes down in Omega: it reaches Omega min, its lowest point.
   EXPECT_EQ(backbone.end, nsm::BackboneEnd::range);
-  EXPECT_EQ(backbone.omega_reached(nsm::branch_direction(model.scene)), model.scene.continuation.omega_min);
+  EXPECT_EQ(backbone.omega_reached(nsm::branch_direction(model.scene.contact)), model.scene.continuation.omega_min);
 }
 
 TEST(Backbone, DoublingTheGapMultipliesEnergiesByFour)
@@ -501,7 +501,7 @@ TEST(Backbone, StartsWithin1e4OfGrazingAndEndsExactlyAtOmegaMax)
   EXPECT_LT(backbone.points.front().omega / w1 - 1, 1e-4);
   EXPECT_EQ(backbone.points.back().omega, scene.continuation.omega_max);
   EXPECT_EQ(backbone.end, nsm::BackboneEnd::range);
-  EXPECT_EQ(backbone.omega_reached(nsm::branch_direction(scene)), scene.continuation.omega_max);
+  EXPECT_EQ(backbone.omega_reached(nsm::branch_direction(scene.contact)), scene.continuation.omega_max);
   for (const auto &p : backbone.points)
     EXPECT_LE(p.measures.energy, scene.continuation.energy_max);
 }
@@ -515,7 +515,7 @@ TEST(Backbone, SaysItStoppedAtMaxStepsShortOfTheRange)
   ASSERT_EQ(backbone.points.size(), 5u);
   EXPECT_EQ(backbone.end, nsm::BackboneEnd::max_steps);
   EXPECT_STREQ(nsm::backbone_end_name(backbone.end), "max_steps");
-  EXPECT_EQ(backbone.omega_reached(nsm::branch_direction(scene)), backbone.points.back().omega);
+  EXPECT_EQ(backbone.omega_reached(nsm::branch_direction(scene.contact)), backbone.points.back().omega);
   EXPECT_LT(backbone.points.back().omega, scene.continuation.omega_max);
 }
 

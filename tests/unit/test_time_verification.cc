@@ -162,7 +162,7 @@ namespace
     const auto                backbone = model.backbone();
     const nsm::PeriodicField field(model.hb, model.discretisation,
                                     nsm::solve_on_branch(model.hb, scene, backbone, omega));
-    return nsm::verify_in_time(field, model.discretisation, scene);
+    return nsm::verify_in_time(field, model.discretisation, model.hb.law(), scene.output);
   }
 } // namespace
 

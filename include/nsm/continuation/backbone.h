@@ -84,11 +84,11 @@ namespace nsm
   };
 
   /// Omega min <= omega <= Omega max.
-  bool in_omega_range(const Scene &scene, double omega);
+  bool in_omega_range(const Scene::Continuation &continuation, double omega);
 
   /// +1 where the branch leaves grazing upwards in Omega (the physical force
   /// sign), -1 with the paper's eq. (5): the one place this is derived.
-  double branch_direction(const Scene &scene);
+  double branch_direction(const Scene::Contact &contact);
 
   /// The internal resonance nearest to omega (resonances not empty).
   const InternalResonance &nearest_resonance(const std::vector<InternalResonance> &resonances,

@@ -70,7 +70,7 @@ namespace nsm
     /// Called after each point: Max steps reached? Also reports progress.
     bool full(const Backbone &backbone);
 
-    bool in_range(double omega) const { return in_omega_range(scene, omega); }
+    bool in_range(double omega) const { return in_omega_range(scene.continuation, omega); }
 
     /// a lies beyond b in the direction of continuation.
     bool beyond(double a, double b) const { return direction * (a - b) > 0; }

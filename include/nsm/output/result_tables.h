@@ -24,7 +24,7 @@ namespace nsm
 
   /// receptance.csv: gamma and d gamma / d omega^2 at Output/Receptance
   /// frequencies.
-  CsvTable receptance_table(const Receptance &receptance, const Scene &scene);
+  CsvTable receptance_table(const Receptance &receptance, const Scene::Output &output);
 
   /// backbone.csv: one row per point; the verification columns only if
   /// `verifications` is not empty.

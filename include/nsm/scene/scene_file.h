@@ -20,6 +20,29 @@ namespace nsm
   /// allowed values in words. Throws InputError.
   void read_scene_file(const std::string &path, dealii::ParameterHandler &prm);
 
+  /// A declared entry: its subsections, its name, its default, its
+  /// pattern's description and its documentation.
+  struct DeclaredEntry
+  {
+    std::vector<std::string> sections;
+    std::string              name;
+    std::string              default_value;
+    std::string              pattern;
+    std::string              documentation;
+
+    /// "Section/Subsection/Name".
+    std::string path() const
+    {
+      std::string p;
+      for (const std::string &s : sections)
+        p += s + "/";
+      return p + name;
+    }
+  };
+
+  /// Every entry declared in `prm`, in ParameterHandler's order.
+  std::vector<DeclaredEntry> declared_entries(const dealii::ParameterHandler &prm);
+
   /// A deal.II pattern description in words:
   /// "[Double 0...1 (inclusive)]" -> "a number in [0, 1]".
   std::string allowed_values(const std::string &pattern_description);

@@ -87,14 +87,15 @@ namespace nsm
   };
 
   /// Verifies a field's point: its state at t = 0 made admissible, integrated
-  /// with the scene's Output/Verify settings.
-  PointVerification verify_in_time(const PeriodicField &field, const Discretisation &discretisation, const Scene &scene);
+  /// against the wall of `law` with the Output/Verify settings.
+  PointVerification verify_in_time(const PeriodicField &field, const Discretisation &discretisation,
+                                   const ContactLaw &law, const Scene::Output &output);
 
   /// Verifies every Verify every-th backbone point and every Fields every-th
-  /// (the fields' points); empty for the others.
+  /// (the fields' points), against hb's contact law; empty for the others.
   std::vector<std::optional<PointVerification>> verify_backbone(HarmonicBalance      &hb,
                                                                 const Discretisation &discretisation,
                                                                 const Backbone       &backbone,
-                                                                const Scene          &scene,
+                                                                const Scene::Output  &output,
                                                                 Progress             &progress);
 } // namespace nsm
