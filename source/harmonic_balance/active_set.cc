@@ -1,3 +1,4 @@
+#include <nsm/harmonic_balance/constants.h>
 #include <nsm/harmonic_balance/active_set.h>
 
 #include <algorithm>
@@ -20,15 +21,15 @@ namespace nsm
     }
 
     /// Safeguarded Newton on a bracket [a, b] where f changes sign, from the
-    /// regula falsi point; 1e-13 in tau leaves the Gram integrals exact to
-    /// far below any Newton tolerance. f(x, &slope) returns f and sets f'.
+    /// regula falsi point, to root_tolerance in tau. f(x, &slope) returns f
+    /// and sets f'.
     template <typename F>
     double bracketed_root(double a, double b, double fa, const double fb, const F &f)
     {
       double x = fb != fa ? a - fa * (b - a) / (fb - fa) : 0.5 * (a + b);
       if (!(x > a && x < b))
         x = 0.5 * (a + b);
-      for (int it = 0; it < 60; ++it)
+      for (int it = 0; it < harmonic_balance_constants::root_iterations; ++it)
         {
           double       slope;
           const double fx = f(x, &slope);
@@ -41,12 +42,12 @@ namespace nsm
           const double newton = x - fx / slope;
           // Converged: x is then a bracket end itself, so the last step may
           // leave the bracket by a rounding error (testing for inside first
-          // bisected it down to 1e-13, about 10 more evaluations per root).
-          if (slope != 0 && std::abs(newton - x) <= 1e-13)
+          // bisected it down to the tolerance, about 10 more evaluations per root).
+          if (slope != 0 && std::abs(newton - x) <= harmonic_balance_constants::root_tolerance)
             return std::clamp(newton, a, b);
           const bool inside = slope != 0 && newton > a && newton < b;
           x                 = inside ? newton : 0.5 * (a + b);
-          if (b - a <= 1e-13)
+          if (b - a <= harmonic_balance_constants::root_tolerance)
             return x;
         }
       return x;
@@ -122,7 +123,7 @@ namespace nsm
       r = std::fmod(r + two_pi, two_pi);
     std::sort(found.begin(), found.end());
     found.erase(std::unique(found.begin(), found.end(),
-                            [](double x, double y) { return std::abs(x - y) < 1e-13; }),
+                            [](double x, double y) { return std::abs(x - y) < harmonic_balance_constants::root_tolerance; }),
                 found.end());
     return found;
   }
@@ -153,7 +154,7 @@ namespace nsm
     const auto q_of = [&](double tau, double *slope) { return value(v, tau, slope); };
     // q' with its own slope q'', for the extremum between samples.
     const auto dq_of = [&](double tau, double *slope) {
-      const double e = 1e-6;
+      const double e = harmonic_balance_constants::extremum_slope_step;
       double       d0, dp, dm;
       value(v, tau, &d0);
       if (slope)

@@ -1,3 +1,4 @@
+#include <nsm/harmonic_balance/constants.h>
 #include <nsm/harmonic_balance/harmonic_balance.h>
 #include <nsm/harmonic_balance/trigonometric.h>
 
@@ -26,12 +27,13 @@ namespace nsm
       std::chrono::steady_clock::time_point start_;
     };
 
-    /// The exact rule samples q only to bracket its roots: 8 points per
-    /// period of the highest harmonic, plus the extremum checks in roots().
+    /// The sampled rule's Time samples, or the exact rule's bracketing grid.
     unsigned int samples_of(const Scene &scene)
     {
-      return scene.harmonic_balance.integration == Integration::sampled ? scene.time_samples() :
-                                                                          8 * scene.harmonic_balance.harmonics + 8;
+      constexpr unsigned int per_harmonic = harmonic_balance_constants::bracketing_samples_per_harmonic;
+      return scene.harmonic_balance.integration == Integration::sampled ?
+               scene.time_samples() :
+               per_harmonic * scene.harmonic_balance.harmonics + per_harmonic;
     }
   } // namespace
 
@@ -68,9 +70,7 @@ namespace nsm
           }
         catch (const NumericalError &)
           {
-            // Exactly on a pole: theta is continuous there, so a frequency
-            // 1e-13 off it gives theta to that accuracy.
-            w *= 1 + 1e-13;
+            w *= 1 + harmonic_balance_constants::pole_offset;
             value = receptance_(w);
           }
         const double g     = value.gamma;

@@ -1,3 +1,4 @@
+#include <nsm/harmonic_balance/constants.h>
 #include <nsm/harmonic_balance/nox_hb_system.h>
 
 namespace nsm
@@ -15,11 +16,9 @@ namespace nsm
     combo->addStatusTest(Teuchos::rcp(
       new NOX::StatusTest::NormF(params.tolerance * tightening, NOX::StatusTest::NormF::Unscaled)));
     combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::MaxIters(params.max_iterations)));
-    // Newton on the exact rule converges quadratically once it converges at
-    // all: a residual that has not halved in 6 steps in a row, or has blown
-    // up, will not converge (and costs most of the time at folds).
-    combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::Stagnation(6, 0.5)));
-    combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::Divergence(1e8)));
+    using namespace harmonic_balance_constants;
+    combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::Stagnation(stagnation_steps, stagnation_ratio)));
+    combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::Divergence(divergence_limit)));
     combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::FiniteValue));
     return combo;
   }
