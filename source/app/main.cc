@@ -10,14 +10,27 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <csignal>
+#include <cstdlib>
 #include <iostream>
+#include <new>
 #include <optional>
 #include <string>
 
 namespace
 {
-  /// Runs the scene (a study under MPI); returns the exit code, the error
-  /// printed.
+  /// Whether an MPI launcher started this process (Open MPI's mpirun, or a
+  /// PMI or PMIx one).
+  bool started_by_mpirun()
+  {
+    for (const char *variable : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE", "PMI_RANK"})
+      if (std::getenv(variable) != nullptr)
+        return true;
+    return false;
+  }
+
+  /// Runs the scene (a study over the MPI ranks, if any); returns the exit
+  /// code, the error printed.
   int run(int &argc, char **&argv, const std::string &path,
           std::optional<dealii::Utilities::MPI::MPI_InitFinalize> &mpi)
   {
@@ -30,12 +43,15 @@ namespace
             nsm::print_report(nsm::run_scene(file.scene), std::cout);
             return 0;
           }
+        // MPI only where mpirun started the process: a serial study needs
+        // none, and MPI's own start-up fails under tight resource limits.
+        if (started_by_mpirun())
+          mpi.emplace(argc, argv, 1);
         // A study stops at the next row boundary on SIGINT or SIGTERM: the
-        // rows written so far are kept, and a rerun resumes.
-        // (after MPI_Init, which sets handlers of its own).
-        mpi.emplace(argc, argv, 1);
+        // rows written so far are kept, and a rerun resumes (set after
+        // MPI_Init, which sets handlers of its own).
         nsm::catch_stop_signals();
-        const bool           root   = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+        const bool           root   = !mpi || dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
         const nsm::RunReport report = nsm::run_study(path, file);
         if (root)
           {
@@ -63,6 +79,12 @@ namespace
       {
         std::cerr << "nsm-bar: numerical failure: " << e.what() << '\n';
         return 3;
+      }
+    catch (const std::bad_alloc &)
+      {
+        std::cerr << "nsm-bar: output error: out of memory (the machine's, or a limit on the process): "
+                     "reduce Discretisation/Cells or Degree, Harmonic balance/Harmonics, or the outputs\n";
+        return 5;
       }
     catch (const std::exception &e)
       {
@@ -111,6 +133,9 @@ int main(int argc, char **argv)
         nsm::print_parameters_markdown(prm, std::cout);
       return 0;
     }
+  // Past a file size limit a write fails (an output error, exit 5) instead of
+  // the kernel killing the run half-way.
+  std::signal(SIGXFSZ, SIG_IGN);
   nsm::use_one_thread();
   std::optional<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
   const int code = run(argc, argv, argument, mpi);

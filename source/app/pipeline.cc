@@ -6,6 +6,7 @@
 #include <nsm/harmonic_balance/harmonic_balance.h>
 #include <nsm/output/output_directory.h>
 #include <nsm/model/discretisation.h>
+#include <nsm/model/memory_estimate.h>
 #include <nsm/app/pipeline.h>
 #include <nsm/output/plots.h>
 #include <nsm/base/progress.h>
@@ -123,6 +124,12 @@ namespace nsm
 
       void spectrum()
       {
+        // An adaptive mesh's modes are known once it is made (Scene checks the others).
+        const unsigned int modes = discretisation_->n_dofs() - 2;
+        if (scene_.output.spectrum_modes > modes)
+          throw InputError("parameter 'Output/Spectrum modes' = " + std::to_string(scene_.output.spectrum_modes) +
+                           " is out of range: allowed an integer in [0, " + std::to_string(modes) +
+                           "], the clamped-clamped modes of the adaptive mesh");
         timed("spectrum", [&] {
           tables_.push_back(spectrum_table(*discretisation_, scene_.output.spectrum_modes));
         });
@@ -271,6 +278,7 @@ namespace nsm
       }
 
     // Checked before any work: an unwritable directory is known now.
+    check_memory(scene);
     OutputDirectory output(scene.output.directory);
     SceneRun        run(scene, report);
     run.mesh(bar);

@@ -1,4 +1,6 @@
 #include <nsm/base/csv.h>
+
+#include <deal.II/base/exceptions.h>
 #include <nsm/base/errors.h>
 
 #include <cmath>
@@ -71,12 +73,21 @@ namespace nsm
                                const std::function<void(std::ostream &)> &write)
   {
     const std::string temporary = path + ".partial";
-    std::ofstream     out(temporary);
+    std::error_code   error;
+    // A leftover, or a link planted in its place, is removed (not followed).
+    std::filesystem::remove(temporary, error);
+    std::ofstream out(temporary);
     out.precision(17);
-    write(out);
+    try
+      {
+        write(out);
+      }
+    catch (const dealii::StandardExceptions::ExcIO &)
+      {
+        out.setstate(std::ios::failbit); // a writer that checks its stream (deal.II's VTU)
+      }
     // The last buffer is written by close(): it is checked too.
     out.close();
-    std::error_code error;
     if (out.fail() || (std::filesystem::rename(temporary, path, error), error))
       {
         std::filesystem::remove(temporary, error);

@@ -6,10 +6,47 @@
 #include <cmath>
 #include <iostream>
 #include <map>
+#include <regex>
 #include <sstream>
 
 namespace nsm
 {
+  namespace
+  {
+    /// muparser takes more than an expression in x: an assignment ("x = 1"),
+    /// a list whose last value it returns ("1.5 - x, 2") and deal.II's random
+    /// functions. Each is refused with the reason.
+    void check_expression(const std::string &expression)
+    {
+      const auto refuse = [&](const std::string &why) {
+        throw InputError("parameter 'Bar/Cross section' = '" + expression +
+                         "' is not allowed: " + why + "; allowed: one expression in x");
+      };
+      int depth = 0;
+      for (std::size_t i = 0; i < expression.size(); ++i)
+        {
+          const char c = expression[i], before = i > 0 ? expression[i - 1] : ' ';
+          const char after = i + 1 < expression.size() ? expression[i + 1] : ' ';
+          depth += c == '(' ? 1 : c == ')' ? -1 : 0;
+          if (c == ',' && depth == 0)
+            refuse("a comma separates two expressions");
+          if (c == '=' && std::string("<>!=").find(before) == std::string::npos && after != '=')
+            refuse("'=' assigns a variable");
+        }
+      static const std::regex identifier("[A-Za-z_][A-Za-z_0-9]*");
+      for (auto word = std::sregex_iterator(expression.begin(), expression.end(), identifier);
+           word != std::sregex_iterator();
+           ++word)
+        if (word->str().rfind("rand", 0) == 0)
+          refuse("'" + word->str() + "' is random: the bar would differ from run to run");
+    }
+
+    /// A(x) is checked this densely on [0, L], besides at every quadrature
+    /// point where the model evaluates it: a section negative on a short
+    /// interval between a coarse mesh's quadrature points is still refused.
+    constexpr unsigned int section_samples = 1u << 17;
+  } // namespace
+
   BarModel::BarModel(const Scene::Bar &bar)
     : length_(bar.length)
     , young_modulus_(bar.young_modulus)
@@ -19,6 +56,7 @@ namespace nsm
   {
     const std::map<std::string, double> constants = {{"pi", M_PI},
                                                      {"L", length_}};
+    check_expression(expression_);
     // deal.II prints muparser's diagnostic to std::cerr before throwing; the
     // message below says the same once.
     std::ostringstream silenced;
@@ -36,9 +74,8 @@ namespace nsm
         throw InputError("parameter 'Bar/Cross section' = '" + expression_ +
                          "' is not a valid expression in x: " + one_line_message(e));
       }
-    constexpr unsigned int samples = 1000;
-    for (unsigned int i = 0; i <= samples; ++i)
-      cross_section(length_ * i / samples);
+    for (unsigned int i = 0; i <= section_samples; ++i)
+      cross_section(length_ * i / section_samples);
   }
 
   BarModel::~BarModel() = default;

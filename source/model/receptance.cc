@@ -32,8 +32,9 @@ namespace nsm
     if (method_ == ReceptanceMethod::modal)
       {
         const bool full_basis = params.modes == 0 || params.modes >= unsigned(pencil_.n);
-        // The split needs a band (omega_max > 0) with modes beyond it.
-        if (full_basis && omega_max > 0 &&
+        // The split needs a band (omega_max^2 > 0: a band of 1e-308 is
+        // none) with modes beyond it.
+        if (full_basis && omega_max * omega_max > 0 &&
             count_eigenvalues_below(pencil_, far_ratio * omega_max * omega_max) < pencil_.n)
           split_far_modes(omega_max);
         else

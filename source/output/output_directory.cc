@@ -1,12 +1,15 @@
 #include <nsm/base/csv.h>
 #include <nsm/output/output_directory.h>
 #include <nsm/base/errors.h>
+#include <nsm/base/text.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -37,21 +40,63 @@ namespace nsm
         }
     }
 
-    /// Whether the target may be replaced: missing, empty, or a run's output.
+    /// The files a manifest lists; none if it is not a regular file.
+    std::set<std::string> listed_files(const fs::path &manifest)
+    {
+      std::set<std::string> listed;
+      std::error_code       error;
+      if (!fs::is_regular_file(fs::symlink_status(manifest, error)))
+        return listed;
+      std::ifstream in(manifest);
+      for (std::string line; std::getline(in, line);)
+        listed.insert(line);
+      return listed;
+    }
+
+    /// Whether the target may be replaced: missing, empty, or exactly an
+    /// earlier run's output, the regular files its manifest lists and the
+    /// manifest itself. Anything else is the user's: the run is refused
+    /// before it starts, and nothing of it is ever removed.
     void check_target(const fs::path &target, const std::string &name)
     {
-      std::error_code error;
-      const fs::file_status status = fs::status(target, error);
-      if (!fs::exists(status))
+      std::error_code       error;
+      const fs::file_status link = fs::symlink_status(target, error);
+      if (fs::is_symlink(link))
+        throw directory_error(name, "is a symbolic link: the output is never written through a link");
+      if (!fs::exists(link))
         return;
-      if (!fs::is_directory(status))
+      if (!fs::is_directory(link))
         throw directory_error(name, "exists and is not a directory");
-      if (fs::is_empty(target, error) || fs::exists(target / OutputDirectory::manifest, error))
+      if (fs::is_empty(target, error))
         return;
-      throw directory_error(name,
-                            "holds files that no nsm-bar run wrote (it has no " +
-                              std::string(OutputDirectory::manifest) +
-                              "): choose a new, an empty or an earlier output directory");
+      const std::set<std::string> listed = listed_files(target / OutputDirectory::manifest);
+      if (listed.empty())
+        throw directory_error(name, "holds files that no nsm-bar run wrote (it has no " +
+                                      std::string(OutputDirectory::manifest) +
+                                      " file): choose a new, an empty or an earlier output directory");
+      for (const auto &entry : fs::directory_iterator(target, error))
+        {
+          const std::string file = entry.path().filename().string();
+          if (file == OutputDirectory::manifest)
+            continue;
+          if (!listed.count(file) || !entry.is_regular_file() || entry.is_symlink())
+            throw directory_error(name, "holds '" + printable(file) + "', which its " +
+                                          std::string(OutputDirectory::manifest) +
+                                          " does not list as a file an nsm-bar run wrote: choose a new, an "
+                                          "empty or an earlier output directory");
+        }
+    }
+
+    /// A short, stable name for the target's staging siblings (FNV-1a), so
+    /// that a target name of up to NAME_MAX characters still has one.
+    std::string staging_prefix(const std::string &name)
+    {
+      std::uint64_t hash = 14695981039346656037ull;
+      for (const char c : name)
+        hash = (hash ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+      char text[32];
+      std::snprintf(text, sizeof text, ".nsm-bar-%016llx-", static_cast<unsigned long long>(hash));
+      return text;
     }
 
     /// Swaps two directories in one step; the fallback (a file system
@@ -70,6 +115,8 @@ namespace nsm
 
   OutputDirectory::OutputDirectory(const std::string &target)
   {
+    if (has_control_character(target))
+      throw directory_error(printable(target), "holds a control character: allowed, a path without them");
     fs::path path = fs::path(target).lexically_normal();
     if (path.filename().empty())
       path = path.parent_path();
@@ -84,7 +131,7 @@ namespace nsm
     fs::create_directories(parent, error);
     if (error)
       throw directory_error(target, "cannot be created: " + error.message());
-    const std::string prefix = "." + path.filename().string() + ".nsm-bar-";
+    const std::string prefix = staging_prefix(path.filename().string());
     remove_stale_staging(parent, prefix);
     staging_ = (parent / (prefix + std::to_string(getpid()))).string();
     fs::remove_all(staging_, error);

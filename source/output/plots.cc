@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -23,8 +24,9 @@ namespace nsm
       argv.push_back(nullptr);
       posix_spawn_file_actions_t actions;
       posix_spawn_file_actions_init(&actions);
+      // A new file: never one a link points to.
       posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
-                                       O_WRONLY | O_CREAT | O_TRUNC, 0644);
+                                       O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0644);
       posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
       pid_t      pid;
       const bool spawned =
@@ -34,6 +36,12 @@ namespace nsm
       return spawned && waitpid(pid, &status, 0) == pid && WIFEXITED(status) &&
              WEXITSTATUS(status) == 0;
     }
+
+    /// A Python error for a full disk (ENOSPC) or a file size limit (EFBIG).
+    bool out_of_space(const std::string &error)
+    {
+      return error.find("[Errno 28]") != std::string::npos || error.find("[Errno 27]") != std::string::npos;
+    }
   } // namespace
 
   std::vector<std::string> make_plots(const Scene::Contact &contact, const std::string &directory)
@@ -42,14 +50,28 @@ namespace nsm
     gap.precision(17);
     gap << contact.gap;
     const std::string log_path = directory + "/plots.log";
-    const bool ok = run_program({NSM_PYTHON, NSM_PLOT_SCRIPT, directory, "--gap", gap.str()}, log_path);
+    std::error_code   error;
+    std::filesystem::remove(log_path, error);
+    // The directory as an absolute path, after "--": a name that starts with
+    // '-' is never read as an option.
+    const std::string absolute = std::filesystem::absolute(directory).string();
+    const bool ok = run_program({NSM_PYTHON, NSM_PLOT_SCRIPT, "--gap", gap.str(), "--", absolute}, log_path);
     std::vector<std::string> files;
     std::string              last;
     std::ifstream            log(log_path);
     for (std::string line; std::getline(log, line); last = line)
       if (line.rfind("wrote ", 0) == 0)
-        files.push_back(line.substr(6));
+        {
+          // The script names the files under the absolute path; the run
+          // names them under `directory`, as it wrote the others.
+          std::string file = line.substr(6);
+          if (file.rfind(absolute + "/", 0) == 0)
+            file = directory + file.substr(absolute.size());
+          files.push_back(file);
+        }
     // The log goes with the failed run's staging directory: its last line is kept.
+    if (!ok && out_of_space(last))
+      throw OutputError("the plots could not be written whole (disk full or file size limit?): " + last);
     if (!ok)
       throw NumericalError("the plotting script failed: " + last);
     files.push_back(log_path);

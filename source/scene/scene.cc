@@ -200,6 +200,26 @@ namespace nsm
     prm.leave_subsection();
   }
 
+  void Scene::Resources::declare(ParameterHandler &prm)
+  {
+    const Resources d;
+    prm.enter_subsection("Resources");
+    prm.declare_entry("Memory limit",
+                      text(d.memory_limit),
+                      Patterns::Double(0, 1e9),
+                      "MiB a run may use; 0 = the memory the machine has available (and the process's "
+                      "address-space limit). A scene whose estimated need exceeds it is refused before "
+                      "any work, naming the entries that drive the estimate.");
+    prm.leave_subsection();
+  }
+
+  void Scene::Resources::parse(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Resources");
+    memory_limit = prm.get_double("Memory limit");
+    prm.leave_subsection();
+  }
+
   void Scene::declare(ParameterHandler &prm)
   {
     Bar::declare(prm);
@@ -209,6 +229,7 @@ namespace nsm
     HarmonicBalance::declare(prm);
     Continuation::declare(prm);
     Output::declare(prm);
+    Resources::declare(prm);
   }
 
   void Scene::check_consistency(const bool is_study) const
@@ -242,6 +263,12 @@ namespace nsm
     // The clamped-free problem has one mode per DoF but the clamped one; an
     // adaptive mesh adds DoFs, so its modes are checked once it is made.
     const unsigned int modes = discretisation.cells * discretisation.degree;
+    require(discretisation.refinement == Refinement::adaptive || output.spectrum_modes < modes,
+            "Output/Spectrum modes",
+            "an integer in [0, Cells x Degree - 1] = [0, " + std::to_string(modes - 1) +
+              "] (spectrum.csv pairs each clamped-free frequency with a clamped-clamped one, and the "
+              "clamped-clamped mesh has Cells x Degree - 1 modes)",
+            std::to_string(output.spectrum_modes));
     require((!output.backbone && !output.fields()) ||
               discretisation.refinement == Refinement::adaptive || continuation.mode <= modes,
             "Continuation/Mode",
@@ -270,6 +297,7 @@ namespace nsm
         scene.harmonic_balance.parse(prm);
         scene.continuation.parse(prm);
         scene.output.parse(prm);
+        scene.resources.parse(prm);
         scene.check_consistency(is_study);
       }
     catch (const InputError &e)

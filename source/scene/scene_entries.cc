@@ -2,6 +2,7 @@
 #include <nsm/scene/scene_entries.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 namespace nsm::scene_entries
@@ -13,7 +14,7 @@ namespace nsm::scene_entries
         std::ostringstream out;
         out.precision(digits);
         out << value;
-        if (digits >= 17 || std::stod(out.str()) == value)
+        if (digits >= 17 || std::strtod(out.str().c_str(), nullptr) == value)
           return out.str();
       }
   }
@@ -39,19 +40,13 @@ namespace nsm::scene_entries
 
   double parse_double(const std::string &text, const std::string &parameter)
   {
-    std::size_t used = 0;
-    double      value;
-    try
-      {
-        value = std::stod(text, &used);
-      }
-    catch (const std::exception &)
-      {
-        used = 0;
-      }
-    if (used == 0 || trim(text.substr(used)) != "" || !std::isfinite(value))
-      throw InputError("parameter '" + parameter + "': '" + text +
-                       "' is not a finite number");
+    // strtod, not stod: a value below the normal range (1e-308, 4.9e-324)
+    // is a finite number that underflows gracefully, not an error.
+    const std::string trimmed = trim(text);
+    char             *end     = nullptr;
+    const double      value   = trimmed.empty() ? 0 : std::strtod(trimmed.c_str(), &end);
+    if (trimmed.empty() || end != trimmed.c_str() + trimmed.size() || !std::isfinite(value))
+      throw InputError("parameter '" + parameter + "': '" + text + "' is not a finite number");
     return value;
   }
 

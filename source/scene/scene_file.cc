@@ -1,3 +1,4 @@
+#include <nsm/base/text.h>
 #include <nsm/scene/scene.h>
 #include <nsm/scene/scene_file.h>
 
@@ -9,6 +10,8 @@
 #include <boost/property_tree/ptree.hpp>
 
 #include <algorithm>
+#include <cctype>
+#include <optional>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -66,52 +69,138 @@ namespace nsm
         prm.leave_subsection();
     }
 
-    /// The file named by an `include` line of a PRM file (deal.II opens it
-    /// relative to the working directory), or "" for any other line.
-    std::string included_file(std::string line)
+    /// deal.II's reading of a PRM line: surrounding white space (isspace)
+    /// removed.
+    std::string trimmed(const std::string &line)
     {
-      line = line.substr(0, line.find('#'));
-      const std::size_t first = line.find_first_not_of(" \t");
-      if (first == std::string::npos)
-        return "";
-      line = line.substr(first);
-      if (line.rfind("include ", 0) != 0 && line.rfind("INCLUDE ", 0) != 0)
-        return "";
-      line = line.substr(8);
-      line.erase(0, line.find_first_not_of(" \t"));
-      line.erase(line.find_last_not_of(" \t\r") + 1);
-      return line;
+      const auto space = [](const char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
+      std::size_t begin = 0, end = line.size();
+      while (begin < end && space(line[begin]))
+        ++begin;
+      while (end > begin && space(line[end - 1]))
+        --end;
+      return line.substr(begin, end - begin);
     }
 
-    /// A readable regular file, whose includes (PRM only) are readable
-    /// regular files too and never include a file that includes them.
-    void check_file(const std::string &path, std::vector<fs::path> &chain)
+    /// The logical lines of a PRM text: each trimmed, and one ending in a
+    /// backslash joined to the next without it, as deal.II joins them.
+    std::vector<std::string> logical_lines(std::istream &in)
     {
-      std::error_code error;
+      std::vector<std::string> lines;
+      bool                     continued = false;
+      for (std::string line; std::getline(in, line);)
+        {
+          line = trimmed(line);
+          if (continued)
+            lines.back() += line;
+          else
+            lines.push_back(line);
+          continued = !lines.back().empty() && lines.back().back() == '\\';
+          if (continued)
+            lines.back().pop_back();
+        }
+      return lines;
+    }
+
+    /// The file an include line names, or nullopt for any other line. Every
+    /// line that starts with "include" in any case is one, so that deal.II,
+    /// which reads the flattened text, never meets an include of its own.
+    std::optional<std::string> included_file(const std::string &line)
+    {
+      if (line.size() < 7 || !std::equal(line.begin(), line.begin() + 7, "include",
+                                         [](const char a, const char b) { return std::tolower(a) == b; }))
+        return std::nullopt;
+      return trimmed(line.substr(7, line.find('#') == std::string::npos ? std::string::npos : line.find('#') - 7));
+    }
+
+    /// A name as a message shows it: control characters escaped, so that a
+    /// message stays one line.
+    std::string shown(const std::string &name) { return printable(name); }
+
+    /// A readable regular file, its canonical path.
+    fs::path readable_file(const std::string &path)
+    {
+      std::error_code       error;
       const fs::file_status status = fs::status(path, error);
       if (!fs::exists(status))
-        throw InputError("scene '" + path + "' does not exist");
+        throw InputError("scene '" + shown(path) + "' does not exist");
       if (!fs::is_regular_file(status))
-        throw InputError("scene '" + path + "' is not a regular file");
-      std::ifstream file(path);
-      if (!file)
-        throw InputError("scene '" + path + "' cannot be read");
-      const fs::path canonical = fs::canonical(path, error);
-      for (const fs::path &outer : chain)
-        if (outer == canonical)
-          throw InputError("scene '" + chain.front().string() + "' includes '" + path +
-                           "' inside itself (an include cycle)");
-      if (fs::path(path).extension() != ".prm")
-        return;
+        throw InputError("scene '" + shown(path) + "' is not a regular file");
+      if (!std::ifstream(path))
+        throw InputError("scene '" + shown(path) + "' cannot be read");
+      return fs::canonical(path, error);
+    }
+
+    /// The PRM text of `path` with its includes replaced by their own
+    /// flattened texts (names relative to the working directory, as deal.II
+    /// reads them). A file included inside itself, by any path to it, is a
+    /// cycle; more than max_include_depth nested includes are refused.
+    void flatten(const std::string &path, std::vector<fs::path> &chain, std::ostream &out)
+    {
+      const fs::path canonical = readable_file(path);
+      if (std::find(chain.begin(), chain.end(), canonical) != chain.end())
+        throw InputError("scene '" + shown(chain.front().string()) + "' includes '" + shown(path) +
+                         "' inside itself (an include cycle)");
+      if (chain.size() > max_include_depth)
+        throw InputError("scene '" + shown(chain.front().string()) + "': includes nested deeper than " +
+                         std::to_string(max_include_depth) + " at '" + shown(path) + "'");
       chain.push_back(canonical);
-      std::string line;
-      while (std::getline(file, line))
-        {
-          const std::string included = included_file(line);
-          if (!included.empty())
-            check_file(included, chain);
-        }
+      std::ifstream file(path);
+      for (const std::string &line : logical_lines(file))
+        if (const auto included = included_file(line))
+          {
+            if (included->empty())
+              throw InputError("scene '" + shown(path) + "': an include line names no file");
+            flatten(*included, chain, out);
+          }
+        else
+          out << line << '\n';
       chain.pop_back();
+    }
+
+    /// The deepest nesting of a JSON text: brackets and braces outside
+    /// strings.
+    std::size_t json_depth(std::istream &in)
+    {
+      std::size_t depth = 0, deepest = 0;
+      bool        quoted = false, escaped = false;
+      for (char c; in.get(c);)
+        if (quoted)
+          {
+            quoted  = escaped || c != '"';
+            escaped = !escaped && c == '\\';
+          }
+        else if (c == '"')
+          quoted = true;
+        else if (c == '{' || c == '[')
+          deepest = std::max(deepest, ++depth);
+        else if ((c == '}' || c == ']') && depth > 0)
+          --depth;
+      return deepest;
+    }
+
+    /// The deepest nesting of an XML text: elements opened ("<name") and
+    /// not yet closed ("</name>" or "/>").
+    std::size_t xml_depth(std::istream &in)
+    {
+      std::size_t depth = 0, deepest = 0;
+      for (char c, previous = 0; in.get(c); previous = c)
+        if (previous == '<' && std::isalpha(static_cast<unsigned char>(c)))
+          deepest = std::max(deepest, ++depth);
+        else if (((previous == '<' && c == '/') || (previous == '/' && c == '>')) && depth > 0)
+          --depth;
+      return deepest;
+    }
+
+    /// JSON and XML scenes are parsed recursively (boost's property tree):
+    /// nesting deeper than max_nesting_depth is refused before.
+    void check_nesting(const std::string &path, const bool json)
+    {
+      std::ifstream     in(path);
+      const std::size_t depth = json ? json_depth(in) : xml_depth(in);
+      if (depth > max_nesting_depth)
+        throw InputError("scene '" + shown(path) + "' is nested " + std::to_string(depth) +
+                         " levels deep: allowed at most " + std::to_string(max_nesting_depth));
     }
 
     std::string number_in_words(const std::string &text)
@@ -153,8 +242,19 @@ namespace nsm
 
   void read_scene_file(const std::string &path, dealii::ParameterHandler &prm)
   {
-    std::vector<fs::path> chain;
-    check_file(path, chain);
+    const std::string extension = fs::path(path).extension().string();
+    const bool        tree_format = extension == ".json" || extension == ".xml";
+    std::stringstream flat;
+    if (tree_format)
+      {
+        readable_file(path);
+        check_nesting(path, extension == ".json");
+      }
+    else
+      {
+        std::vector<fs::path> chain;
+        flatten(path, chain, flat);
+      }
 
     // Every entry as text first: deal.II's own pattern errors name neither
     // the subsection nor the range in words.
@@ -166,15 +266,18 @@ namespace nsm
       });
     try
       {
-        text.parse_input(path);
+        if (tree_format)
+          text.parse_input(path);
+        else
+          text.parse_input(flat, path);
       }
     catch (const dealii::ExceptionBase &e)
       {
-        throw InputError("scene '" + path + "': " + one_line_message(e));
+        throw InputError("scene '" + shown(path) + "': " + one_line_message(e));
       }
     catch (const std::exception &e)
       {
-        throw InputError("scene '" + path + "' cannot be parsed: " + e.what());
+        throw InputError("scene '" + shown(path) + "' cannot be parsed: " + e.what());
       }
 
     for (const DeclaredEntry &entry : entries)

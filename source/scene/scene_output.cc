@@ -1,3 +1,4 @@
+#include <nsm/base/text.h>
 #include <nsm/scene/scene.h>
 #include <nsm/scene/scene_entries.h>
 
@@ -92,6 +93,8 @@ namespace nsm
     prm.enter_subsection("Output");
     directory = prm.get("Directory");
     require(!directory.empty(), "Output/Directory", "a non-empty path", "''");
+    require(!has_control_character(directory), "Output/Directory", "a path without control characters",
+            "'" + printable(directory) + "'");
     spectrum_modes = get_unsigned(prm, "Spectrum modes");
     receptance_frequencies =
       parse_frequency_list(prm.get("Receptance frequencies"), "Output/Receptance frequencies");

@@ -1,8 +1,10 @@
 #include <nsm/continuation/continuation.h>
 #include <nsm/base/csv.h>
+#include <nsm/model/memory_estimate.h>
 #include <nsm/output/plots.h>
 #include <nsm/base/interruption.h>
 #include <nsm/base/progress.h>
+#include <nsm/base/text.h>
 #include <nsm/study/study.h>
 #include <nsm/study/study_combinations.h>
 #include <nsm/study/study_reference.h>
@@ -34,6 +36,43 @@ namespace nsm
       return text.str();
     }
 
+    /// What a study writes into its directory, in place; NAME.partial is a
+    /// write it did not finish.
+    const std::set<std::string> study_files = {"study.csv", "study.scene", "reference.csv", "study.png",
+                                               "plots.log"};
+
+    /// Output/Directory of a study, before anything reads or writes it:
+    /// missing, or a directory (not a link) that holds only regular files
+    /// of the kinds a study writes, so that no file is read from a special
+    /// file or written through a link, and no scene's output is mixed in.
+    void check_study_directory(const std::string &directory)
+    {
+      const auto refuse = [&](const std::string &why) {
+        throw InputError("parameter 'Output/Directory' = '" + printable(directory) + "' is not allowed: " + why +
+                         "; allowed: a new or empty directory, or this study's (study.scene, study.csv, "
+                         "reference.csv, study.png, plots.log)");
+      };
+      std::error_code       error;
+      const fs::file_status status = fs::symlink_status(directory, error);
+      if (fs::is_symlink(status))
+        refuse("it is a symbolic link");
+      if (!fs::exists(status))
+        return;
+      if (!fs::is_directory(status))
+        refuse("it is not a directory");
+      const std::string partial = ".partial";
+      for (const auto &entry : fs::directory_iterator(directory, error))
+        {
+          const std::string name = entry.path().filename().string();
+          const bool        half = name.size() > partial.size() &&
+                            name.compare(name.size() - partial.size(), partial.size(), partial) == 0;
+          if (!study_files.count(half ? name.substr(0, name.size() - partial.size()) : name))
+            refuse("it holds '" + printable(name) + "', which no study writes");
+          if (entry.is_symlink() || !entry.is_regular_file())
+            refuse("its '" + printable(name) + "' is not a regular file");
+        }
+    }
+
     /// Checks that Output/Directory is new, empty, or holds this base
     /// scene's study; returns the rows it already holds, by key.
     std::map<std::vector<std::string>, std::vector<CsvCell>>
@@ -43,6 +82,7 @@ namespace nsm
       std::map<std::vector<std::string>, std::vector<CsvCell>> rows;
       const std::string recorded = directory + "/study.scene";
       std::error_code   error;
+      check_study_directory(directory);
       if (!fs::exists(directory, error) || fs::is_empty(directory, error))
         return rows;
       if (!fs::is_regular_file(recorded) || file_text(recorded) != scene_text)
@@ -192,6 +232,18 @@ namespace nsm
              "integration, graded or adaptive parameters of another refinement)";
     }
 
+    /// The ranks and this one's: a serial study (no mpirun) runs without
+    /// MPI, and deal.II's MPI functions need it initialised.
+    unsigned int ranks(const MPI_Comm comm)
+    {
+      return dealii::Utilities::MPI::job_supports_mpi() ? dealii::Utilities::MPI::n_mpi_processes(comm) : 1;
+    }
+    unsigned int rank(const MPI_Comm comm)
+    {
+      return dealii::Utilities::MPI::job_supports_mpi() ? dealii::Utilities::MPI::this_mpi_process(comm) : 0;
+    }
+    bool parallel(const MPI_Comm comm) { return ranks(comm) > 1; }
+
     /// The study's fine backbone reference, if it asks for one: rank 0
     /// computes it (or finds it kept); every rank then reads it once, and
     /// rank 0 adds the summary's lines to `notes`. A failure on rank 0 stops
@@ -202,9 +254,11 @@ namespace nsm
       if (base.study.reference_cells.empty())
         return std::nullopt;
       const std::vector<StudyScene> levels = reference_levels(path, base);
-      const bool               root   = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+      const bool               root   = rank(comm) == 0;
       std::string              origin, failure;
-      if (root)
+      if (!parallel(comm)) // a failure keeps its kind (input, output, numerical)
+        origin = keep_fine_reference(levels, base.scene.output.directory);
+      else if (root)
         try
           {
             origin = keep_fine_reference(levels, base.scene.output.directory);
@@ -213,7 +267,8 @@ namespace nsm
           {
             failure = e.what();
           }
-      failure = dealii::Utilities::MPI::broadcast(comm, failure, 0);
+      if (parallel(comm))
+        failure = dealii::Utilities::MPI::broadcast(comm, failure, 0);
       if (!failure.empty())
         throw NumericalError("the fine reference (Study/Reference cells) failed: " + failure);
       const CsvTable table = read_csv(base.scene.output.directory + "/reference.csv");
@@ -245,6 +300,13 @@ namespace nsm
 
       bool root() const { return rank_ == 0; }
 
+      /// Every row fits in memory.
+      void check_memory() const
+      {
+        for (const StudyCombination &c : combinations_)
+          nsm::check_memory(c.scene.scene);
+      }
+
       const std::string &directory() const { return base_.scene.output.directory; }
 
       /// The wall and CPU time since the study began (deal.II's Timer).
@@ -257,11 +319,21 @@ namespace nsm
         if (!root())
           return;
         std::error_code error;
+        const bool      created = !fs::exists(directory(), error);
         fs::create_directories(directory(), error);
         if (error)
           throw InputError("parameter 'Output/Directory' = " + directory() + " cannot be created: " +
                            error.message() + "; allowed: a new or empty directory, or this study's");
-        write_atomically(directory() + "/study.scene", [&](std::ostream &out) { out << scene_text_; });
+        try
+          {
+            write_atomically(directory() + "/study.scene", [&](std::ostream &out) { out << scene_text_; });
+          }
+        catch (const OutputError &)
+          {
+            if (created) // nothing of the study is in it
+              fs::remove(directory(), error);
+            throw;
+          }
       }
 
       /// Deals the missing rows out over the ranks in rounds; after each,
@@ -281,7 +353,8 @@ namespace nsm
                   cells.push_back(std::move(cell));
                 packed = pack_row(missing_[mine], cells);
               }
-            const std::vector<std::string> gathered = dealii::Utilities::MPI::gather(comm_, packed, 0);
+            const std::vector<std::string> gathered =
+              parallel(comm_) ? dealii::Utilities::MPI::gather(comm_, packed, 0) : std::vector<std::string>{packed};
             if (root())
               {
                 keep_rows(gathered);
@@ -290,7 +363,7 @@ namespace nsm
                 progress.update([&] { return progress_line(ran_); });
               }
             // A stop asked of any rank stops every rank after the same round.
-            if ((stopped_by_ = dealii::Utilities::MPI::max(stop_signal(), comm_)) != 0)
+            if ((stopped_by_ = parallel(comm_) ? dealii::Utilities::MPI::max(stop_signal(), comm_) : stop_signal()) != 0)
               return;
           }
       }
@@ -308,6 +381,10 @@ namespace nsm
              << counted(ended_early(), "row") << " ended before the Omega range's end (backbone_end)"
              << left_out_note(base_.study, combinations_.size());
         std::vector<std::string> lines{note.str()};
+        if (const std::size_t fewer = fewer_spectrum_modes(); fewer > 0)
+          lines.push_back(counted(fewer, "row") + " measured fewer than Study/Spectrum modes = " +
+                          std::to_string(base_.study.spectrum_modes) +
+                          ": their meshes have fewer modes (spectrum_modes_measured)");
         if (stopped_by_)
           lines.push_back(std::string("stopped by ") + stop_signal_name(stopped_by_) + " after " +
                           std::to_string(resumed() + ran_) + " of " + counted(combinations_.size(), "row") +
@@ -320,6 +397,17 @@ namespace nsm
 
     private:
       std::size_t resumed() const { return combinations_.size() - missing_.size(); }
+
+      /// The rows of study.csv whose spectrum error covers fewer modes than
+      /// asked for.
+      std::size_t fewer_spectrum_modes() const
+      {
+        const std::size_t c = column_of(table_, "spectrum_modes_measured");
+        return std::count_if(table_.rows.begin(), table_.rows.end(), [&](const std::vector<CsvCell> &row) {
+          const std::string &cell = text_cell(row, c);
+          return !cell.empty() && std::stoul(cell) < base_.study.spectrum_modes;
+        });
+      }
 
       /// The rows of study.csv, earlier runs' too, whose continuation ended
       /// before the range's end.
@@ -365,8 +453,8 @@ namespace nsm
       }
 
       const MPI_Comm                      comm_  = MPI_COMM_WORLD;
-      const unsigned int                  ranks_ = dealii::Utilities::MPI::n_mpi_processes(comm_);
-      const unsigned int                  rank_  = dealii::Utilities::MPI::this_mpi_process(comm_);
+      const unsigned int                  ranks_ = ranks(comm_);
+      const unsigned int                  rank_  = rank(comm_);
       const dealii::Timer                 timer_; ///< started first, so it counts the set-up too
       const StudyScene &base_;
       const std::vector<StudyCombination> combinations_;
@@ -384,6 +472,9 @@ namespace nsm
   RunReport run_study(const std::string &path, const StudyScene &base)
   {
     StudyRun study(path, base);
+    study.check_memory();
+    for (const StudyScene &level : reference_levels(path, base))
+      check_memory(level.scene);
     study.prepare_directory();
     std::vector<std::string>           reference_notes;
     const std::optional<FineReference> fine = shared_fine_reference(path, base, MPI_COMM_WORLD, reference_notes);

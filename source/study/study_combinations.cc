@@ -73,6 +73,26 @@ namespace nsm
           }
       return key;
     }
+
+    /// Study/Spectrum modes within what the rows' meshes have: a row with
+    /// fewer measures them all and says how many (spectrum_modes_measured);
+    /// a request no row can meet is refused. Adaptive meshes are known once
+    /// made.
+    void check_spectrum_modes(const std::vector<StudyCombination> &combinations, const unsigned int requested)
+    {
+      unsigned int most = 0;
+      for (const StudyCombination &c : combinations)
+        {
+          const Scene::Discretisation &d = c.scene.scene.discretisation;
+          if (d.refinement == Refinement::adaptive)
+            return;
+          most = std::max(most, d.cells * d.degree);
+        }
+      if (requested > most)
+        throw InputError("parameter 'Study/Spectrum modes' = " + std::to_string(requested) +
+                         " is out of range: allowed an integer in [0, " + std::to_string(most) +
+                         "], the most clamped-free modes (Cells x Degree) of a row's mesh");
+    }
   } // namespace
 
   std::string study_fingerprint(const std::string &path, const StudyScene &base)
@@ -127,6 +147,7 @@ namespace nsm
           else
             digit[i] = 0;
       }
+    check_spectrum_modes(combinations, base.study.spectrum_modes);
     return combinations;
   }
 

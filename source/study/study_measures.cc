@@ -15,14 +15,15 @@ namespace nsm
 {
   namespace
   {
-    /// max_j |w_h,j - w_j| / w_j over the exact frequencies w (fewer if the
-    /// mesh has fewer modes).
-    double spectrum_error(const Discretisation &d, const std::vector<double> &w)
+    /// max_j |w_h,j - w_j| / w_j over the exact frequencies w, or over as
+    /// many as the mesh has modes (counted in `measured`).
+    double spectrum_error(const Discretisation &d, const std::vector<double> &w, unsigned int &measured)
     {
       const ModalData h     = compute_spectrum(d, EndCondition::clamped_free, w.size(), false);
       double          error = 0;
       for (std::size_t j = 0; j < h.eigenvalues.size(); ++j)
         error = std::max(error, std::abs(std::sqrt(h.eigenvalues[j]) - w[j]) / w[j]);
+      measured = h.eigenvalues.size();
       return error;
     }
 
@@ -210,7 +211,7 @@ namespace nsm
     if (study.spectrum_modes > 0 && exact)
       {
         Scope scope(timer, "spectrum");
-        m.spectrum_error = spectrum_error(*d, reference.frequencies);
+        m.spectrum_error = spectrum_error(*d, reference.frequencies, m.spectrum_modes);
       }
     if (study.receptance_frequency_values.empty() && study.backbone_omega_values.empty())
       return m;

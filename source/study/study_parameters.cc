@@ -6,6 +6,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <sstream>
 
 namespace nsm
@@ -34,6 +35,19 @@ namespace nsm
       {"Harmonic balance", "Integration", "Integrations", "integration"},
       {"Harmonic balance", "Time samples", "Time samples", "time_samples", "integration", "sampled"}};
 
+    /// Two spellings of one value: the same text, or the same number ("2"
+    /// and "02", "0.5" and "5e-1").
+    bool same_value(const std::string &a, const std::string &b)
+    {
+      const auto number = [](const std::string &text, double &value) {
+        char *end = nullptr;
+        value     = std::strtod(text.c_str(), &end);
+        return !text.empty() && end == text.c_str() + text.size();
+      };
+      double x, y;
+      return a == b || (number(a, x) && number(b, y) && x == y);
+    }
+
     /// The comma-separated values of Study/`entry`, trimmed. An empty value
     /// (a stray comma) or one listed twice is most likely a typo, and would
     /// only repeat a row: an input error.
@@ -53,8 +67,9 @@ namespace nsm
           if (first == std::string::npos)
             refuse("an empty value");
           item = item.substr(first, item.find_last_not_of(" \t") - first + 1);
-          if (std::find(items.begin(), items.end(), item) != items.end())
-            refuse("'" + item + "' is listed twice");
+          for (const std::string &earlier : items)
+            if (same_value(earlier, item))
+              refuse("'" + item + "' is listed twice" + (earlier == item ? "" : " (as '" + earlier + "')"));
           items.push_back(item);
         }
       return items;
@@ -160,6 +175,12 @@ namespace nsm
       parse_frequency_list(receptance_frequencies, "Study/Receptance frequencies");
     backbone_omegas       = prm.get("Backbone omegas");
     backbone_omega_values = parse_frequency_list(backbone_omegas, "Study/Backbone omegas");
+    for (std::size_t i = 0; i < backbone_omega_values.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if (backbone_omega_values[i] == backbone_omega_values[j])
+          throw InputError("parameter 'Study/Backbone omegas' = '" + backbone_omegas + "' is not allowed: " +
+                           scene_entries::format_value(backbone_omega_values[i]) +
+                           " is listed twice; allowed: distinct frequencies");
     repeats               = static_cast<unsigned int>(prm.get_integer("Repeats"));
     verify_in_time        = prm.get_bool("Verify in time");
     reference_degree      = prm.get("Reference degree");

@@ -111,7 +111,7 @@ namespace nsm
   std::vector<std::string> study_row_columns(const StudyParameters &study)
   {
     std::vector<std::string> columns = {"status", "reference", "dofs", "final_cells", "hb_unknowns",
-                                        "time_samples_used", "spectrum_error", "receptance_error",
+                                        "time_samples_used", "spectrum_error", "spectrum_modes_measured", "receptance_error",
                                         "energy_error_max", "energy_error_median", "force_error_max",
                                         "contact_fraction_error_max", "main_energy_error_median",
                                         "main_energy_error_q90", "main_time_defect_median",
@@ -159,6 +159,7 @@ namespace nsm
                                     std::to_string(m.hb_unknowns),
                                     m.time_samples ? std::to_string(m.time_samples) : std::string(),
                                     text(m.spectrum_error),
+                                    m.spectrum_error ? std::to_string(m.spectrum_modes) : std::string(),
                                     text(m.receptance_error),
                                     text(m.energy_error_max),
                                     text(m.energy_error_median),

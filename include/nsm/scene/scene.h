@@ -158,6 +158,14 @@ namespace nsm
       void        parse(dealii::ParameterHandler &prm);
     } continuation;
 
+    struct Resources
+    {
+      double memory_limit = 0; ///< MiB; 0: the memory the machine has available
+
+      static void declare(dealii::ParameterHandler &prm);
+      void        parse(dealii::ParameterHandler &prm);
+    } resources;
+
     struct Output
     {
       std::string         directory      = "output";

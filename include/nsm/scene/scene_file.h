@@ -12,9 +12,16 @@ namespace dealii
 
 namespace nsm
 {
+  /// Most nested includes of a PRM scene.
+  constexpr std::size_t max_include_depth = 32;
+  /// Deepest nesting of a JSON or XML scene.
+  constexpr std::size_t max_nesting_depth = 64;
+
   /// Reads the scene file `path` into `prm`, whose entries are declared with
-  /// bounded patterns. The file must be a readable regular file whose
-  /// `include` lines form no cycle. It is parsed with every entry accepted as
+  /// bounded patterns. The file must be a readable regular file. A PRM
+  /// file's `include` lines (any file name, any white space) are replaced by
+  /// the included texts, at most max_include_depth deep and never a file
+  /// inside itself; JSON and XML are nested at most max_nesting_depth deep. It is parsed with every entry accepted as
   /// text, then each value is checked against its declared pattern, so that
   /// a rejection names the entry as Section/Subsection/Name and says its
   /// allowed values in words. Throws InputError.

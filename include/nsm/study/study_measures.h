@@ -33,6 +33,7 @@ namespace nsm
   struct RowMeasures
   {
     unsigned int          dofs = 0, cells = 0, hb_unknowns = 0, time_samples = 0;
+    unsigned int          spectrum_modes = 0; ///< measured: Study/Spectrum modes, or fewer on a coarse mesh
     std::optional<double> spectrum_error, receptance_error, energy_error_max, energy_error_median,
       force_error_max, contact_fraction_error_max, main_error_median, main_error_q90, time_defect_median,
       time_defect_max;

@@ -1,0 +1,26 @@
+// The memory a scene's run needs, estimated before any work, so that a
+// scene the machine cannot hold is refused at once (exit 2) instead of
+// running out of memory half-way.
+#pragma once
+
+#include <nsm/scene/scene.h>
+
+#include <cstddef>
+
+namespace nsm
+{
+  /// Bytes the run of `scene` needs at its peak, an upper estimate: the mesh
+  /// and the sparse stiffness and mass matrices (measured per cell and per
+  /// nonzero on this code), the band factors, the harmonic balance's dense
+  /// matrices and samples, and the fields kept for output.
+  std::size_t estimated_memory(const Scene &scene);
+
+  /// Bytes the run may use: Resources/Memory limit if set, else the memory
+  /// the machine has available (MemAvailable), and never more than the
+  /// process's address-space limit leaves.
+  std::size_t available_memory(const Scene::Resources &resources);
+
+  /// Throws InputError, naming the entries that drive the estimate, if the
+  /// scene needs more than is available.
+  void check_memory(const Scene &scene);
+} // namespace nsm
