@@ -280,6 +280,7 @@ namespace nsm
     // Checked before any work: an unwritable directory is known now.
     check_memory(scene);
     OutputDirectory output(scene.output.directory);
+    report.notes.push_back(memory_note(scene));
     SceneRun        run(scene, report);
     run.mesh(bar);
     if (needs_spectrum)

@@ -90,4 +90,13 @@ namespace nsm
       << ": reduce Discretisation/Cells or Discretisation/Degree";
     throw InputError(s.str());
   }
+
+  std::string memory_note(const Scene &scene)
+  {
+    std::ostringstream s;
+    s.precision(3);
+    s << "memory: about " << estimated_memory(scene) / double(1 << 20) << " MiB estimated at the peak, "
+      << available_memory(scene.resources) / double(1 << 20) << " MiB available";
+    return s.str();
+  }
 } // namespace nsm

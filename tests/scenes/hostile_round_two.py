@@ -18,6 +18,7 @@ import json
 import os
 import re
 import resource
+import shutil
 import signal
 import stat
 import subprocess
@@ -331,6 +332,23 @@ def complete_named(directory):
     return check
 
 
+def estimate_bounds_peak(executable):
+    """The summary's memory estimate lies above the run's measured peak
+    resident memory, and within 3 times it (an estimate that refuses only
+    scenes that would not fit)."""
+    def check(row):
+        estimate = float(re.search(r"memory: about ([0-9.e+]+) MiB", row["stdout"]).group(1))
+        shutil.rmtree("out", ignore_errors=True)
+        pid = os.fork()
+        if pid == 0:
+            os.execv(executable, [executable, "scene.prm"])
+        _, status, usage = os.wait4(pid, 0)
+        peak = usage.ru_maxrss / 1024
+        assert os.waitstatus_to_exitcode(status) == 0
+        assert peak <= estimate <= 3 * peak, f"estimate {estimate} MiB, measured peak {peak:.0f} MiB"
+    return check
+
+
 def new_rows(executable):
     """The rows; executable is used by the setups that need an earlier run."""
     narrow_step = "1.5 - x - 2*(abs(x - 0.5005) < 4e-4)"       # A < 0 on (0.5001, 0.5009)
@@ -609,6 +627,11 @@ def new_rows(executable):
         # in one line, never 4. Skipped under AddressSanitizer (no cap there).
         # old: exit 4 "nsm-bar: error: std::bad_alloc" (5 of 5 runs).
     ] + ([] if SANITIZED else [
+        # The estimate that refuses a scene, against the peak it measures:
+        # FE_Q(20) x 1e4 cells (2e5 DoFs, 8e6 nonzeros), one direct receptance.
+        dict(name="memory_estimate_bounds_peak", scene=section("Discretisation", Degree=20, Cells=10000) +
+             output(Directory="out", Receptance_frequencies="1"), code=0, leaves={"out"},
+             check=estimate_bounds_peak(executable)),
         dict(name="memory_bad_alloc_in_run", scene=linear(200000) + spectrum_scene("out", 2),
              code=(2, 3, 5), preexec=limits(address_space=startup_address_space(executable) + (40 << 20))),
     ])

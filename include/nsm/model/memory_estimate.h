@@ -6,6 +6,7 @@
 #include <nsm/scene/scene.h>
 
 #include <cstddef>
+#include <string>
 
 namespace nsm
 {
@@ -23,4 +24,8 @@ namespace nsm
   /// Throws InputError, naming the entries that drive the estimate, if the
   /// scene needs more than is available.
   void check_memory(const Scene &scene);
+
+  /// "memory: about N MiB estimated at the peak, M MiB available", for the
+  /// run summary.
+  std::string memory_note(const Scene &scene);
 } // namespace nsm
