@@ -3,12 +3,13 @@
 the CSV files it writes, cell by cell, with those one recorded earlier.
 
 usage: output_identity.py record  NSM_BAR RECORD_DIRECTORY [SCENE.prm ...]
-       output_identity.py compare NSM_BAR RECORD_DIRECTORY [SCENE.prm ...]
+       output_identity.py compare [--common-columns] NSM_BAR RECORD_DIRECTORY [SCENE.prm ...]
 Without scenes, every prm/*.prm. `record` keeps each scene's CSV files in
 RECORD_DIRECTORY/SCENE/; `compare` runs the scenes again and fails unless
 every file, every column and every cell is the same text. Costs are left
 out: columns named wall_*, cpu_*, peak_* or *_seconds, which vary from run to
-run (study_row.h). Uses the standard library only.
+run (study_row.h). With --common-columns, a column only one side has is named
+but not compared (a build that adds a column). Uses the standard library only.
 """
 import csv
 import os
@@ -49,13 +50,24 @@ def without_costs(rows):
     return [[row[i] for i in keep if i < len(row)] for row in rows]
 
 
-def differences(name, recorded, now):
+def common_columns(a, b, name, path):
+    """Both tables cut to the columns they share; prints the others."""
+    shared = [c for c in a[0] if c in b[0]]
+    for c in sorted(set(a[0]) ^ set(b[0])):
+        print(f"  {name}: {path}: column {c} {'recorded only' if c in a[0] else 'new'}, not compared")
+    cut = lambda rows: [[row[rows[0].index(c)] for c in shared] for row in rows]
+    return cut(a), cut(b)
+
+
+def differences(name, recorded, now, common=False):
     found = []
     for path in sorted(set(recorded) | set(now)):
         if path not in now or path not in recorded:
             found.append(f"{name}: {path} {'missing' if path not in now else 'new'}")
             continue
         a, b = without_costs(recorded[path]), without_costs(now[path])
+        if common and a and b:
+            a, b = common_columns(a, b, name, path)
         if a[:1] != b[:1]:
             found.append(f"{name}: {path}: columns differ: {a[:1]} against {b[:1]}")
         elif len(a) != len(b):
@@ -70,10 +82,13 @@ def differences(name, recorded, now):
 
 
 def main():
-    if len(sys.argv) < 4 or sys.argv[1] not in ("record", "compare"):
+    arguments = sys.argv[1:]
+    common = "--common-columns" in arguments
+    arguments = [a for a in arguments if a != "--common-columns"]
+    if len(arguments) < 3 or arguments[0] not in ("record", "compare"):
         sys.exit(__doc__)
-    mode, executable, store = sys.argv[1], os.path.abspath(sys.argv[2]), os.path.abspath(sys.argv[3])
-    scenes = sys.argv[4:] or sorted(os.path.join(ROOT, "prm", f) for f in os.listdir(os.path.join(ROOT, "prm"))
+    mode, executable, store = arguments[0], os.path.abspath(arguments[1]), os.path.abspath(arguments[2])
+    scenes = arguments[3:] or sorted(os.path.join(ROOT, "prm", f) for f in os.listdir(os.path.join(ROOT, "prm"))
                                     if f.endswith(".prm"))
     failures = []
     for scene in scenes:
@@ -94,7 +109,7 @@ def main():
                 for f in files:
                     with open(os.path.join(base, f), newline="") as handle:
                         recorded[os.path.relpath(os.path.join(base, f), kept)] = list(csv.reader(handle))
-            found = differences(name, recorded, tables) if recorded else [f"{name}: nothing recorded"]
+            found = differences(name, recorded, tables, common) if recorded else [f"{name}: nothing recorded"]
             failures += found
             print(f"{'same' if not found else 'DIFFERENT'} {name}: {len(tables)} CSV files ({seconds:.1f} s)",
                   flush=True)
