@@ -160,6 +160,16 @@ namespace nsm
       final_paths.push_back(target_ + "/" + f.substr(prefix.size()));
     try
       {
+        // Checked again: another run may have written into the directory
+        // since this one began (a study writes in place).
+        try
+          {
+            check_target(target_, target_);
+          }
+        catch (const InputError &e)
+          {
+            throw OutputError(std::string(e.what()) + " (it changed during the run); the new output is not kept");
+          }
         if (fs::exists(target_))
           swap_directories(staging_, target_);
         else
