@@ -3,12 +3,17 @@
 #include <deal.II/base/exceptions.h>
 #include <nsm/base/errors.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
+
+#include <ext/stdio_filebuf.h>
+#include <fcntl.h>
 
 namespace nsm
 {
@@ -74,9 +79,14 @@ namespace nsm
   {
     const std::string temporary = path + ".partial";
     std::error_code   error;
-    // A leftover, or a link planted in its place, is removed (not followed).
+    // A leftover, or a link planted in its place, is removed (not followed),
+    // and the file is made anew: never opened through a link.
     std::filesystem::remove(temporary, error);
-    std::ofstream out(temporary);
+    const int descriptor = open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (descriptor < 0)
+      throw OutputError("cannot write " + path + ": " + std::strerror(errno));
+    __gnu_cxx::stdio_filebuf<char> file(descriptor, std::ios::out);
+    std::ostream                   out(&file);
     out.precision(17);
     try
       {
@@ -87,8 +97,9 @@ namespace nsm
         out.setstate(std::ios::failbit); // a writer that checks its stream (deal.II's VTU)
       }
     // The last buffer is written by close(): it is checked too.
-    out.close();
-    if (out.fail() || (std::filesystem::rename(temporary, path, error), error))
+    out.flush();
+    const bool closed = file.close() != nullptr;
+    if (out.fail() || !closed || (std::filesystem::rename(temporary, path, error), error))
       {
         std::filesystem::remove(temporary, error);
         throw OutputError("cannot write " + path + " whole (disk full or file size limit?)");

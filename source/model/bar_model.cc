@@ -1,3 +1,4 @@
+#include <nsm/base/text.h>
 #include <nsm/model/bar_model.h>
 
 #include <deal.II/base/function_parser.h>
@@ -19,7 +20,7 @@ namespace nsm
     void check_expression(const std::string &expression)
     {
       const auto refuse = [&](const std::string &why) {
-        throw InputError("parameter 'Bar/Cross section' = '" + expression +
+        throw InputError("parameter 'Bar/Cross section' = '" + printable(expression) +
                          "' is not allowed: " + why + "; allowed: one expression in x");
       };
       int depth = 0;
@@ -71,7 +72,7 @@ namespace nsm
     catch (const dealii::ExceptionBase &e)
       {
         std::cerr.rdbuf(cerr);
-        throw InputError("parameter 'Bar/Cross section' = '" + expression_ +
+        throw InputError("parameter 'Bar/Cross section' = '" + printable(expression_) +
                          "' is not a valid expression in x: " + one_line_message(e));
       }
     for (unsigned int i = 0; i <= section_samples; ++i)
@@ -87,7 +88,7 @@ namespace nsm
       {
         std::ostringstream msg;
         msg.precision(17);
-        msg << "parameter 'Bar/Cross section' = '" << expression_
+        msg << "parameter 'Bar/Cross section' = '" << printable(expression_)
             << "' is out of range: allowed A(x) > 0, within [" << 1 / Scene::magnitude_limit
             << ", " << Scene::magnitude_limit << "] on [0, L], but A(" << x << ") = " << a;
         throw InputError(msg.str());

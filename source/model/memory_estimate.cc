@@ -68,6 +68,10 @@ namespace nsm
   {
     double available = resources.memory_limit > 0 ? resources.memory_limit * (1 << 20) :
                                                     proc_value("/proc/meminfo", "MemAvailable");
+    if (!(available > 0)) // a kernel without MemAvailable
+      available = proc_value("/proc/meminfo", "MemTotal");
+    if (!(available > 0))
+      available = 1e19;
     rlimit limit{};
     if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
       available = std::min(available, double(limit.rlim_cur) - proc_value("/proc/self/status", "VmSize") +
@@ -86,7 +90,8 @@ namespace nsm
       << "Discretisation/Cells = " << scene.discretisation.cells << " and Discretisation/Degree = "
       << scene.discretisation.degree << ", Harmonic balance/Harmonics and the fields asked for), more than the "
       << have / (1 << 20) << " MiB "
-      << (scene.resources.memory_limit > 0 ? "of Resources/Memory limit" : "the machine has available")
+      << (scene.resources.memory_limit > 0 ? "of Resources/Memory limit" :
+                                             "the machine has available (or the process's address-space limit allows)")
       << ": reduce Discretisation/Cells or Discretisation/Degree";
     throw InputError(s.str());
   }

@@ -3,6 +3,7 @@
 #include <nsm/base/errors.h>
 #include <nsm/base/text.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdint>
 #include <csignal>
@@ -53,6 +54,24 @@ namespace nsm
       return listed;
     }
 
+    /// A folder of files the manifest lists as "FOLDER/ (...)" (the VTK
+    /// snapshots).
+    bool listed_folder(const std::set<std::string> &listed, const std::string &folder)
+    {
+      return std::any_of(listed.begin(), listed.end(),
+                         [&](const std::string &line) { return line.rfind(folder + "/", 0) == 0; });
+    }
+
+    /// A folder that holds regular files only (no link, no subfolder).
+    bool only_regular_files(const fs::path &folder)
+    {
+      std::error_code error;
+      for (const auto &entry : fs::directory_iterator(folder, error))
+        if (entry.is_symlink() || !entry.is_regular_file())
+          return false;
+      return !error;
+    }
+
     /// Whether the target may be replaced: missing, empty, or exactly an
     /// earlier run's output, the regular files its manifest lists and the
     /// manifest itself. Anything else is the user's: the run is refused
@@ -74,16 +93,26 @@ namespace nsm
         throw directory_error(name, "holds files that no nsm-bar run wrote (it has no " +
                                       std::string(OutputDirectory::manifest) +
                                       " file): choose a new, an empty or an earlier output directory");
-      for (const auto &entry : fs::directory_iterator(target, error))
+      const auto foreign = [&](const std::string &file) {
+        return directory_error(name, "holds '" + printable(file) + "', which its " +
+                                       std::string(OutputDirectory::manifest) +
+                                       " does not list as a file an nsm-bar run wrote: choose a new, an "
+                                       "empty or an earlier output directory");
+      };
+      fs::directory_iterator entries(target, error);
+      if (error)
+        throw directory_error(name, "cannot be read: " + error.message());
+      for (const auto &entry : entries)
         {
           const std::string file = entry.path().filename().string();
           if (file == OutputDirectory::manifest)
             continue;
-          if (!listed.count(file) || !entry.is_regular_file() || entry.is_symlink())
-            throw directory_error(name, "holds '" + printable(file) + "', which its " +
-                                          std::string(OutputDirectory::manifest) +
-                                          " does not list as a file an nsm-bar run wrote: choose a new, an "
-                                          "empty or an earlier output directory");
+          if (entry.is_symlink())
+            throw foreign(file);
+          if (entry.is_directory() && listed_folder(listed, file) && only_regular_files(entry.path()))
+            continue;
+          if (!listed.count(file) || !entry.is_regular_file())
+            throw foreign(file);
         }
     }
 
@@ -106,7 +135,8 @@ namespace nsm
     {
       if (renameat2(AT_FDCWD, a.c_str(), AT_FDCWD, b.c_str(), RENAME_EXCHANGE) == 0)
         return;
-      const fs::path aside = a.string() + ".old";
+      // Not a staging name: a stale staging's removal must never take it.
+      const fs::path aside = b.parent_path() / (".nsm-bar-aside-" + std::to_string(getpid()));
       fs::rename(b, aside);
       fs::rename(a, b);
       fs::rename(aside, a);

@@ -90,14 +90,15 @@ namespace nsm
       bool                     continued = false;
       for (std::string line; std::getline(in, line);)
         {
-          line = trimmed(line);
+          line              = trimmed(line);
+          const bool joined = !line.empty() && line.back() == '\\'; // this physical line goes on
+          if (joined)
+            line.pop_back();
           if (continued)
             lines.back() += line;
           else
             lines.push_back(line);
-          continued = !lines.back().empty() && lines.back().back() == '\\';
-          if (continued)
-            lines.back().pop_back();
+          continued = joined;
         }
       return lines;
     }
@@ -135,8 +136,11 @@ namespace nsm
     /// flattened texts (names relative to the working directory, as deal.II
     /// reads them). A file included inside itself, by any path to it, is a
     /// cycle; more than max_include_depth nested includes are refused.
-    void flatten(const std::string &path, std::vector<fs::path> &chain, std::ostream &out)
+    void flatten(const std::string &path, std::vector<fs::path> &chain, std::ostream &out, std::size_t &files)
     {
+      if (++files > max_included_files)
+        throw InputError("scene '" + shown(chain.empty() ? path : chain.front().string()) + "' includes more than " +
+                         std::to_string(max_included_files) + " files in all");
       const fs::path canonical = readable_file(path);
       if (std::find(chain.begin(), chain.end(), canonical) != chain.end())
         throw InputError("scene '" + shown(chain.front().string()) + "' includes '" + shown(path) +
@@ -151,7 +155,7 @@ namespace nsm
           {
             if (included->empty())
               throw InputError("scene '" + shown(path) + "': an include line names no file");
-            flatten(*included, chain, out);
+            flatten(*included, chain, out, files);
           }
         else
           out << line << '\n';
@@ -184,11 +188,24 @@ namespace nsm
     std::size_t xml_depth(std::istream &in)
     {
       std::size_t depth = 0, deepest = 0;
+      bool        in_tag = false, closing = false;
       for (char c, previous = 0; in.get(c); previous = c)
-        if (previous == '<' && std::isalpha(static_cast<unsigned char>(c)))
-          deepest = std::max(deepest, ++depth);
-        else if (((previous == '<' && c == '/') || (previous == '/' && c == '>')) && depth > 0)
-          --depth;
+        if (previous == '<' && !in_tag)
+          {
+            // "<name": an element opens (a declaration "<?", "<!" does not);
+            // "</name>" closes one.
+            in_tag  = true;
+            closing = c == '/';
+            if (!closing && c != '?' && c != '!')
+              deepest = std::max(deepest, ++depth);
+          }
+        else if (c == '>' && in_tag)
+          {
+            // "</name>" and "<name/>" close an element.
+            if ((closing || previous == '/') && depth > 0)
+              --depth;
+            in_tag = false;
+          }
       return deepest;
     }
 
@@ -253,7 +270,8 @@ namespace nsm
     else
       {
         std::vector<fs::path> chain;
-        flatten(path, chain, flat);
+        std::size_t           files = 0;
+        flatten(path, chain, flat, files);
       }
 
     // Every entry as text first: deal.II's own pattern errors name neither
@@ -285,7 +303,7 @@ namespace nsm
         std::string value;
         in_sections(text, entry, [&] { value = text.get(entry.name); });
         if (!dealii::Patterns::pattern_factory(entry.pattern)->match(value))
-          throw InputError("scene '" + path + "': parameter '" + entry.path() + "' = " + value +
+          throw InputError("scene '" + shown(path) + "': parameter '" + entry.path() + "' = " + printable(value) +
                            " is out of range: allowed " + allowed_values(entry.pattern));
         in_sections(prm, entry, [&] { prm.set(entry.name, value); });
       }

@@ -362,8 +362,9 @@ namespace nsm
                 ran_ = std::min(missing_.size(), round + ranks_);
                 progress.update([&] { return progress_line(ran_); });
               }
-            // A stop asked of any rank stops every rank after the same round.
-            if ((stopped_by_ = parallel(comm_) ? dealii::Utilities::MPI::max(stop_signal(), comm_) : stop_signal()) != 0)
+            // A stop asked of any rank stops every rank after the same round
+            // (none after the last: every row is done).
+            if (round + ranks_ < missing_.size() && (stopped_by_ = parallel(comm_) ? dealii::Utilities::MPI::max(stop_signal(), comm_) : stop_signal()) != 0)
               return;
           }
       }
@@ -472,10 +473,24 @@ namespace nsm
   RunReport run_study(const std::string &path, const StudyScene &base)
   {
     StudyRun study(path, base);
-    study.check_memory();
-    for (const StudyScene &level : reference_levels(path, base))
-      check_memory(level.scene);
-    study.prepare_directory();
+    // Rank 0 checks the memory and prepares the directory; a refusal there
+    // stops every rank alike (the others would wait for it in a collective).
+    std::string refused;
+    try
+      {
+        study.check_memory();
+        for (const StudyScene &level : reference_levels(path, base))
+          check_memory(level.scene);
+        study.prepare_directory();
+      }
+    catch (const InputError &e)
+      {
+        refused = e.what();
+      }
+    if (parallel(MPI_COMM_WORLD))
+      refused = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, refused, 0);
+    if (!refused.empty())
+      throw InputError(refused);
     std::vector<std::string>           reference_notes;
     const std::optional<FineReference> fine = shared_fine_reference(path, base, MPI_COMM_WORLD, reference_notes);
     study.run_missing_rows(fine ? &*fine : nullptr);

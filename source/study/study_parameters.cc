@@ -175,9 +175,16 @@ namespace nsm
       parse_frequency_list(receptance_frequencies, "Study/Receptance frequencies");
     backbone_omegas       = prm.get("Backbone omegas");
     backbone_omega_values = parse_frequency_list(backbone_omegas, "Study/Backbone omegas");
+    // Two values are one column (energy_at_W, 12 digits) if they print alike.
+    const auto column = [](const double w) {
+      std::ostringstream s;
+      s.precision(12);
+      s << w;
+      return s.str();
+    };
     for (std::size_t i = 0; i < backbone_omega_values.size(); ++i)
       for (std::size_t j = 0; j < i; ++j)
-        if (backbone_omega_values[i] == backbone_omega_values[j])
+        if (column(backbone_omega_values[i]) == column(backbone_omega_values[j]))
           throw InputError("parameter 'Study/Backbone omegas' = '" + backbone_omegas + "' is not allowed: " +
                            scene_entries::format_value(backbone_omega_values[i]) +
                            " is listed twice; allowed: distinct frequencies");

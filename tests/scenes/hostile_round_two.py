@@ -349,6 +349,43 @@ def estimate_bounds_peak(executable):
     return check
 
 
+def include_fan_out(levels):
+    """f0.prm includes f1.prm twice, f1 includes f2 twice, ...: 2^levels
+    includes in all, each file a few lines."""
+    def setup(row):
+        row["scene_file"] = "f0.prm"
+        for i in range(levels):
+            write(f"f{i}.prm", f"include f{i + 1}.prm\ninclude f{i + 1}.prm\n")
+        write(f"f{levels}.prm", "# empty\n")
+    return setup
+
+
+def deep_xml_underscore(row):
+    row["scene_file"] = "scene.xml"
+    write("scene.xml", "<ParameterHandler>" + "<_>" * 100000 + "1" + "</_>" * 100000 + "</ParameterHandler>")
+
+
+def earlier_vtk_run(executable, scene):
+    """An earlier complete run of `scene` (with VTK snapshots in a folder)."""
+    def setup(_):
+        write("first.prm", scene)
+        prepare_run(executable, "first.prm")
+    return setup
+
+
+def vtk_output_complete(_):
+    """The rerun's output: the files and the snapshot folder its manifest lists."""
+    listed = read("out/nsm-bar.manifest").splitlines()
+    top = {line.split("/")[0].split(" ")[0] for line in listed}
+    assert set(os.listdir("out")) == top | {"nsm-bar.manifest"}, (sorted(os.listdir("out")), sorted(top))
+    assert any(line.startswith("field_0_snapshots/") for line in listed), listed
+
+
+def json_section_newline(row):
+    row["scene_file"] = "scene.json"
+    write("scene.json", json_scene({"Bar": {"Cross section": "1.5 - y\n+ 1"}, "Output": {"Directory": "out"}}))
+
+
 def new_rows(executable):
     """The rows; executable is used by the setups that need an earlier run."""
     narrow_step = "1.5 - x - 2*(abs(x - 0.5005) < 4e-4)"       # A < 0 on (0.5001, 0.5009)
@@ -408,7 +445,14 @@ def new_rows(executable):
              leaves={"out"}),
         dict(name="include_chain_32", scene=None, setup=include_chain(32), code=0,
              leaves={"out"}),
+        # Every include doubles: 2^20 includes of small files. Refused by a
+        # limit on the files included in all.
+        dict(name="include_fan_out", scene=None, setup=include_fan_out(20), code=2,
+             words=["includes more than"], max_seconds=10),
         # ---- 2. deep nesting ----------------------------------------------------
+        # Element names need not start with a letter.
+        dict(name="xml_nested_underscore", scene=None, setup=deep_xml_underscore, code=2,
+             words=["scene.xml", "nested"]),
         # old: SIGSEGV in boost's recursive JSON / XML parsers, 0.2 s.
         dict(name="json_nested_100000", scene=None, setup=deep_json, code=2,
              words=["scene.json", "nested"]),
@@ -581,7 +625,19 @@ def new_rows(executable):
         # Backbone omegas are not checked for repeats at all (even "1.92, 1.92").
         dict(name="study_backbone_omegas_1920", scene=BACKBONE + section("Study", Backbone_omegas="1.92, 1.920") +
              output(Directory="out"), code=2, words=["Study/Backbone omegas", "listed twice"]),
+        # A range and a single value that print as one column (energy_at_1.7).
+        dict(name="study_backbone_omegas_range_and_value", scene=BACKBONE + section(
+            "Study", Backbone_omegas="1.6:2.0:9, 1.7") + output(Directory="out"), code=2,
+             words=["Study/Backbone omegas", "listed twice"]),
+        # A newline inside a value: the message still one line.
+        dict(name="json_section_newline", scene=None, setup=json_section_newline, code=2,
+             words=["Bar/Cross section"]),
         # ---- 12. Output/Directory ------------------------------------------------------
+        # A VTK run's snapshots are a folder its manifest lists: a rerun
+        # replaces the earlier output.
+        dict(name="vtk_output_rerun", scene=BACKBONE + output(Directory="out", Fields_at=1.92, VTK="true"),
+             setup=earlier_vtk_run(executable, BACKBONE + output(Directory="out", Fields_at=1.92, VTK="true")),
+             code=0, leaves={"out"}, check=vtk_output_complete),
         # old: runs everything (plots included), then exit 5 "output error: cannot
         # move the new output into out: ... cannot rename: Not a directory", 0.7 s.
         dict(name="directory_dangling_link", scene=BACKBONE + output(Directory="out", Backbone="true",

@@ -131,13 +131,13 @@ def ranks(executable, studies):
 
 
 def blocked_writing_stderr(pid):
-    """The process waits in write(2, ...) (Linux's /proc/PID/syscall)."""
+    """The process waits to write into a full pipe: its only pipe is stderr
+    (Linux's /proc/PID/wchan names the kernel function it sleeps in)."""
     try:
-        with open(f"/proc/{pid}/syscall") as f:
-            fields = f.read().split()
+        with open(f"/proc/{pid}/wchan") as f:
+            return "pipe_write" in f.read()
     except OSError:
         return False
-    return len(fields) > 1 and fields[0] == "1" and int(fields[1], 16) == 2
 
 
 def full_pipe():

@@ -14,6 +14,9 @@ namespace nsm
 {
   /// Most nested includes of a PRM scene.
   constexpr std::size_t max_include_depth = 32;
+  /// Most files a PRM scene may include in all (a chain may include one
+  /// file many times).
+  constexpr std::size_t max_included_files = 10000;
   /// Deepest nesting of a JSON or XML scene.
   constexpr std::size_t max_nesting_depth = 64;
 
