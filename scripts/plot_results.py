@@ -18,7 +18,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
-TEXT_COLUMNS = ("branch", "verified")
+TEXT_COLUMNS = ("branch", "verified", "stable")
 
 
 def read(path):
@@ -61,6 +61,13 @@ def backbone_plot(directory):
     if failed:
         axes.semilogy([w for w, _ in failed], [e for _, e in failed], "o", markersize=6,
                       markerfacecolor="none", color="C1", label="not periodic in time")
+    # Points refined in time: the orbit's energy, stable and unstable apart.
+    for flag, marker, label in (("true", "s", "orbit in time, stable"), ("false", "D", "orbit in time, unstable")):
+        orbit = [(w, e) for w, e, s in zip(points["Omega"], points.get("orbit_energy", []),
+                                           points.get("stable", [])) if s == flag]
+        if orbit:
+            axes.semilogy([w for w, _ in orbit], [e for _, e in orbit], marker, markersize=5,
+                          markerfacecolor="none", color="C2" if flag == "true" else "C4", label=label)
     tongues = os.path.join(directory, "tongues.csv")
     if os.path.exists(tongues):
         t = read(tongues)
@@ -101,6 +108,9 @@ def backbone_plot(directory):
     if "verified" in points:
         checked = sum(v in ("true", "false") for v in points["verified"])
         title += f"\n{checked} verified in time, {len(failed)} not periodic"
+    if "stable" in points:
+        found = sum(s in ("true", "false") for s in points["stable"])
+        title += f"\n{found} orbits found in time, {points['stable'].count('false')} unstable"
     axes.set_title(title)
     axes.legend(loc="upper left", fontsize=8)
     save(figure, os.path.join(directory, "backbone.png"))

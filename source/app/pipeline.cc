@@ -12,6 +12,7 @@
 #include <nsm/base/progress.h>
 #include <nsm/model/receptance.h>
 #include <nsm/output/result_tables.h>
+#include <nsm/verification/orbit_refinement.h>
 #include <nsm/verification/time_verification.h>
 
 #include <deal.II/base/multithread_info.h>
@@ -168,9 +169,27 @@ namespace nsm
         });
       }
 
+      /// The refinement's dense modes, checked before any other work.
+      void check_refinement_size() const
+      {
+        if (discretisation_->n_dofs() > max_refined_dofs)
+          throw InputError("parameter 'Output/Refine in time' = true is out of range: allowed for at most " +
+                           std::to_string(max_refined_dofs) + " DoFs (dense modes); the mesh has " +
+                           std::to_string(discretisation_->n_dofs()));
+      }
+
+      void refine_in_time()
+      {
+        timed("refinement in time", [&] {
+          Progress progress("refinement in time", scene_.output.progress_every);
+          orbits_ = refine_backbone(*hb_, *discretisation_, backbone_, scene_.output, progress);
+          report_.notes.push_back(refinement_summary(backbone_, orbits_, scene_.output));
+        });
+      }
+
       void backbone_tables()
       {
-        tables_.push_back(backbone_table(backbone_, verifications_));
+        tables_.push_back(backbone_table(backbone_, verifications_, orbits_));
         tables_.push_back(tongue_table(backbone_));
         tables_.push_back(resonance_table(resonances_));
       }
@@ -189,6 +208,8 @@ namespace nsm
                 report_.notes.push_back(tongue_field_note(p));
               if (o.verify_in_time)
                 report_.notes.push_back(field_verification(fields_.back(), *discretisation_, hb_->law(), scene_.output));
+              if (o.refine_in_time)
+                report_.notes.push_back(field_refinement(fields_.back().point()));
               progress.update(report_count);
             }
           for (std::size_t i = 0; o.fields_every > 0 && i < backbone_.points.size(); i += o.fields_every)
@@ -239,6 +260,24 @@ namespace nsm
         report_.stages.push_back({name, timer.wall_time(), timer.cpu_time()});
       }
 
+      /// The summary line of a field point's orbit.
+      std::string field_refinement(const BackbonePoint &p) const
+      {
+        const PeriodicOrbit orbit = refine_point(*hb_, *discretisation_, p, scene_.output, {});
+        std::ostringstream  s;
+        s.precision(6);
+        s << "field at Omega = " << p.omega << " refined in time: ";
+        if (!orbit.converged)
+          s << "no orbit found from it (residual " << orbit.residual << " after " << orbit.newton_steps
+            << " Newton steps)";
+        else
+          s << "orbit energy " << orbit.energy << ", HB energy error " << hb_energy_error(p, orbit)
+            << ", contact fraction " << orbit.contact_fraction << ", largest |Floquet multiplier| "
+            << orbit.floquet_max << (orbit.stable ? " (stable)" : " (unstable)") << ", isolation "
+            << orbit.isolation;
+        return s.str();
+      }
+
       std::string backbone_note() const
       {
         std::ostringstream s;
@@ -258,6 +297,7 @@ namespace nsm
       std::vector<InternalResonance>  resonances_;
       Backbone                        backbone_;
       Verifications                   verifications_;
+      RefinedOrbits                   orbits_;
       std::vector<PeriodicField>      fields_;
     };
   } // namespace
@@ -283,6 +323,8 @@ namespace nsm
     report.notes.push_back(memory_note(scene));
     SceneRun        run(scene, report);
     run.mesh(bar);
+    if (scene.output.refine_in_time)
+      run.check_refinement_size();
     if (needs_spectrum)
       run.spectrum();
     if (needs_receptance || needs_backbone)
@@ -293,6 +335,8 @@ namespace nsm
       run.harmonic_balance();
     if (scene.output.verify_in_time)
       run.verify_in_time();
+    if (scene.output.refine_in_time)
+      run.refine_in_time();
     if (scene.output.backbone)
       run.backbone_tables();
     if (needs_fields)

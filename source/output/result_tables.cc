@@ -1,6 +1,7 @@
 #include <nsm/model/discretisation.h>
 #include <nsm/model/receptance.h>
 #include <nsm/output/result_tables.h>
+#include <nsm/verification/orbit_refinement.h>
 #include <nsm/model/spectrum.h>
 
 #include <algorithm>
@@ -17,6 +18,16 @@ namespace nsm
         return std::vector<CsvCell>(6, std::string());
       return {v->verified ? "true" : "false", v->time.periodicity_defect, v->time.periodicity_defect_end,
               v->time.energy_drift, v->impulse_ratio, v->time.contact_fraction};
+    }
+
+    /// The orbit columns of one row; empty cells for a point not refined or
+    /// whose orbit was not found.
+    std::vector<CsvCell> orbit_cells(const BackbonePoint &p, const std::optional<PeriodicOrbit> &o)
+    {
+      if (!o || !o->converged)
+        return std::vector<CsvCell>(6, std::string());
+      return {o->energy, hb_energy_error(p, *o), o->contact_fraction, o->floquet_max, o->stable ? "true" : "false",
+              o->isolation};
     }
   } // namespace
 
@@ -48,7 +59,7 @@ namespace nsm
     return table;
   }
 
-  CsvTable backbone_table(const Backbone &backbone, const Verifications &verifications)
+  CsvTable backbone_table(const Backbone &backbone, const Verifications &verifications, const RefinedOrbits &orbits)
   {
     CsvTable table{"backbone.csv",
                    {"segment", "Omega", "energy", "energy_spread", "max_contact_force",
@@ -58,6 +69,10 @@ namespace nsm
     if (!verifications.empty())
       for (const char *c : {"verified", "periodicity_defect", "periodicity_defect_end", "energy_drift",
                             "impulse_ratio", "verified_contact_fraction"})
+        table.columns.push_back(c);
+    if (!orbits.empty())
+      for (const char *c : {"orbit_energy", "hb_energy_error", "orbit_contact_fraction", "floquet_max", "stable",
+                            "isolation"})
         table.columns.push_back(c);
     for (std::size_t i = 0; i < backbone.points.size(); ++i)
       {
@@ -69,6 +84,9 @@ namespace nsm
                               double(p.resonance.mode), double(p.resonance.harmonic)});
         if (!verifications.empty())
           for (CsvCell &cell : verification_cells(verifications[i]))
+            table.rows.back().push_back(std::move(cell));
+        if (!orbits.empty())
+          for (CsvCell &cell : orbit_cells(p, orbits[i]))
             table.rows.back().push_back(std::move(cell));
       }
     return table;

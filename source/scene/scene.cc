@@ -250,6 +250,10 @@ namespace nsm
             "Output/Verify in time",
             "false unless Output/Backbone = true (the results are columns of backbone.csv)",
             "true");
+    require(!output.refine_in_time || output.backbone,
+            "Output/Refine in time",
+            "false unless Output/Backbone = true (the results are columns of backbone.csv)",
+            "true");
     require(!output.backbone || contact.enabled,
             "Output/Backbone",
             "false when Contact/Enabled = false (no contact, no nonsmooth mode)",

@@ -85,6 +85,21 @@ namespace nsm
                       "A point whose one-period defect max |u(T) - u(0)| / g0 exceeds this is "
                       "flagged verified = false, drawn as an open circle in backbone.png and counted in the "
                       "summary.");
+    prm.declare_entry("Refine in time",
+                      text(d.refine_in_time),
+                      Patterns::Bool(),
+                      "Find the periodic orbit of the FE model in time (exact flow, shooting) "
+                      "from every Refine every-th main backbone point and the Fields at points; "
+                      "write its energy, HB's energy error against it, its Floquet multipliers "
+                      "and how isolated it is (backbone.csv); needs Backbone = true.");
+    prm.declare_entry("Refine every",
+                      text(d.refine_every),
+                      Patterns::Integer(1, 1000000),
+                      "Refine every n-th main point of the backbone.");
+    prm.declare_entry("Stability margin",
+                      text(d.stability_margin),
+                      Patterns::Double(0, 1),
+                      "A refined orbit is stable when every |Floquet multiplier| <= 1 + this.");
     prm.leave_subsection();
   }
 
@@ -114,6 +129,9 @@ namespace nsm
     verify_periods   = get_unsigned(prm, "Verify periods");
     verify_steps     = get_unsigned(prm, "Verify steps");
     verify_tolerance = prm.get_double("Verify tolerance");
+    refine_in_time   = prm.get_bool("Refine in time");
+    refine_every     = get_unsigned(prm, "Refine every");
+    stability_margin = prm.get_double("Stability margin");
     prm.leave_subsection();
   }
 } // namespace nsm

@@ -37,13 +37,6 @@ namespace nsm
       return copy;
     }
 
-    dealii::SparseMatrix<double> redistributed_mass(const Discretisation &d)
-    {
-      dealii::SparseMatrix<double> mass = copy_of(d.mass());
-      redistribute(mass, d.contact_dof());
-      return mass;
-    }
-
     dealii::SparseMatrix<double> clamped_stiffness(const Discretisation &d)
     {
       dealii::SparseMatrix<double> stiffness = copy_of(d.stiffness());
@@ -51,6 +44,13 @@ namespace nsm
       return stiffness;
     }
   } // namespace
+
+  dealii::SparseMatrix<double> redistributed_mass(const Discretisation &d)
+  {
+    dealii::SparseMatrix<double> mass = copy_of(d.mass());
+    redistribute(mass, d.contact_dof());
+    return mass;
+  }
 
   ContactTimeIntegrator::ContactTimeIntegrator(const Discretisation &discretisation,
                                                const ContactLaw     &law,

@@ -5,6 +5,7 @@
 #include <nsm/continuation/continuation.h>
 #include <nsm/base/csv.h>
 #include <nsm/scene/scene.h>
+#include <nsm/verification/periodic_orbit.h>
 #include <nsm/verification/time_verification.h>
 
 #include <optional>
@@ -17,6 +18,7 @@ namespace nsm
 
   /// One entry per backbone point; empty for a point not verified in time.
   using Verifications = std::vector<std::optional<PointVerification>>;
+  using RefinedOrbits = std::vector<std::optional<PeriodicOrbit>>;
 
   /// spectrum.csv: the first `modes` clamped-free and clamped-clamped
   /// eigenfrequencies.
@@ -28,7 +30,10 @@ namespace nsm
 
   /// backbone.csv: one row per point; the verification columns only if
   /// `verifications` is not empty.
-  CsvTable backbone_table(const Backbone &backbone, const Verifications &verifications);
+  /// One row per point; the verification columns if verifications is not
+  /// empty, the orbit columns if orbits is not empty (empty cells for a point
+  /// not refined or whose orbit was not found).
+  CsvTable backbone_table(const Backbone &backbone, const Verifications &verifications, const RefinedOrbits &orbits);
 
   /// tongues.csv: one row per tongue.
   CsvTable tongue_table(const Backbone &backbone);

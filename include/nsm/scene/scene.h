@@ -183,6 +183,9 @@ namespace nsm
       unsigned int        verify_periods     = 5;
       unsigned int        verify_steps       = 4000; ///< time steps per period
       double              verify_tolerance   = 0.01; ///< largest periodicity defect of a verified point
+      bool                refine_in_time     = false;
+      unsigned int        refine_every       = 10;   ///< every n-th main point
+      double              stability_margin   = 1e-4; ///< stable: every |Floquet multiplier| <= 1 + margin
 
       bool fields() const { return !fields_at.empty() || fields_every > 0; }
 

@@ -31,6 +31,11 @@ namespace nsm
     double contact_fraction;       ///< share of the steps with the contact DoF on the wall
   };
 
+  /// The FE mass matrix without inertia at the contact DoF: its row and
+  /// column are removed and the mass they carried goes to the diagonal of
+  /// the DoFs they coupled, in proportion to the coupling.
+  dealii::SparseMatrix<double> redistributed_mass(const Discretisation &discretisation);
+
   class ContactTimeIntegrator
   {
   public:

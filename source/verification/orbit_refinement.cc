@@ -1,0 +1,85 @@
+#include <nsm/base/progress.h>
+#include <nsm/verification/fields.h>
+#include <nsm/verification/orbit_refinement.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace nsm
+{
+  namespace
+  {
+    /// Largest |v(T/2)| / (Omega g0) of an orbit: the flow is exact, so
+    /// Newton reaches 1e-12 to 1e-13 where it converges; 1e-10 leaves room
+    /// for the round-off of larger meshes.
+    constexpr double orbit_tolerance = 1e-10;
+    /// The share of the main points within which the summary counts HB's
+    /// energy error (1 %).
+    constexpr double summary_error_share = 0.01;
+  } // namespace
+
+  PeriodicOrbit refine_point(HarmonicBalance &hb, const Discretisation &discretisation, const BackbonePoint &point,
+                             const Scene::Output &output, const dealii::Vector<double> &fallback)
+  {
+    const OrbitSettings settings{orbit_tolerance, output.stability_margin, true};
+    const PeriodicField field(hb, discretisation, point);
+    PeriodicOrbit       orbit =
+      find_periodic_orbit(discretisation, hb.law(), point.omega, field.displacement(0.0), settings);
+    if (!orbit.converged && fallback.size() > 0)
+      orbit = find_periodic_orbit(discretisation, hb.law(), point.omega, fallback, settings);
+    return orbit;
+  }
+
+  std::vector<std::optional<PeriodicOrbit>> refine_backbone(HarmonicBalance      &hb,
+                                                            const Discretisation &discretisation,
+                                                            const Backbone       &backbone,
+                                                            const Scene::Output  &output,
+                                                            Progress             &progress)
+  {
+    std::vector<std::optional<PeriodicOrbit>> orbits(backbone.points.size());
+    dealii::Vector<double>                    last;
+    unsigned int                              main = 0;
+    for (std::size_t i = 0; i < orbits.size(); ++i)
+      if (backbone.points[i].branch == Branch::main && main++ % output.refine_every == 0)
+        {
+          orbits[i] = refine_point(hb, discretisation, backbone.points[i], output, last);
+          if (orbits[i]->converged)
+            last = orbits[i]->displacement;
+          progress.update([&] { return "point " + std::to_string(i + 1) + " of " + std::to_string(orbits.size()); });
+        }
+    return orbits;
+  }
+
+  double hb_energy_error(const BackbonePoint &point, const PeriodicOrbit &orbit)
+  {
+    return point.measures.energy / orbit.energy - 1;
+  }
+
+  std::string refinement_summary(const Backbone &backbone, const std::vector<std::optional<PeriodicOrbit>> &orbits,
+                                 const Scene::Output &output)
+  {
+    unsigned int        shot = 0, stable = 0;
+    std::vector<double> errors;
+    for (std::size_t i = 0; i < orbits.size(); ++i)
+      if (orbits[i])
+        {
+          ++shot;
+          if (!orbits[i]->converged)
+            continue;
+          errors.push_back(std::abs(hb_energy_error(backbone.points[i], *orbits[i])));
+          stable += orbits[i]->stable;
+        }
+    std::sort(errors.begin(), errors.end());
+    const auto within = std::count_if(errors.begin(), errors.end(), [](double e) { return e <= summary_error_share; });
+    std::ostringstream s;
+    s.precision(3);
+    s << "refinement in time: " << shot << " main points shot, " << errors.size() << " orbits found ("
+      << shot - errors.size() << " not found, left empty)";
+    if (!errors.empty())
+      s << "; HB energy error against the orbit: median " << errors[errors.size() / 2] << ", max " << errors.back()
+        << ", within 1 %: " << within << " of " << errors.size() << "; stable (|multiplier| <= 1 + "
+        << output.stability_margin << "): " << stable << " of " << errors.size();
+    return s.str();
+  }
+} // namespace nsm
