@@ -1,10 +1,12 @@
-// nsm-bar SCENE.prm: argument handling only; the work is in run_scene(),
+// nsm-bar SCENE.prm [--set ...] [--output DIR]: argument handling only; the work is in run_scene(),
 // or in run_study() for a scene that is a study.
 #include <nsm/app/pipeline.h>
 #include <nsm/scene/scene.h>
 #include <nsm/base/interruption.h>
 #include <nsm/base/threads.h>
 #include <nsm/scene/parameter_listing.h>
+#include <nsm/scene/scene_file.h>
+#include <nsm/base/text.h>
 #include <nsm/study/study.h>
 
 #include <deal.II/base/mpi.h>
@@ -16,6 +18,7 @@
 #include <new>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -29,6 +32,15 @@ namespace
     return false;
   }
 
+  /// The command line's overrides, for the summary's first line.
+  std::string overrides_note()
+  {
+    std::string note;
+    for (const nsm::ParameterOverride &o : nsm::parameter_overrides())
+      note += (note.empty() ? " with " : ", ") + o.path + " = " + nsm::printable(o.value);
+    return note;
+  }
+
   /// Runs the scene (a study over the MPI ranks, if any); returns the exit
   /// code, the error printed.
   int run(int &argc, char **&argv, const std::string &path,
@@ -39,7 +51,7 @@ namespace
         const nsm::StudyScene file = nsm::StudyScene::from_file(path);
         if (!file.study.enabled())
           {
-            std::cout << "nsm-bar: scene " << path << '\n';
+            std::cout << "nsm-bar: scene " << path << overrides_note() << '\n';
             nsm::print_report(nsm::run_scene(file.scene), std::cout);
             return 0;
           }
@@ -55,7 +67,7 @@ namespace
         const nsm::RunReport report = nsm::run_study(path, file);
         if (root)
           {
-            std::cout << "nsm-bar: study " << path << '\n';
+            std::cout << "nsm-bar: study " << path << overrides_note() << '\n';
             nsm::print_report(report, std::cout);
           }
         if (report.stopped_by == 0)
@@ -104,41 +116,98 @@ namespace
   }
 } // namespace
 
+namespace
+{
+  const char *const usage = "usage: nsm-bar SCENE.prm [--set \"Section/Entry=value\"]... [--output DIR]\n"
+                            "       mpirun --allow-run-as-root -np R nsm-bar STUDY.prm [--set ...]\n"
+                            "       nsm-bar --print-parameters[=markdown]\n"
+                            "       nsm-bar --help\n";
+
+  /// The command line: one scene and its overrides.
+  struct CommandLine
+  {
+    std::string                         scene;
+    std::vector<nsm::ParameterOverride> overrides;
+  };
+
+  /// Parses the arguments after the program name; throws InputError.
+  CommandLine parse_command_line(const std::vector<std::string> &arguments)
+  {
+    CommandLine line;
+    for (std::size_t i = 0; i < arguments.size(); ++i)
+      {
+        const std::string &a = arguments[i];
+        const auto value = [&](const std::string &option) {
+          if (a.size() > option.size() && a.compare(0, option.size() + 1, option + "=") == 0)
+            return a.substr(option.size() + 1);
+          if (i + 1 == arguments.size())
+            throw nsm::InputError("command line: " + option + " needs a value");
+          return arguments[++i];
+        };
+        if (a == "--set" || a.rfind("--set=", 0) == 0)
+          line.overrides.push_back(nsm::parse_override(value("--set")));
+        else if (a == "--output" || a.rfind("--output=", 0) == 0)
+          line.overrides.push_back({"Output/Directory", value("--output")});
+        else if (a.rfind("--", 0) == 0 && a.size() > 2)
+          throw nsm::InputError("command line: unknown option '" + nsm::printable(a) + "' (nsm-bar --help)");
+        else if (!line.scene.empty())
+          throw nsm::InputError("command line: one scene only, not '" + nsm::printable(line.scene) + "' and '" +
+                                nsm::printable(a) + "'");
+        else
+          line.scene = a;
+      }
+    if (line.scene.empty())
+      throw nsm::InputError("command line: no scene given");
+    return line;
+  }
+
+} // namespace
+
 int main(int argc, char **argv)
 {
-  const std::string usage =
-    "usage: nsm-bar [SCENE.prm]   (default: " NSM_DEFAULT_SCENE ")\n"
-    "       mpirun -np R nsm-bar STUDY.prm\n"
-    "       nsm-bar --print-parameters[=markdown]\n";
-  if (argc > 2)
-    {
-      std::cerr << usage;
-      return 2;
-    }
-  const std::string argument = argc == 2 ? argv[1] : NSM_DEFAULT_SCENE;
-  if (argument == "--help" || argument == "-h")
+  const std::vector<std::string> arguments(argv + 1, argv + argc);
+  if (arguments.size() == 1 && (arguments[0] == "--help" || arguments[0] == "-h"))
     {
       std::cout << usage
-                << "exit codes: 0 done, 2 bad input, 3 numerical failure, 4 other error, 5 a file could "
-                   "not be written whole\n";
+                << "--set \"Section/Entry=value\"  override a scene entry (repeatable; checked like the file)\n"
+                   "--output DIR                  the same as --set \"Output/Directory=DIR\"\n"
+                   "exit codes: 0 done, 2 bad input, 3 numerical failure, 4 other error, 5 a file could "
+                   "not be written whole, 130 / 143 a study stopped by SIGINT / SIGTERM\n";
       return 0;
     }
-  if (argument == "--print-parameters" || argument == "--print-parameters=markdown")
+  if (arguments.size() == 1 &&
+      (arguments[0] == "--print-parameters" || arguments[0] == "--print-parameters=markdown"))
     {
       dealii::ParameterHandler prm;
       nsm::StudyScene::declare(prm);
-      if (argument == "--print-parameters")
+      if (arguments[0] == "--print-parameters")
         prm.print_parameters(std::cout, dealii::ParameterHandler::PRM);
       else
         nsm::print_parameters_markdown(prm, std::cout);
       return 0;
     }
+  if (arguments.empty())
+    {
+      std::cerr << usage;
+      return 2;
+    }
+  CommandLine line;
+  try
+    {
+      line = parse_command_line(arguments);
+    }
+  catch (const nsm::InputError &e)
+    {
+      std::cerr << "nsm-bar: input error: " << e.what() << '\n';
+      return 2;
+    }
+  nsm::set_parameter_overrides(line.overrides);
   // Past a file size limit a write fails (an output error, exit 5) instead of
   // the kernel killing the run half-way.
   std::signal(SIGXFSZ, SIG_IGN);
   nsm::use_one_thread();
   std::optional<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
-  const int code = run(argc, argv, argument, mpi);
+  const int code = run(argc, argv, line.scene, mpi);
   // A rank that failed alone would leave the others waiting in a collective;
   // bad input fails on every rank alike.
   if (code != 0 && code != 2 && code < 128 && mpi && dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)

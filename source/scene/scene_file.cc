@@ -257,6 +257,54 @@ namespace nsm
     return description;
   }
 
+  namespace
+  {
+    std::vector<ParameterOverride> &override_list()
+    {
+      static std::vector<ParameterOverride> overrides;
+      return overrides;
+    }
+
+    bool overridden(const std::string &path)
+    {
+      return std::any_of(override_list().begin(), override_list().end(),
+                         [&](const ParameterOverride &o) { return o.path == path; });
+    }
+
+    /// The overrides set on the text stage of a read, each on its declared entry.
+    void apply_overrides(dealii::ParameterHandler &text, const std::vector<DeclaredEntry> &entries)
+    {
+      for (const ParameterOverride &o : override_list())
+        {
+          const auto entry =
+            std::find_if(entries.begin(), entries.end(), [&](const DeclaredEntry &e) { return e.path() == o.path; });
+          if (entry == entries.end())
+            throw InputError("command line: --set '" + printable(o.path) +
+                             "': no such parameter (nsm-bar --print-parameters lists them)");
+          in_sections(text, *entry, [&] { text.set(entry->name, o.value); });
+        }
+    }
+  } // namespace
+
+  ParameterOverride parse_override(const std::string &text)
+  {
+    const std::size_t equals = text.find('=');
+    if (equals == std::string::npos || equals == 0 || text.find('/') > equals)
+      throw InputError("command line: --set '" + printable(text) +
+                       "' is not of the form \"Section/Entry=value\"");
+    return {text.substr(0, equals), text.substr(equals + 1)};
+  }
+
+  void set_parameter_overrides(const std::vector<ParameterOverride> &overrides)
+  {
+    override_list() = overrides;
+  }
+
+  const std::vector<ParameterOverride> &parameter_overrides()
+  {
+    return override_list();
+  }
+
   void read_scene_file(const std::string &path, dealii::ParameterHandler &prm)
   {
     const std::string extension = fs::path(path).extension().string();
@@ -297,6 +345,7 @@ namespace nsm
       {
         throw InputError("scene '" + shown(path) + "' cannot be parsed: " + e.what());
       }
+    apply_overrides(text, entries);
 
     for (const DeclaredEntry &entry : entries)
       {
@@ -304,7 +353,8 @@ namespace nsm
         in_sections(text, entry, [&] { value = text.get(entry.name); });
         if (!dealii::Patterns::pattern_factory(entry.pattern)->match(value))
           throw InputError("scene '" + shown(path) + "': parameter '" + entry.path() + "' = " + printable(value) +
-                           " is out of range: allowed " + allowed_values(entry.pattern));
+                           " is out of range: allowed " + allowed_values(entry.pattern) +
+                           (overridden(entry.path()) ? " (set by --set on the command line)" : ""));
         in_sections(prm, entry, [&] { prm.set(entry.name, value); });
       }
   }

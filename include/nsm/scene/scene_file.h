@@ -30,6 +30,24 @@ namespace nsm
   /// allowed values in words. Throws InputError.
   void read_scene_file(const std::string &path, dealii::ParameterHandler &prm);
 
+  /// A value given on the command line (`--set "Section/Entry=value"`), for
+  /// the entry Section/Subsection/Name.
+  struct ParameterOverride
+  {
+    std::string path;
+    std::string value;
+  };
+
+  /// Parses "Section/Entry=value"; throws InputError naming the text.
+  ParameterOverride parse_override(const std::string &text);
+
+  /// The command line's overrides: every read_scene_file of this process
+  /// applies them on top of the file, before the pattern checks, so that a
+  /// bad value fails with the file's messages, and a study's rows, which
+  /// read the scene again, see them too.
+  void set_parameter_overrides(const std::vector<ParameterOverride> &overrides);
+  const std::vector<ParameterOverride> &parameter_overrides();
+
   /// A declared entry: its subsections, its name, its default, its
   /// pattern's description and its documentation.
   struct DeclaredEntry

@@ -1,0 +1,99 @@
+#!/usr/bin/env python3
+"""The command line: --set and --output against an edited file, bad overrides,
+no scene.
+
+usage: check_command_line.py NSM_BAR
+Runs in the current directory (a fresh one per CTest run). Checks that
+`--set "Section/Entry=value" --output DIR` writes byte-identical CSVs to the
+same scene with the value edited into the file; that the summary's first
+line names the overrides; that a bad, unknown or malformed override and an
+unknown option exit 2 with one line naming it and leave no directory; and
+that no scene prints the usage and exits 2. Standard library only.
+"""
+import filecmp
+import os
+import shutil
+import subprocess
+import sys
+
+SCENE = """subsection Discretisation
+  set Degree = 10
+  set Cells = 7
+end
+subsection Receptance
+  set Method = modal
+end
+subsection Harmonic balance
+  set Harmonics = {harmonics}
+end
+subsection Continuation
+  set Omega max = 2.0
+  set Energy max = 1e-3
+end
+subsection Output
+  set Directory = {directory}
+  set Backbone = true
+  set Spectrum modes = 5
+end
+"""
+
+
+def run(executable, *arguments):
+    return subprocess.run([executable, *arguments], capture_output=True, text=True, timeout=600)
+
+
+def main():
+    executable = sys.argv[1]
+    failures = []
+
+    def check(condition, what):
+        if not condition:
+            failures.append(what)
+
+    for d in ("base", "edited", "overridden", "bad"):
+        shutil.rmtree(d, ignore_errors=True)
+    with open("base.prm", "w") as f:
+        f.write(SCENE.format(harmonics=20, directory="base"))
+    with open("edited.prm", "w") as f:
+        f.write(SCENE.format(harmonics=30, directory="edited"))
+
+    edited = run(executable, "edited.prm")
+    overridden = run(executable, "base.prm", "--set", "Harmonic balance/Harmonics=30", "--output", "overridden")
+    check(edited.returncode == 0 and overridden.returncode == 0,
+          f"runs failed: {edited.returncode} {overridden.returncode} {overridden.stderr}")
+    check(not os.path.exists("base"), "the file's own Output/Directory was written despite --output")
+    for name in ("backbone.csv", "spectrum.csv", "tongues.csv", "resonances.csv"):
+        a, b = f"edited/{name}", f"overridden/{name}"
+        same = os.path.exists(a) and os.path.exists(b) and filecmp.cmp(a, b, shallow=False)
+        check(same, f"{name} differs between --set and the edited file")
+    first = overridden.stdout.splitlines()[0] if overridden.stdout else ""
+    check("Harmonic balance/Harmonics = 30" in first and "Output/Directory = overridden" in first,
+          f"the summary's first line does not name the overrides: {first!r}")
+
+    bad_rows = [
+        (["--set", "Harmonic balance/Harmonics=0"], ["'Harmonic balance/Harmonics' = 0", "[1, 1000]", "--set"]),
+        (["--set", "Harmonic balance/Harmonix=30"], ["'Harmonic balance/Harmonix'", "no such parameter"]),
+        (["--set", "Harmonics"], ["'Harmonics'", "Section/Entry=value"]),
+        (["--set"], ["--set needs a value"]),
+        (["--bogus"], ["'--bogus'"]),
+    ]
+    for extra, needles in bad_rows:
+        result = run(executable, "base.prm", "--output", "bad", *extra)
+        lines = result.stderr.strip().splitlines()
+        check(result.returncode == 2, f"{extra}: exit {result.returncode}, not 2")
+        check(len(lines) == 1 and all(n in result.stderr for n in needles),
+              f"{extra}: stderr {result.stderr!r} lacks {needles} or is not one line")
+        check(not os.path.exists("bad") and not os.path.exists("base"), f"{extra}: a directory was left behind")
+
+    usage = run(executable)
+    check(usage.returncode == 2 and usage.stderr.startswith("usage: nsm-bar SCENE.prm"),
+          f"no scene: exit {usage.returncode}, stderr {usage.stderr!r}")
+
+    for f in failures:
+        print("FAIL: " + f)
+    print(f"{len(failures)} failures")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
