@@ -52,8 +52,12 @@ namespace
         if (!file.study.enabled())
           {
             std::cout << "nsm-bar: scene " << path << overrides_note() << '\n';
-            nsm::print_report(nsm::run_scene(file.scene), std::cout);
-            return 0;
+            const nsm::RunReport report = nsm::run_scene(file.scene);
+            nsm::print_report(report, std::cout);
+            if (report.failure.empty())
+              return 0;
+            std::cerr << "nsm-bar: numerical failure: " << report.failure << '\n';
+            return 3;
           }
         // MPI only where mpirun started the process: a serial study needs
         // none, and MPI's own start-up fails under tight resource limits.

@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <iomanip>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <sstream>
 
@@ -203,7 +204,10 @@ namespace nsm
           for (const double omega : o.fields_at)
             {
               require_on_branch(backbone_, omega);
-              fields_.emplace_back(*hb_, *discretisation_, solve_on_branch(*hb_, scene_, backbone_, omega));
+              const std::optional<BackbonePoint> point = field_point(omega);
+              if (!point)
+                continue;
+              fields_.emplace_back(*hb_, *discretisation_, *point);
               if (const BackbonePoint &p = fields_.back().point(); p.branch == Branch::tongue)
                 report_.notes.push_back(tongue_field_note(p));
               if (o.verify_in_time)
@@ -258,6 +262,45 @@ namespace nsm
         work();
         timer.stop();
         report_.stages.push_back({name, timer.wall_time(), timer.cpu_time()});
+      }
+
+      /// The point of a field at omega: solved on the branch, or else the
+      /// nearest main point within Continuation/Search reach (said in a
+      /// note); none (the failure recorded, naming the nearest main Omega on
+      /// each side) if there is none within reach.
+      std::optional<BackbonePoint> field_point(const double omega)
+      {
+        try
+          {
+            return solve_on_branch(*hb_, scene_, backbone_, omega);
+          }
+        catch (const NumericalError &e)
+          {
+            const BackbonePoint *below = nullptr, *above = nullptr;
+            for (const BackbonePoint &p : backbone_.points)
+              if (p.branch == Branch::main && p.omega <= omega && (!below || p.omega > below->omega))
+                below = &p;
+              else if (p.branch == Branch::main && p.omega > omega && (!above || p.omega < above->omega))
+                above = &p;
+            const BackbonePoint *nearest =
+              !below ? above : !above ? below : omega - below->omega <= above->omega - omega ? below : above;
+            std::ostringstream s;
+            s.precision(8);
+            if (nearest && std::abs(nearest->omega - omega) <= scene_.continuation.search_reach)
+              {
+                s << "field at Omega = " << omega << " (Output/Fields at) moved to the nearest main point, Omega = "
+                  << nearest->omega << " (" << e.what() << "; within Continuation/Search reach = "
+                  << scene_.continuation.search_reach << ")";
+                report_.notes.push_back(s.str());
+                return *nearest;
+              }
+            s << "parameter 'Output/Fields at' = " << omega << ": " << e.what()
+              << ", and no main point within Continuation/Search reach = " << scene_.continuation.search_reach
+              << "; nearest main points: " << (below ? std::to_string(below->omega) : std::string("none"))
+              << " below, " << (above ? std::to_string(above->omega) : std::string("none")) << " above";
+            report_.failure += (report_.failure.empty() ? "" : "; ") + s.str();
+            return std::nullopt;
+          }
       }
 
       /// The summary line of a field point's orbit.

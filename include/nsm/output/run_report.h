@@ -23,6 +23,9 @@ namespace nsm
     std::vector<std::string> files;
     /// The signal (SIGINT, SIGTERM) that stopped the run early; 0 if none.
     int stopped_by = 0;
+    /// A request the run could not meet after writing everything else
+    /// (a field with no main point within reach); the run exits 3.
+    std::string failure;
   };
 
   /// The run summary: the stages' times, the notes, the files written.

@@ -1,0 +1,45 @@
+#!/usr/bin/env python3
+"""A field request that misses the computed branch keeps the run.
+
+usage: check_field_request.py NSM_BAR SEED_PRM
+The seed scene at Harmonics = 80 has no converged solution at its Fields at
+(1.96), which falls between two main segments. The run must still write its
+backbone, put the field at the main point of backbone.csv nearest 1.96
+(within Continuation/Search reach), say so naming Output/Fields at and both
+Omega, and exit 0. Standard library only.
+"""
+import csv
+import shutil
+import subprocess
+import sys
+
+
+def main():
+    executable, seed = sys.argv[1], sys.argv[2]
+    shutil.rmtree("h80", ignore_errors=True)
+    result = subprocess.run([executable, seed, "--set", "Harmonic balance/Harmonics=80", "--set", "Output/Plots=false",
+                             "--output", "h80"], capture_output=True, text=True, timeout=600)
+    failures = []
+    if result.returncode != 0:
+        failures.append(f"exit {result.returncode}: {result.stderr.strip()}")
+    else:
+        with open("h80/backbone.csv", newline="") as f:
+            main_omegas = [float(r["Omega"]) for r in csv.DictReader(f) if r["branch"] == "main"]
+        nearest = min(main_omegas, key=lambda w: abs(w - 1.96))
+        with open("h80/fields.csv", newline="") as f:
+            fields = [float(r["Omega"]) for r in csv.DictReader(f)]
+        if len(fields) != 1 or abs(fields[0] - nearest) > 1e-12 * nearest:
+            failures.append(f"field at {fields}, nearest main point {nearest}")
+        if abs(nearest - 1.96) < 1e-6:
+            failures.append("1.96 is itself a main point: the scene no longer exercises a miss")
+        note = [line for line in result.stdout.splitlines() if "moved to the nearest main point" in line]
+        if not note or "Output/Fields at" not in note[0] or f"{nearest:.8g}" not in note[0]:
+            failures.append(f"no note naming Output/Fields at and {nearest:.8g}: {note}")
+    for f in failures:
+        print("FAIL: " + f)
+    print(f"{len(failures)} failures")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
