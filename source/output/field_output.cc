@@ -60,6 +60,40 @@ namespace nsm
       const BarModel &bar_;
     };
 
+    /// The displacement as a vector along x, (u, 0) in space-time, so that
+    /// ParaView's Warp By Vector moves the bar along its axis.
+    class AxialDisplacement : public dealii::DataPostprocessorVector<2>
+    {
+    public:
+      AxialDisplacement()
+        : dealii::DataPostprocessorVector<2>("displacement", dealii::update_values)
+      {}
+
+      void evaluate_scalar_field(const dealii::DataPostprocessorInputs::Scalar<2> &inputs,
+                                 std::vector<dealii::Vector<double>>              &computed) const override
+      {
+        for (std::size_t q = 0; q < computed.size(); ++q)
+          {
+            computed[q](0) = inputs.solution_values[q];
+            computed[q](1) = 0;
+          }
+      }
+    };
+
+    /// A VTU of `out`; with `omega_field`, its field datum (deal.II's TIME,
+    /// which holds the frequency) is named Omega.
+    template <int dim>
+    std::string write_vtu(const std::string &path, const dealii::DataOut<dim> &out, const bool omega_field)
+    {
+      std::ostringstream text;
+      out.write_vtu(text);
+      std::string vtu = text.str();
+      if (omega_field)
+        if (const std::size_t at = vtu.find("Name=\"TIME\""); at != std::string::npos)
+          vtu.replace(at, 11, "Name=\"Omega\"");
+      return write_atomically(path, [&](std::ostream &s) { s << vtu; });
+    }
+
     dealii::DataOutBase::VtkFlags vtk_flags(double time)
     {
       dealii::DataOutBase::VtkFlags flags;
@@ -144,12 +178,13 @@ namespace nsm
       const AxialStrainAndForce<2> derived(d.bar());
       dealii::DataOut<2>           out;
       out.attach_dof_handler(dofs);
-      out.add_data_vector(u, "displacement");
+      const AxialDisplacement axial;
+      out.add_data_vector(u, axial);
       out.add_data_vector(v, "velocity");
       out.add_data_vector(u, derived);
       out.build_patches(p);
       out.set_flags(vtk_flags(field.omega()));
-      return write_atomically(directory + "/" + name(index, ".vtu"), [&](std::ostream &s) { out.write_vtu(s); });
+      return write_vtu(directory + "/" + name(index, ".vtu"), out, true);
     }
 
     /// 1D snapshots over one period and their .pvd time series.
@@ -169,14 +204,16 @@ namespace nsm
           const dealii::Vector<double> u = field.displacement(t), v = field.velocity(t);
           dealii::DataOut<1>           out;
           out.attach_dof_handler(d.dof_handler());
-          out.add_data_vector(u, "displacement");
+          // In 1D a vector has one component: VTK pads it to (u, 0, 0).
+          out.add_data_vector(u, std::vector<std::string>{"displacement"}, dealii::DataOut<1>::type_dof_data,
+                              {dealii::DataComponentInterpretation::component_is_part_of_vector});
           out.add_data_vector(v, "velocity");
           out.add_data_vector(u, derived);
           out.build_patches(d.fe().degree);
           out.set_flags(vtk_flags(t));
           std::ostringstream file;
           file << folder << "/snapshot_" << std::setw(4) << std::setfill('0') << j << ".vtu";
-          write_atomically(directory + "/" + file.str(), [&](std::ostream &s) { out.write_vtu(s); });
+          write_vtu(directory + "/" + file.str(), out, false);
           series.emplace_back(t, file.str());
         }
       return {write_atomically(directory + "/" + name(index, "_snapshots.pvd"),
