@@ -52,8 +52,18 @@ namespace
         if (!file.study.enabled())
           {
             std::cout << "nsm-bar: scene " << path << overrides_note() << '\n';
+            // SIGINT or SIGTERM stops the continuation at its next point,
+            // and the run writes what it has (interruption.h).
+            nsm::catch_stop_signals();
+            nsm::stop_at_points(true);
             const nsm::RunReport report = nsm::run_scene(file.scene);
             nsm::print_report(report, std::cout);
+            if (report.stopped_by != 0)
+              {
+                std::cerr << "nsm-bar: stopped by " << nsm::stop_signal_name(report.stopped_by)
+                          << "; the output holds what was computed before\n";
+                return nsm::stop_exit_code(report.stopped_by);
+              }
             if (report.failure.empty())
               return 0;
             std::cerr << "nsm-bar: numerical failure: " << report.failure << '\n';

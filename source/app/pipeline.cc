@@ -9,6 +9,7 @@
 #include <nsm/model/memory_estimate.h>
 #include <nsm/app/pipeline.h>
 #include <nsm/output/plots.h>
+#include <nsm/base/interruption.h>
 #include <nsm/base/progress.h>
 #include <nsm/model/receptance.h>
 #include <nsm/output/result_tables.h>
@@ -376,18 +377,38 @@ namespace nsm
       run.receptance();
     if (needs_backbone)
       run.harmonic_balance();
-    if (scene.output.verify_in_time)
-      run.verify_in_time();
-    if (scene.output.refine_in_time)
-      run.refine_in_time();
+    // A stop asked for (SIGINT, SIGTERM) ends the continuation, the
+    // verification or the refinement at its next point (the fields at the
+    // end of their stage); the stages after it are left out, and what was
+    // computed is written.
+    std::vector<std::string> skipped;
+    const auto               stage = [&](const bool wanted, const char *name, auto &&work) {
+      if (!wanted)
+        return;
+      if (point_stop_signal() != 0)
+        skipped.push_back(name);
+      else
+        work();
+    };
+    stage(scene.output.verify_in_time, "verification in time", [&] { run.verify_in_time(); });
+    stage(scene.output.refine_in_time, "refinement in time", [&] { run.refine_in_time(); });
     if (scene.output.backbone)
       run.backbone_tables();
-    if (needs_fields)
-      run.fields();
+    stage(needs_fields, "fields", [&] { run.fields(); });
+    std::vector<std::string> stop_notes;
+    if ((report.stopped_by = point_stop_signal()) != 0)
+      {
+        std::string note = std::string("interrupted by ") + stop_signal_name(report.stopped_by) +
+                           ": the output holds what was computed before";
+        for (const std::string &s : skipped)
+          note += (&s == &skipped.front() ? "; left out: " : ", ") + s;
+        report.notes.insert(report.notes.begin(), note);
+        stop_notes.push_back(note);
+      }
     run.write(output.staging());
     if (scene.output.plots)
       run.plots(output.staging());
-    report.files = output.commit(report.files);
+    report.files = output.commit(report.files, stop_notes);
     return report;
   }
 

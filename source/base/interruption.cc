@@ -7,6 +7,7 @@ namespace nsm
   namespace
   {
     volatile std::sig_atomic_t requested = 0;
+    bool                       at_points = false;
 
     extern "C" void record_stop(const int signal) { requested = signal; }
   } // namespace
@@ -22,6 +23,10 @@ namespace nsm
   }
 
   int stop_signal() { return requested; }
+
+  void stop_at_points(const bool enabled) { at_points = enabled; }
+
+  int point_stop_signal() { return at_points ? requested : 0; }
 
   int stop_exit_code(const int signal) { return 128 + signal; }
 

@@ -28,6 +28,8 @@ namespace nsm
           return "lost";
         case BackboneEnd::energy_max:
           return "energy_max";
+        case BackboneEnd::interrupted:
+          return "interrupted";
         case BackboneEnd::refused:
           return "refused";
       }

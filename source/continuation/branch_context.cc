@@ -1,3 +1,4 @@
+#include <nsm/base/interruption.h>
 #include <nsm/continuation/constants.h>
 #include <nsm/continuation/branch_context.h>
 #include <nsm/continuation/continuation.h>
@@ -125,7 +126,7 @@ namespace nsm
         << "), " << backbone.leaps << " leaps";
       return s.str();
     });
-    return backbone.points.size() >= scene.continuation.max_steps;
+    return backbone.points.size() >= scene.continuation.max_steps || point_stop_signal() != 0;
   }
 
   double BranchContext::max_step() const

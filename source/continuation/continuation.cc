@@ -1,3 +1,4 @@
+#include <nsm/base/interruption.h>
 #include <nsm/continuation/branch_context.h>
 #include <nsm/continuation/continuation.h>
 #include <nsm/continuation/grazing_start.h>
@@ -49,6 +50,12 @@ namespace nsm
               if (context.in_range(omega))
                 find_branch_below_at_end(context, backbone, segment);
               return;
+            }
+          if (end == SegmentEnd::max_steps && point_stop_signal() != 0)
+            {
+              backbone.end = BackboneEnd::interrupted;
+              return backbone.events.push_back(
+                event_message(std::string("stopped by ") + stop_signal_name(point_stop_signal()), omega));
             }
           if (end == SegmentEnd::max_steps)
             {

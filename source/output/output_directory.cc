@@ -178,13 +178,16 @@ namespace nsm
       fs::remove_all(staging_, error);
   }
 
-  std::vector<std::string> OutputDirectory::commit(const std::vector<std::string> &files)
+  std::vector<std::string> OutputDirectory::commit(const std::vector<std::string> &files,
+                                                   const std::vector<std::string> &notes)
   {
     std::vector<std::string> final_paths;
     const std::string        prefix = staging_ + "/";
     write_atomically(prefix + manifest, [&](std::ostream &out) {
       for (const std::string &f : files)
         out << f.substr(prefix.size()) << '\n';
+      for (const std::string &note : notes)
+        out << "/ " << printable(note) << '\n';
     });
     for (const std::string &f : files)
       final_paths.push_back(target_ + "/" + f.substr(prefix.size()));

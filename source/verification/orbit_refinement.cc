@@ -1,3 +1,4 @@
+#include <nsm/base/interruption.h>
 #include <nsm/base/progress.h>
 #include <nsm/verification/fields.h>
 #include <nsm/verification/orbit_refinement.h>
@@ -40,7 +41,8 @@ namespace nsm
     std::vector<std::optional<PeriodicOrbit>> orbits(backbone.points.size());
     dealii::Vector<double>                    last;
     unsigned int                              main = 0;
-    for (std::size_t i = 0; i < orbits.size(); ++i)
+    // A stop asked for leaves the remaining points unrefined (empty cells).
+    for (std::size_t i = 0; i < orbits.size() && point_stop_signal() == 0; ++i)
       if (backbone.points[i].branch == Branch::main && main++ % output.refine_every == 0)
         {
           orbits[i] = refine_point(hb, discretisation, backbone.points[i], output, last);

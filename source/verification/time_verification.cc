@@ -1,3 +1,4 @@
+#include <nsm/base/interruption.h>
 #include <nsm/base/progress.h>
 #include <nsm/verification/time_verification.h>
 
@@ -217,7 +218,8 @@ namespace nsm
                                                                 Progress             &progress)
   {
     std::vector<std::optional<PointVerification>> results(backbone.points.size());
-    for (std::size_t i = 0; i < results.size(); ++i)
+    // A stop asked for leaves the remaining points unverified (empty cells).
+    for (std::size_t i = 0; i < results.size() && point_stop_signal() == 0; ++i)
       if (i % o.verify_every == 0 || (o.fields_every > 0 && i % o.fields_every == 0))
         {
           const PeriodicField field(hb, discretisation, backbone.points[i]);

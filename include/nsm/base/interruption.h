@@ -1,5 +1,6 @@
 // A stop asked for by SIGINT (Ctrl-C) or SIGTERM, honoured at the next
-// boundary where the work done so far can be kept whole (a study's row).
+// boundary where the work done so far can be kept whole: a study's row, or,
+// in a single run, a point of the continuation.
 #pragma once
 
 namespace nsm
@@ -10,6 +11,15 @@ namespace nsm
 
   /// The signal that asked for a stop; 0 if none did.
   int stop_signal();
+
+  /// Whether the continuation stops at its next point when a stop is asked
+  /// for: a single run's does (it then writes what it has); a study's does
+  /// not (its rows stop at row boundaries, whole).
+  void stop_at_points(bool enabled);
+
+  /// The signal to stop at this point for; 0 if none, or if stop_at_points
+  /// is off.
+  int point_stop_signal();
 
   /// The exit code of a run stopped by `signal`: 128 + signal, as a shell
   /// reports a process the signal ended.

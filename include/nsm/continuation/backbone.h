@@ -59,10 +59,11 @@ namespace nsm
     max_steps,  ///< Max steps points in all
     lost,       ///< after a fold or tongue, no leap found the branch again
     energy_max, ///< after a fold or tongue, the leap landed only above Energy max
-    refused     ///< arclength reached a point that is not a contact motion
+    refused,    ///< arclength reached a point that is not a contact motion
+    interrupted ///< SIGINT or SIGTERM asked the run to stop (interruption.h)
   };
 
-  /// "range", "max_steps", "lost", "energy_max" or "refused", as study.csv
+  /// "range", "max_steps", "lost", "energy_max", "refused" or "interrupted", as study.csv
   /// writes it.
   const char *backbone_end_name(BackboneEnd end);
 

@@ -27,10 +27,12 @@ namespace nsm
     /// Where this run writes its files.
     const std::string &staging() const { return staging_; }
 
-    /// Writes the manifest of `files` (paths under staging()), swaps the
-    /// staging directory in and removes the previous output. Returns the
-    /// files' final paths. Throws OutputError.
-    std::vector<std::string> commit(const std::vector<std::string> &files);
+    /// Writes the manifest of `files` (paths under staging()), and after them
+    /// the `notes`, each on a line that starts with "/ " (no file's name
+    /// can), swaps the staging directory in and removes the previous output.
+    /// Returns the files' final paths. Throws OutputError.
+    std::vector<std::string> commit(const std::vector<std::string> &files,
+                                    const std::vector<std::string> &notes = {});
 
     /// The file every nsm-bar output directory holds: the files it lists.
     static constexpr const char *manifest = "nsm-bar.manifest";

@@ -1,0 +1,114 @@
+#!/usr/bin/env python3
+"""SIGINT stops a run at a point of the continuation, and the run writes
+what it has.
+
+usage: check_interrupt.py NSM_BAR
+The run announces each continuation point on stderr (Progress every is
+tiny). With stderr a full pipe it waits in its first announcement; SIGINT
+sent then stops the continuation at that point, whatever the machine's
+load (no timer races the run). The stopped run must exit 130, say so on
+stderr, in the summary and in its manifest, and write a backbone.csv whose
+rows are the first rows of an uninterrupted run's, byte for byte, and fewer.
+Standard library only.
+"""
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+SCENE = """subsection Discretisation
+  set Degree = 10
+  set Cells = 7
+end
+subsection Receptance
+  set Method = modal
+end
+subsection Harmonic balance
+  set Harmonics = 20
+end
+subsection Continuation
+  set Omega max = 2.2
+  set Energy max = 1e-3
+end
+subsection Output
+  set Directory = whole
+  set Backbone = true
+  set Plots = false
+  set Progress every = 1e-9
+end
+"""
+
+
+def blocked_writing_stderr(pid):
+    try:
+        with open(f"/proc/{pid}/wchan") as f:
+            return "pipe_write" in f.read()
+    except OSError:
+        return False
+
+
+def full_pipe():
+    read_end, write_end = os.pipe()
+    os.set_blocking(write_end, False)
+    try:
+        while True:
+            os.write(write_end, b"x" * 4096)
+    except BlockingIOError:
+        pass
+    os.set_blocking(write_end, True)
+    return read_end, write_end
+
+
+def main():
+    executable = sys.argv[1]
+    for d in ("whole", "stopped"):
+        shutil.rmtree(d, ignore_errors=True)
+    with open("scene.prm", "w") as f:
+        f.write(SCENE)
+    whole = subprocess.run([executable, "scene.prm"], capture_output=True, text=True, timeout=600)
+    assert whole.returncode == 0, whole.stderr
+
+    read_end, write_end = full_pipe()
+    process = subprocess.Popen([executable, "scene.prm", "--output", "stopped"], stdout=subprocess.PIPE,
+                               stderr=write_end, text=True)
+    os.close(write_end)
+    deadline = time.time() + 300
+    while not blocked_writing_stderr(process.pid):
+        assert process.poll() is None and time.time() < deadline, "the run never announced a point"
+        time.sleep(0.01)
+    process.send_signal(signal.SIGINT)
+    with os.fdopen(read_end, "rb") as pipe:
+        stderr = pipe.read().decode(errors="replace").lstrip("x")
+    stdout = process.stdout.read()
+    process.wait()
+
+    failures = []
+    if process.returncode != 128 + signal.SIGINT:
+        failures.append(f"exit {process.returncode}, not 130: {stderr[-300:]}")
+    if not stderr.strip().splitlines()[-1].startswith("nsm-bar: stopped by SIGINT"):
+        failures.append(f"stderr does not end with the stop: {stderr[-300:]!r}")
+    if "interrupted by SIGINT" not in stdout:
+        failures.append("the summary does not say the run was interrupted")
+    with open("stopped/nsm-bar.manifest") as f:
+        if "/ interrupted by SIGINT" not in f.read():
+            failures.append("the manifest does not mark the run interrupted")
+    with open("whole/backbone.csv") as f:
+        expected = f.read().splitlines()
+    with open("stopped/backbone.csv") as f:
+        stopped = f.read().splitlines()
+    if not 2 <= len(stopped) < len(expected) or stopped != expected[:len(stopped)]:
+        failures.append(f"stopped backbone ({len(stopped)} lines) is not a shorter prefix of the whole "
+                        f"({len(expected)} lines)")
+    for name in ("tongues.csv", "resonances.csv"):
+        if not os.path.exists(f"stopped/{name}"):
+            failures.append(f"{name} missing from the stopped run")
+    for f in failures:
+        print("FAIL: " + f)
+    print(f"stopped after {len(stopped) - 1} of {len(expected) - 1} points; {len(failures)} failures")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
