@@ -43,7 +43,7 @@ namespace
 
   /// Runs the scene (a study over the MPI ranks, if any); returns the exit
   /// code, the error printed.
-  int run(int &argc, char **&argv, const std::string &path,
+  int run(int &argc, char **&argv, const std::string &path, const bool verbose,
           std::optional<dealii::Utilities::MPI::MPI_InitFinalize> &mpi)
   {
     try
@@ -57,7 +57,7 @@ namespace
             nsm::catch_stop_signals();
             nsm::stop_at_points(true);
             const nsm::RunReport report = nsm::run_scene(file.scene);
-            nsm::print_report(report, std::cout);
+            nsm::print_report(report, std::cout, verbose);
             if (report.stopped_by != 0)
               {
                 std::cerr << "nsm-bar: stopped by " << nsm::stop_signal_name(report.stopped_by)
@@ -132,7 +132,7 @@ namespace
 
 namespace
 {
-  const char *const usage = "usage: nsm-bar SCENE.prm [--set \"Section/Entry=value\"]... [--output DIR]\n"
+  const char *const usage = "usage: nsm-bar SCENE.prm [--set \"Section/Entry=value\"]... [--output DIR] [--verbose]\n"
                             "       mpirun --allow-run-as-root -np R nsm-bar STUDY.prm [--set ...]\n"
                             "       nsm-bar --print-parameters[=markdown]\n"
                             "       nsm-bar --help\n";
@@ -141,6 +141,7 @@ namespace
   struct CommandLine
   {
     std::string                         scene;
+    bool                                verbose = false;
     std::vector<nsm::ParameterOverride> overrides;
   };
 
@@ -162,6 +163,8 @@ namespace
           line.overrides.push_back(nsm::parse_override(value("--set")));
         else if (a == "--output" || a.rfind("--output=", 0) == 0)
           line.overrides.push_back({"Output/Directory", value("--output")});
+        else if (a == "--verbose")
+          line.verbose = true;
         else if (a.rfind("--", 0) == 0 && a.size() > 2)
           throw nsm::InputError("command line: unknown option '" + nsm::printable(a) + "' (nsm-bar --help)");
         else if (!line.scene.empty())
@@ -185,6 +188,7 @@ int main(int argc, char **argv)
       std::cout << usage
                 << "--set \"Section/Entry=value\"  override a scene entry (repeatable; checked like the file)\n"
                    "--output DIR                  the same as --set \"Output/Directory=DIR\"\n"
+                   "--verbose                     print the continuation's events in the summary too\n"
                    "exit codes: 0 done, 2 bad input, 3 numerical failure, 4 other error, 5 a file could "
                    "not be written whole, 130 / 143 a study stopped by SIGINT / SIGTERM\n";
       return 0;
@@ -221,7 +225,7 @@ int main(int argc, char **argv)
   std::signal(SIGXFSZ, SIG_IGN);
   nsm::use_one_thread();
   std::optional<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
-  const int code = run(argc, argv, line.scene, mpi);
+  const int code = run(argc, argv, line.scene, line.verbose, mpi);
   // A rank that failed alone would leave the others waiting in a collective;
   // bad input fails on every rank alike.
   if (code != 0 && code != 2 && code < 128 && mpi && dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)

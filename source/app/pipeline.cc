@@ -8,6 +8,7 @@
 #include <nsm/model/discretisation.h>
 #include <nsm/model/memory_estimate.h>
 #include <nsm/app/pipeline.h>
+#include <nsm/app/run_result.h>
 #include <nsm/output/plots.h>
 #include <nsm/base/interruption.h>
 #include <nsm/base/progress.h>
@@ -112,6 +113,7 @@ namespace nsm
 
       void mesh(const BarModel &bar)
       {
+        bar_ = &bar;
         timed("mesh and assembly", [&] {
           discretisation_ = std::make_unique<Discretisation>(bar, scene_.discretisation);
         });
@@ -157,8 +159,8 @@ namespace nsm
           resonances_ = internal_resonances(*receptance_, scene_);
           backbone_   = compute_backbone(*hb_, scene_, resonances_);
           report_.notes.push_back(backbone_note());
-          for (const std::string &event : backbone_.events)
-            report_.notes.push_back("  " + event);
+          report_.events = backbone_.events;
+          report_.result = backbone_result(backbone_, *bar_, scene_.contact);
         });
       }
 
@@ -167,7 +169,7 @@ namespace nsm
         timed("verification in time", [&] {
           Progress progress("verification in time", scene_.output.progress_every);
           verifications_ = verify_backbone(*hb_, *discretisation_, backbone_, scene_.output, progress);
-          report_.notes.push_back(verification_summary(verifications_, scene_));
+          report_.result.push_back(verification_summary(verifications_, scene_));
         });
       }
 
@@ -185,7 +187,7 @@ namespace nsm
         timed("refinement in time", [&] {
           Progress progress("refinement in time", scene_.output.progress_every);
           orbits_ = refine_backbone(*hb_, *discretisation_, backbone_, scene_.output, progress);
-          report_.notes.push_back(refinement_summary(backbone_, orbits_, scene_.output));
+          report_.result.push_back(refinement_summary(backbone_, orbits_, scene_.output));
         });
       }
 
@@ -231,6 +233,11 @@ namespace nsm
         timed("output", [&] {
           for (const CsvTable &table : tables_)
             report_.files.push_back(write_csv(directory, table));
+          if (!report_.events.empty())
+            report_.files.push_back(write_atomically(directory + "/continuation.log", [&](std::ostream &out) {
+              for (const std::string &event : report_.events)
+                out << event << '\n';
+            }));
           const FieldOutputOptions options{scene_.field_time_samples(), scene_.output.vtk, scene_.output.plots};
           Progress progress("output", scene_.output.progress_every);
           for (std::size_t i = 0; i < fields_.size(); ++i)
@@ -334,6 +341,7 @@ namespace nsm
 
       const Scene                    &scene_;
       RunReport                      &report_;
+      const BarModel                 *bar_ = nullptr;
       std::vector<CsvTable>           tables_;
       std::unique_ptr<Discretisation> discretisation_;
       std::unique_ptr<Receptance>     receptance_;

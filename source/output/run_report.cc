@@ -5,8 +5,14 @@
 
 namespace nsm
 {
-  void print_report(const RunReport &report, std::ostream &out)
+  void print_report(const RunReport &report, std::ostream &out, const bool verbose)
   {
+    if (!report.result.empty())
+      {
+        out << "Result\n" << std::setprecision(6);
+        for (const std::string &line : report.result)
+          out << "  " << line << '\n';
+      }
     out << "Run summary\n";
     out << "  " << std::left << std::setw(24) << "stage" << std::right
         << std::setw(12) << "wall [s]" << std::setw(12) << "cpu [s]" << '\n';
@@ -18,6 +24,12 @@ namespace nsm
     out << std::setprecision(6);
     for (const std::string &note : report.notes)
       out << "  " << note << '\n';
+    if (verbose)
+      for (const std::string &event : report.events)
+        out << "    " << event << '\n';
+    else if (!report.events.empty())
+      out << "  continuation events (folds, leaps, ends): " << report.events.size()
+          << ", in continuation.log (--verbose prints them here)\n";
     out << "  files written: " << (report.files.empty() ? "none" : "") << '\n';
     for (const std::string &f : report.files)
       out << "    " << f << '\n';

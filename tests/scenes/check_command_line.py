@@ -10,7 +10,9 @@ line names the overrides; that a bad, unknown or malformed override and an
 unknown option exit 2 with one line naming it and leave no directory; and
 that no scene prints the usage and exits 2. Standard library only.
 """
+import csv
 import filecmp
+import math
 import os
 import shutil
 import subprocess
@@ -84,6 +86,30 @@ def main():
         check(len(lines) == 1 and all(n in result.stderr for n in needles),
               f"{extra}: stderr {result.stderr!r} lacks {needles} or is not one line")
         check(not os.path.exists("bad") and not os.path.exists("base"), f"{extra}: a directory was left behind")
+
+    # The summary's Result block on the uniform bar: the main points' median
+    # energy error against the exact mode E = g0^2 / (2 (T - 3)^2), recomputed
+    # here from backbone.csv (unit bar, T = 2 pi / Omega in (3, 4)).
+    with open("uniform.prm", "w") as f:
+        f.write(SCENE.format(harmonics=20, directory="uniform").replace(
+            "subsection Output", "subsection Bar\n  set Cross section = 1\nend\n"
+            "subsection Continuation\n  set Omega min = 1.6\n  set Omega max = 1.8\nend\nsubsection Output"))
+    shutil.rmtree("uniform", ignore_errors=True)
+    uniform = run(executable, "uniform.prm")
+    errors = []
+    with open("uniform/backbone.csv", newline="") as f:
+        for r in csv.DictReader(f):
+            period = 2 * math.pi / float(r["Omega"])
+            if r["branch"] == "main" and 3 < period < 4:
+                exact = 1e-3 ** 2 / (2 * (period - 3) ** 2)
+                errors.append(abs(float(r["energy"]) - exact) / exact)
+    errors.sort()
+    line = [x for x in uniform.stdout.splitlines() if "against the exact mode" in x]
+    expected = f"median {100 * errors[len(errors) // 2]:.3g} %"
+    check(uniform.returncode == 0 and line and expected in line[0] and f"of {len(errors)}" in line[0],
+          f"Result block: {line}, expected {expected!r} of {len(errors)}")
+    check(uniform.stdout.startswith("nsm-bar: scene uniform.prm\nResult\n  backbone from Omega = "),
+          f"the summary does not open with the Result block: {uniform.stdout[:200]!r}")
 
     usage = run(executable)
     check(usage.returncode == 2 and usage.stderr.startswith("usage: nsm-bar SCENE.prm"),

@@ -26,7 +26,16 @@ def run(executable, scene_directory, name):
                             capture_output=True, text=True)
     if result.returncode != 0:
         sys.exit(f"nsm-bar failed ({result.returncode}):\n{result.stdout}\n{result.stderr}")
-    return result.stdout
+    # The continuation's events are in continuation.log, which the summary
+    # names; the checks read them with the summary.
+    log = os.path.join(name, "continuation.log")
+    if not os.path.exists(log):
+        return result.stdout
+    with open(log) as f:
+        events = f.read()
+    assert f"continuation events (folds, leaps, ends): {len(events.splitlines())}, in continuation.log" \
+        in result.stdout, result.stdout
+    return result.stdout + events
 
 
 BRANCHES = {"main": 0.0, "tongue": 1.0}
@@ -323,6 +332,8 @@ def check_plots_shell_free(name, summary):
     directory = name + "'; touch INJECTED; echo '"
     injected = os.path.exists("INJECTED")
     written = os.path.exists(os.path.join(directory, "backbone.png"))
+    with open(os.path.join(directory, "continuation.log")) as f:
+        summary += f.read()
     shutil.rmtree(directory, ignore_errors=True)
     if injected:
         os.remove("INJECTED")
@@ -373,9 +384,9 @@ def check_no_field_outputs(name, summary):
     """A backbone scene without fields, VTK and plots writes none of them and
     spends no time on them."""
     files = sorted(os.listdir(name))
-    assert files == ["backbone.csv", "nsm-bar.manifest", "resonances.csv", "tongues.csv"], files
+    assert files == ["backbone.csv", "continuation.log", "nsm-bar.manifest", "resonances.csv", "tongues.csv"], files
     with open(f"{name}/nsm-bar.manifest") as f:
-        assert sorted(f.read().split()) == ["backbone.csv", "resonances.csv", "tongues.csv"]
+        assert sorted(f.read().split()) == ["backbone.csv", "continuation.log", "resonances.csv", "tongues.csv"]
     for stage in ("fields", "plots"):
         assert f"  {stage} " not in summary, stage
 

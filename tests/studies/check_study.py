@@ -296,7 +296,7 @@ def plain_run(executable, directory, name, output, study="harmonics.prm", harmon
         f.write(scene + f"subsection Harmonic balance\n  set Harmonics = {harmonics}\nend\n"
                 f"subsection Output\n  set Directory = {name}\n  set Backbone = true\n  set Plots = false\n"
                 + output + "end\n")
-    return run([executable, name + ".prm"], directory)
+    return run([executable, name + ".prm", "--verbose"], directory)
 
 
 def time_defects_fall(executable, directory, rows):

@@ -1,6 +1,6 @@
-// What a run or a study reports when it ends: its stages with their wall and
-// CPU times, notes (DoFs, refinement, continuation events) and the files
-// written. Printed as the run summary.
+// What a run or a study reports when it ends: the result in a few lines, its
+// stages with their wall and CPU times, notes (DoFs, refinement), the
+// continuation's events and the files written. Printed as the run summary.
 #pragma once
 
 #include <iosfwd>
@@ -18,6 +18,10 @@ namespace nsm
 
   struct RunReport
   {
+    /// The answer first: range, main points, tongues, energies, verdicts.
+    std::vector<std::string> result;
+    /// The continuation's folds and leaps (continuation.log).
+    std::vector<std::string> events;
     std::vector<StageTiming> stages;
     std::vector<std::string> notes; ///< DoFs, refinement, continuation events
     std::vector<std::string> files;
@@ -29,5 +33,7 @@ namespace nsm
   };
 
   /// The run summary: the stages' times, the notes, the files written.
-  void print_report(const RunReport &report, std::ostream &out);
+  /// With `verbose`, the continuation's events are printed too; otherwise a
+  /// line counts them and names continuation.log.
+  void print_report(const RunReport &report, std::ostream &out, bool verbose = false);
 } // namespace nsm

@@ -1,0 +1,91 @@
+#include <nsm/app/run_result.h>
+#include <nsm/model/exact_references.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace nsm
+{
+  namespace
+  {
+    /// Main-branch energies shown: the first and last main points and two
+    /// between, evenly spread over the main points.
+    constexpr unsigned int energy_samples = 4;
+    /// The exact-mode error a main point is counted within (5 %).
+    constexpr double exact_error_share = 0.05;
+
+    std::vector<const BackbonePoint *> main_points(const Backbone &backbone)
+    {
+      std::vector<const BackbonePoint *> main;
+      for (const BackbonePoint &p : backbone.points)
+        if (p.branch == Branch::main)
+          main.push_back(&p);
+      return main;
+    }
+
+    std::string coverage(const Backbone &backbone, const std::size_t main)
+    {
+      std::ostringstream s;
+      s.precision(6);
+      s << "backbone from Omega = " << backbone.points.front().omega << " to " << backbone.points.back().omega
+        << " (ended: " << backbone_end_name(backbone.end) << "): " << main << " main points, "
+        << backbone.points.size() - main << " points on " << backbone.tongues.size() << " tongues";
+      return s.str();
+    }
+
+    std::string energies(const std::vector<const BackbonePoint *> &main)
+    {
+      std::ostringstream s;
+      s.precision(4);
+      s << "energy on the main branch:";
+      const std::size_t count = std::min<std::size_t>(energy_samples, main.size());
+      for (std::size_t i = 0; i < count; ++i)
+        {
+          const BackbonePoint &p = *main[count == 1 ? 0 : i * (main.size() - 1) / (count - 1)];
+          s << (i ? "," : "") << ' ' << p.measures.energy << " at " << std::setprecision(6) << p.omega
+            << std::setprecision(4);
+        }
+      return s.str();
+    }
+
+    /// The main points' energy error against the uniform bar's exact mode,
+    /// if the bar is uniform and the force sign physical.
+    std::vector<std::string> exact_errors(const std::vector<const BackbonePoint *> &main, const BarModel &bar,
+                                          const Scene::Contact &contact)
+    {
+      const std::optional<ExactBar> exact = ExactBar::of(bar);
+      if (!exact || contact.sign != ForceSign::physical)
+        return {};
+      std::vector<double> errors;
+      for (const BackbonePoint *p : main)
+        if (const std::optional<double> e = exact->first_mode_energy(p->omega, contact.gap))
+          errors.push_back(std::abs(p->measures.energy - *e) / *e);
+      if (errors.empty())
+        return {};
+      std::sort(errors.begin(), errors.end());
+      const auto within =
+        std::count_if(errors.begin(), errors.end(), [](const double e) { return e <= exact_error_share; });
+      std::ostringstream s;
+      s.precision(3);
+      s << "against the exact mode (" << exact->name() << "): main-point energy error median "
+        << 100 * errors[errors.size() / 2] << " %, 90th percentile " << 100 * errors[errors.size() * 9 / 10]
+        << " %, within 5 %: " << within << " of " << errors.size();
+      return {s.str()};
+    }
+  } // namespace
+
+  std::vector<std::string> backbone_result(const Backbone &backbone, const BarModel &bar,
+                                           const Scene::Contact &contact)
+  {
+    if (backbone.points.empty())
+      return {"backbone: no point"};
+    const std::vector<const BackbonePoint *> main = main_points(backbone);
+    std::vector<std::string>                 lines{coverage(backbone, main.size())};
+    if (!main.empty())
+      lines.push_back(energies(main));
+    for (std::string &line : exact_errors(main, bar, contact))
+      lines.push_back(std::move(line));
+    return lines;
+  }
+} // namespace nsm
