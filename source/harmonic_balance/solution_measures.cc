@@ -97,7 +97,7 @@ namespace nsm
     const TrigonometricBasis  &functions = solution.functions;
     const std::vector<double> &x         = solution.x;
     double lambda_max = -std::numeric_limits<double>::max(), lambda_min = -lambda_max;
-    double gap_min = lambda_min, complementarity = 0;
+    double gap_min = lambda_min, complementarity = 0, amplitude = 0;
     const unsigned int         n = functions.size(), count = samples.n_samples();
     const std::vector<double> &table = samples.table();
     for (unsigned int t = 0; t < count; ++t)
@@ -113,9 +113,11 @@ namespace nsm
         const double g = law.gap_at(u);
         lambda_max = std::max(lambda_max, lambda), lambda_min = std::min(lambda_min, lambda);
         gap_min = std::min(gap_min, g);
+        amplitude = std::max(amplitude, std::abs(u));
         complementarity = std::max(complementarity, std::abs(lambda * g));
       }
     result.max_contact_force   = lambda_max;
+    result.max_contact_displacement = amplitude;
     result.min_force           = lambda_min / lambda_max;
     result.min_gap             = gap_min / law.gap();
     result.max_complementarity = complementarity / (lambda_max * law.gap());

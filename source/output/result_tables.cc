@@ -62,7 +62,7 @@ namespace nsm
   CsvTable backbone_table(const Backbone &backbone, const Verifications &verifications, const RefinedOrbits &orbits)
   {
     CsvTable table{"backbone.csv",
-                   {"segment", "Omega", "energy", "energy_spread", "max_contact_force",
+                   {"segment", "Omega", "energy", "energy_spread", "max_contact_force", "max_contact_displacement",
                     "contact_fraction", "newton_iterations", "residual", "branch",
                     "resonance_mode", "resonance_harmonic"},
                    {}};
@@ -79,6 +79,7 @@ namespace nsm
         const BackbonePoint &p = backbone.points[i];
         table.rows.push_back({double(p.segment), p.omega, p.measures.energy,
                               p.measures.energy_spread, p.measures.max_contact_force,
+                              p.measures.max_contact_displacement,
                               p.measures.contact_fraction, double(p.newton_iterations),
                               p.residual, branch_name(p.branch),
                               double(p.resonance.mode), double(p.resonance.harmonic)});

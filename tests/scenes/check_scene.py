@@ -87,13 +87,16 @@ def check_spectrum_receptance(name, summary):
 def check_backbone(name, below_w1):
     points = table(f"{name}/backbone.csv",
                    ["segment", "Omega", "energy", "energy_spread", "max_contact_force",
-                    "contact_fraction", "newton_iterations", "residual", "branch",
+                    "max_contact_displacement", "contact_fraction", "newton_iterations", "residual", "branch",
                     "resonance_mode", "resonance_harmonic"])
     assert len(points) > 20, len(points)
     segments = [p[0] for p in points]
     assert segments == sorted(segments), "segments are numbered along the branch"
-    for (segment, omega, energy, spread, force, fraction, iterations, residual, branch, mode,
+    for (segment, omega, energy, spread, force, amplitude, fraction, iterations, residual, branch, mode,
          harmonic) in points:
+        # A contact motion reaches the wall: its end's amplitude is g0 or
+        # more, less the truncation's overshoot (2 %, as the tip check).
+        assert amplitude >= 0.98e-3, amplitude
         # main points carry no resonance, tongue points one of the map's
         assert (mode, harmonic) == (0, 0) if branch == 0 else (mode >= 1 and harmonic >= 3)
         assert (omega < W1) if below_w1 else (omega > W1), omega

@@ -18,6 +18,7 @@ namespace nsm
     double energy;            ///< period mean of kinetic + strain energy
     double energy_spread;     ///< (max - min) / mean over the period
     double max_contact_force; ///< max over the period of lambda(t)
+    double max_contact_displacement = 0; ///< max over the period of |u(L, t)|: the contact end's amplitude
     double contact_fraction;  ///< share of the period with lambda - alpha g > 0
     double min_force;         ///< min lambda / max lambda (Signorini: >= 0)
     double min_gap;           ///< min g / g0 (Signorini: >= 0)
