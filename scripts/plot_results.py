@@ -35,12 +35,41 @@ def save(figure, path):
     print("wrote " + path)
 
 
+def grazing_scale(directory):
+    """(mode, w_j, E_g) from grazing.csv: the traced mode's linear energy with
+    u(L) = g0, the energy scale; (None, None, 1.0) without it."""
+    path = os.path.join(directory, "grazing.csv")
+    if not os.path.exists(path):
+        return None, None, 1.0
+    g = read(path)
+    return int(g["mode"][0]), g["omega"][0], g["energy"][0]
+
+
+def place_labels(axes, labels, min_gap=0.045):
+    """Annotates (x, y, text) points, largest first, skipping any whose spot
+    (in axes fractions) lies within min_gap of one already placed."""
+    placed, seen = [], set()
+    to_axes = axes.transAxes.inverted()
+    for x, y, text in labels:
+        if text in seen:
+            continue  # one resonance, two tongues (its two flanks): one label
+        seen.add(text)
+        fx, fy = to_axes.transform(axes.transData.transform((x, y)))
+        if not (0 <= fx <= 1 and 0 <= fy <= 0.93):
+            continue  # off the axes, or under the title's edge
+        if all(abs(fx - px) > min_gap or abs(fy - py) > min_gap for px, py in placed):
+            axes.annotate(text, (x, y), fontsize=7, color="C3", ha="center", va="bottom")
+            placed.append((fx, fy))
+
+
 def backbone_plot(directory):
     points = read(os.path.join(directory, "backbone.csv"))
+    mode, w_mode, e_g = grazing_scale(directory)
+    energy = [e / e_g for e in points["energy"]]
     figure, axes = plt.subplots(figsize=(8, 5))
     # The main branch: a line through consecutive main points of one segment.
     runs, run = [], []
-    for w, e, g, b in zip(points["Omega"], points["energy"], points["segment"], points["branch"]):
+    for w, e, g, b in zip(points["Omega"], energy, points["segment"], points["branch"]):
         if run and (b != "main" or g != run[-1][2]):
             runs.append(run)
             run = []
@@ -49,59 +78,60 @@ def backbone_plot(directory):
     runs.append(run)
     for n, r in enumerate(x for x in runs if x):
         axes.semilogy([p[0] for p in r], [p[1] for p in r], "-", marker=".", markersize=3,
-                      linewidth=1.2, color="C0", label="main branch" if n == 0 else None)
-    tongue = [(w, e) for w, e, b in zip(points["Omega"], points["energy"], points["branch"])
-              if b == "tongue"]
+                      linewidth=1.2, color="C0", label="main branch" if n == 0 else None, zorder=3)
+    tongue = [(w, e) for w, e, b in zip(points["Omega"], energy, points["branch"]) if b == "tongue"]
     if tongue:
         axes.semilogy([w for w, _ in tongue], [e for _, e in tongue], "x", markersize=3,
-                      color="C3", alpha=0.6, label="resonance tongues")
-    # Points whose time integration does not come back after one period.
-    failed = [(w, e) for w, e, v in zip(points["Omega"], points["energy"], points.get("verified", []))
-              if v == "false"]
+                      color="C3", alpha=0.6, label="resonance tongues", zorder=2)
+    # Points whose time integration does not come back after one period:
+    # small rings behind the branch, so that they do not hide it.
+    failed = [(w, e) for w, e, v in zip(points["Omega"], energy, points.get("verified", [])) if v == "false"]
     if failed:
-        axes.semilogy([w for w, _ in failed], [e for _, e in failed], "o", markersize=6,
-                      markerfacecolor="none", color="C1", label="not periodic in time")
+        axes.semilogy([w for w, _ in failed], [e for _, e in failed], "o", markersize=7, markerfacecolor="none",
+                      markeredgewidth=0.6, color="C1", alpha=0.7, label="not periodic in time", zorder=1)
     # Points refined in time: the orbit's energy, stable and unstable apart.
     for flag, marker, label in (("true", "s", "orbit in time, stable"), ("false", "D", "orbit in time, unstable")):
-        orbit = [(w, e) for w, e, s in zip(points["Omega"], points.get("orbit_energy", []),
-                                           points.get("stable", [])) if s == flag]
+        orbit = [(w, e / e_g) for w, e, s in zip(points["Omega"], points.get("orbit_energy", []),
+                                                 points.get("stable", [])) if s == flag]
         if orbit:
             axes.semilogy([w for w, _ in orbit], [e for _, e in orbit], marker, markersize=5,
-                          markerfacecolor="none", color="C2" if flag == "true" else "C4", label=label)
-    tongues = os.path.join(directory, "tongues.csv")
-    if os.path.exists(tongues):
-        t = read(tongues)
-        # The tongues with most points are labelled w_j/k at their top.
-        order = sorted(range(len(t.get("points", []))), key=lambda i: -t["points"][i])[:12]
-        for i in order:
-            axes.annotate(f"$\\omega_{{{int(t['mode'][i])}}}/{int(t['harmonic'][i])}$",
-                          (t["omega_resonance"][i], t["max_energy"][i]), fontsize=7, color="C3",
-                          ha="center", va="bottom")
+                          markerfacecolor="none", color="C2" if flag == "true" else "C4", label=label, zorder=4)
     segments = sorted(set(points["segment"]))
     low, high = min(points["Omega"]), max(points["Omega"])
     margin = 0.02 * (high - low or 1)
     axes.set_xlim(low - margin, high + margin)
+    # Internal resonances: only those whose tongue the run found, faint.
+    tongues_path = os.path.join(directory, "tongues.csv")
+    t = read(tongues_path) if os.path.exists(tongues_path) else {}
+    for n, omega in enumerate(t.get("omega_resonance", [])):
+        axes.axvline(omega, color="grey", linewidth=0.5, linestyle=":", zorder=0,
+                     label="internal resonance $\\omega_j / k$ of a tongue found" if n == 0 else None)
     resonances = os.path.join(directory, "resonances.csv")
     if os.path.exists(resonances):
         r = read(resonances)
-        first_linear = first_internal = True
-        for omega, mode, harmonic in zip(r.get("omega", []), r.get("mode", []), r.get("harmonic", [])):
+        first = True
+        for omega, m, harmonic in zip(r.get("omega", []), r.get("mode", []), r.get("harmonic", [])):
             if harmonic == 1:
-                axes.axvline(omega, color="black", linewidth=1.2,
-                             label="linear frequency $\\omega_j$" if first_linear else None)
-                axes.annotate(f"$\\omega_{{{int(mode)}}}$", (omega, 1.0), xycoords=("data", "axes fraction"),
-                              ha="center", va="bottom")
-                first_linear = False
-            else:
-                axes.axvline(omega, color="grey", linewidth=0.5, linestyle=":",
-                             label="internal resonance $\\omega_j / k$" if first_internal else None)
-                first_internal = False
+                axes.axvline(omega, color="black", linewidth=1.2, label="linear frequency $\\omega_j$" if first else None)
+                right = omega > low + 0.9 * (high - low)  # near the right edge: label on the left
+                axes.annotate(f"$\\omega_{{{int(m)}}}$ " if right else f" $\\omega_{{{int(m)}}}$", (omega, 0.98),
+                              xycoords=("data", "axes fraction"), ha="right" if right else "left", va="top")
+                first = False
     fields = os.path.join(directory, "fields.csv")
     if os.path.exists(fields):
         f = read(fields)
-        axes.plot(f["Omega"], f["energy"], "r*", markersize=12, label="fields")
-    axes.set_xlabel("$\\Omega$ [rad/s]")
-    axes.set_ylabel("energy (period mean)")
+        axes.plot(f["Omega"], [e / e_g for e in f["energy"]], "r*", markersize=12, label="fields", zorder=5)
+    axes.set_xlabel("$\\Omega$ (the scene's units: rad/s if its inputs are SI)")
+    axes.set_ylabel(f"energy / $E_g$ ($E_g$ = {e_g:.3g}: mode {mode} linear, $u(L) = g_0$)" if mode
+                    else "energy (period mean)")
+    if w_mode:
+        top = axes.secondary_xaxis("top", functions=(lambda x: x / w_mode, lambda x: x * w_mode))
+        top.set_xlabel(f"$\\Omega / \\omega_{mode}$", fontsize=8)
+        top.tick_params(labelsize=7)
+    # Tongue labels w_j/k at their top, the highest tongues first, none overlapping.
+    order = sorted(range(len(t.get("points", []))), key=lambda i: -t["max_energy"][i])
+    place_labels(axes, [(t["omega_resonance"][i], t["max_energy"][i] / e_g,
+                         f"$\\omega_{{{int(t['mode'][i])}}}/{int(t['harmonic'][i])}$") for i in order])
     main = points["branch"].count("main")
     title = (f"Backbone: {main} main points, {len(points['Omega']) - main} on tongues, "
              f"{len(segments)} segments")
@@ -111,8 +141,8 @@ def backbone_plot(directory):
     if "stable" in points:
         found = sum(s in ("true", "false") for s in points["stable"])
         title += f"\n{found} orbits found in time, {points['stable'].count('false')} unstable"
-    axes.set_title(title)
-    axes.legend(loc="upper left", fontsize=8)
+    axes.set_title(title, fontsize=10, pad=22 if w_mode else 6)
+    axes.legend(loc="best", fontsize=7, framealpha=0.9)
     save(figure, os.path.join(directory, "backbone.png"))
 
 
@@ -133,9 +163,10 @@ def field_plots(directory, gap):
         top.set_ylabel("$u(L, t) / g_0$")
         top.legend(loc="lower right", fontsize=8)
         top.set_title("Contact end over one period, " + title)
-        bottom.plot(phase, tip["contact_force"], "r-")
+        peak = max(abs(v) for v in tip["contact_force"]) or 1.0
+        bottom.plot(phase, [v / peak for v in tip["contact_force"]], "r-")
         bottom.axhline(0.0, color="black", linewidth=0.5)
-        bottom.set_ylabel("contact force $\\lambda(t)$")
+        bottom.set_ylabel(f"$\\lambda(t) / \\max|\\lambda|$ (max = {peak:.3g})")
         bottom.set_xlabel("$t / T$")
         save(figure, path.replace("_tip.csv", "_tip.png"))
 

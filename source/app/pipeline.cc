@@ -195,6 +195,7 @@ namespace nsm
       {
         tables_.push_back(backbone_table(backbone_, verifications_, orbits_));
         tables_.push_back(tongue_table(backbone_));
+        tables_.push_back(grazing_table(*discretisation_, scene_.continuation.mode, scene_.contact.gap));
         tables_.push_back(resonance_table(resonances_));
       }
 

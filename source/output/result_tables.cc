@@ -106,6 +106,15 @@ namespace nsm
     return table;
   }
 
+  CsvTable grazing_table(const Discretisation &d, const unsigned int mode, const double gap)
+  {
+    const ModalData modes = compute_spectrum(d, EndCondition::clamped_free, mode, true);
+    const double    w2    = modes.eigenvalues[mode - 1];
+    return {"grazing.csv",
+            {"mode", "omega", "energy"},
+            {{double(mode), std::sqrt(w2), w2 * gap * gap / (2 * modes.contact_residues[mode - 1])}}};
+  }
+
   CsvTable resonance_table(const std::vector<InternalResonance> &resonances)
   {
     CsvTable table{"resonances.csv", {"omega", "mode", "harmonic"}, {}};

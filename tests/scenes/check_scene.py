@@ -110,6 +110,13 @@ def check_backbone(name, below_w1):
 
 def check_backbone_physical(name, summary):
     points = check_backbone(name, below_w1=False)
+    # grazing.csv: mode 1's linear energy with u(L) = g0 is where the branch
+    # starts (its first point lies a grazing offset above w1: 1 % covers it),
+    # at the spectrum's w1.
+    (mode, w1, e_g), = table(f"{name}/grazing.csv", ["mode", "omega", "energy"])
+    first = table(f"{name}/spectrum.csv", ["j", "omega_clamped_free", "omega_clamped_clamped"])[0]
+    assert mode == 1 and abs(w1 - first[1]) <= 1e-12 * w1, (w1, first)
+    assert abs(points[0][2] - e_g) <= 0.01 * e_g, (points[0][2], e_g)
     # Hardening from the linear grazing value.
     assert points[-1][2] > 2 * points[0][2]
     spectrum = table(f"{name}/spectrum.csv", ["j", "omega_clamped_free", "omega_clamped_clamped"])
@@ -387,9 +394,11 @@ def check_no_field_outputs(name, summary):
     """A backbone scene without fields, VTK and plots writes none of them and
     spends no time on them."""
     files = sorted(os.listdir(name))
-    assert files == ["backbone.csv", "continuation.log", "nsm-bar.manifest", "resonances.csv", "tongues.csv"], files
+    assert files == ["backbone.csv", "continuation.log", "grazing.csv", "nsm-bar.manifest", "resonances.csv",
+                     "tongues.csv"], files
     with open(f"{name}/nsm-bar.manifest") as f:
-        assert sorted(f.read().split()) == ["backbone.csv", "continuation.log", "resonances.csv", "tongues.csv"]
+        assert sorted(f.read().split()) == ["backbone.csv", "continuation.log", "grazing.csv", "resonances.csv",
+                                            "tongues.csv"]
     for stage in ("fields", "plots"):
         assert f"  {stage} " not in summary, stage
 

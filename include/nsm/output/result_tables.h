@@ -39,5 +39,10 @@ namespace nsm
   CsvTable tongue_table(const Backbone &backbone);
 
   /// resonances.csv: the internal resonances w_j / k in the range.
+  /// grazing.csv: the traced mode j, w_j and its grazing energy E_g =
+  /// w_j^2 g0^2 / (2 phi_j(L)^2), the linear mode's energy with u(L) = g0
+  /// (the plots' energy scale).
+  CsvTable grazing_table(const Discretisation &discretisation, unsigned int mode, double gap);
+
   CsvTable resonance_table(const std::vector<InternalResonance> &resonances);
 } // namespace nsm
