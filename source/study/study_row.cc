@@ -41,12 +41,13 @@ namespace nsm
     }
 
     /// Resets the peak resident set size to the current one (Linux: "5" to
-    /// clear_refs) and returns it, so that the row's own peak is the
-    /// difference.
-    double reset_peak_memory()
+    /// clear_refs), so that VmHWM after the row is the row's peak. (The
+    /// difference from the resident size at the start is no measure: the
+    /// allocator reuses the memory earlier rows freed, and it was 0 in most
+    /// rows.)
+    void reset_peak_memory()
     {
       std::ofstream("/proc/self/clear_refs") << "5";
-      return status_mib("VmRSS");
     }
 
     double median(std::vector<double> v)
@@ -147,7 +148,7 @@ namespace nsm
   std::vector<std::string> measure_study_row(const StudyScene &run, const FineReference *fine)
   {
     const RowReference reference = reference_of(run, fine);
-    const double       resident  = reset_peak_memory();
+    reset_peak_memory();
     RepeatedRuns       runs      = repeat_runs(run, reference);
     RowMeasures       &m         = runs.measures;
     const auto        &totals    = runs.totals;
@@ -176,7 +177,7 @@ namespace nsm
                                     m.backbone_end,
                                     text(m.omega_reached),
                                     m.energy_error_partial ? (*m.energy_error_partial ? "yes" : "no") : "",
-                                    text(status_mib("VmHWM") - resident),
+                                    text(status_mib("VmHWM")),
                                     text(*std::min_element(totals.begin(), totals.end())),
                                     text(median(totals)),
                                     text(*std::max_element(totals.begin(), totals.end())),

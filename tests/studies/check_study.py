@@ -83,6 +83,12 @@ def rates(executable, studies):
     run([executable, "space.prm"], directory)
     rows = read(os.path.join(directory, "out", "study.csv"))
     assert all(r["status"] == "ok" and r["reference"] == "linear taper (Bessel)" for r in rows)
+    # Every row's peak resident memory holds at least its stiffness and mass
+    # matrices' values: 2 (2 p + 1) (cells p + 1) doubles (8 bytes each).
+    for r in rows:
+        p, cells = int(r["degree"]), int(r["cells"])
+        assert float(r["peak_memory_mib"]) >= 16 * (2 * p + 1) * (cells * p + 1) / 2 ** 20, r
+        assert float(r["peak_memory_mib"]) > 1, r  # the process itself: libraries, MiB of them
     w_last = bessel_roots(5)[-1]
     error = {(int(r["degree"]), int(r["cells"])): float(r["spectrum_error"]) for r in rows}
 
