@@ -18,6 +18,9 @@ import subprocess
 import sys
 import time
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from stop_signals import blocked_writing_stderr, full_pipe  # noqa: E402
+
 SCENE = """subsection Discretisation
   set Degree = 10
   set Cells = 7
@@ -39,26 +42,6 @@ subsection Output
   set Progress every = 1e-9
 end
 """
-
-
-def blocked_writing_stderr(pid):
-    try:
-        with open(f"/proc/{pid}/wchan") as f:
-            return "pipe_write" in f.read()
-    except OSError:
-        return False
-
-
-def full_pipe():
-    read_end, write_end = os.pipe()
-    os.set_blocking(write_end, False)
-    try:
-        while True:
-            os.write(write_end, b"x" * 4096)
-    except BlockingIOError:
-        pass
-    os.set_blocking(write_end, True)
-    return read_end, write_end
 
 
 def main():

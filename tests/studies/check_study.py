@@ -38,6 +38,9 @@ import subprocess
 import sys
 import time
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from stop_signals import blocked_writing_stderr, full_pipe  # noqa: E402
+
 import numpy as np
 from scipy.optimize import brentq
 from scipy.special import j0, j1, y0, y1
@@ -134,29 +137,6 @@ def ranks(executable, studies):
     assert len(a) == 8 and [reproducible(r) for r in a] == [reproducible(r) for r in b]
     assert all(r["status"] == "ok" and r["energy_error_max"] != "" for r in a), a
     print(f"{len(a)} rows identical, costs aside")
-
-
-def blocked_writing_stderr(pid):
-    """The process waits to write into a full pipe: its only pipe is stderr
-    (Linux's /proc/PID/wchan names the kernel function it sleeps in)."""
-    try:
-        with open(f"/proc/{pid}/wchan") as f:
-            return "pipe_write" in f.read()
-    except OSError:
-        return False
-
-
-def full_pipe():
-    """A pipe whose buffer is full: the first write to it waits for a read."""
-    read_end, write_end = os.pipe()
-    os.set_blocking(write_end, False)
-    try:
-        while True:
-            os.write(write_end, b"x" * 4096)
-    except BlockingIOError:
-        pass
-    os.set_blocking(write_end, True)  # the study's writes must wait, not fail
-    return read_end, write_end
 
 
 def resume(executable, studies):

@@ -1,6 +1,7 @@
 // Small builders shared by the unit tests.
 #pragma once
 
+#include <nsm/model/contact_law.h>
 #include <nsm/scene/scene.h>
 
 #include <fstream>
@@ -18,6 +19,14 @@ namespace testing_helpers
     scene.discretisation.degree   = degree;
     scene.discretisation.cells    = cells;
     return scene;
+  }
+
+  /// The rigid wall at `gap`, with the physical force sign.
+  inline nsm::ContactLaw wall_at(const double gap)
+  {
+    nsm::Scene::Contact contact;
+    contact.gap = gap;
+    return nsm::ContactLaw(contact);
   }
 
   /// Writes a scene file with the given body and returns its path.

@@ -16,12 +16,8 @@ namespace
 {
   constexpr double g0 = 1e-3;
 
-  nsm::ContactLaw wall()
-  {
-    nsm::Scene::Contact contact;
-    contact.gap = g0;
-    return nsm::ContactLaw(contact);
-  }
+  /// The rigid wall at g0.
+  nsm::ContactLaw wall() { return testing_helpers::wall_at(g0); }
 
   /// The uniform bar on `cells` cells of FE_Q(degree), and the exact tent
   /// of period T interpolated on it (exact_bar.h).

@@ -14,12 +14,7 @@ namespace
   constexpr double g0 = 1e-3;
 
   /// The rigid wall at g0.
-  nsm::ContactLaw wall()
-  {
-    nsm::Scene::Contact contact;
-    contact.gap = g0;
-    return nsm::ContactLaw(contact);
-  }
+  nsm::ContactLaw wall() { return testing_helpers::wall_at(g0); }
 
   /// The uniform bar's exact mode (exact_bar.h) on a mesh of FE_Q(1), and the
   /// integration of its period. The impulse per period is 2 (u* - g0).
