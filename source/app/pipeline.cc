@@ -160,7 +160,7 @@ namespace nsm
           backbone_   = compute_backbone(*hb_, scene_, resonances_);
           report_.notes.push_back(backbone_note());
           report_.events = backbone_.events;
-          report_.result = backbone_result(backbone_, *bar_, scene_.contact);
+          report_.result = backbone_result(backbone_, *bar_, scene_.contact, scene_.continuation);
         });
       }
 

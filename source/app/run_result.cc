@@ -24,12 +24,28 @@ namespace nsm
       return main;
     }
 
-    std::string coverage(const Backbone &backbone, const std::size_t main)
+    /// How the backbone ended, naming the parameter that ended it.
+    std::string ending(const Backbone &backbone, const Scene::Continuation &c)
+    {
+      switch (backbone.end)
+        {
+          case BackboneEnd::range:
+            return "range: Continuation/Omega min or max";
+          case BackboneEnd::max_steps:
+            return "max_steps: Continuation/Max steps = " + std::to_string(c.max_steps) + " points";
+          case BackboneEnd::energy_max:
+            return "energy_max: the branch goes on above Continuation/Energy max";
+          default:
+            return backbone_end_name(backbone.end) + std::string(": continuation.log says how");
+        }
+    }
+
+    std::string coverage(const Backbone &backbone, const std::size_t main, const Scene::Continuation &c)
     {
       std::ostringstream s;
       s.precision(6);
       s << "backbone from Omega = " << backbone.points.front().omega << " to " << backbone.points.back().omega
-        << " (ended: " << backbone_end_name(backbone.end) << "): " << main << " main points, "
+        << " (ended: " << ending(backbone, c) << "): " << main << " main points, "
         << backbone.points.size() - main << " points on " << backbone.tongues.size() << " tongues";
       return s.str();
     }
@@ -76,12 +92,12 @@ namespace nsm
   } // namespace
 
   std::vector<std::string> backbone_result(const Backbone &backbone, const BarModel &bar,
-                                           const Scene::Contact &contact)
+                                           const Scene::Contact &contact, const Scene::Continuation &continuation)
   {
     if (backbone.points.empty())
       return {"backbone: no point"};
     const std::vector<const BackbonePoint *> main = main_points(backbone);
-    std::vector<std::string>                 lines{coverage(backbone, main.size())};
+    std::vector<std::string>                 lines{coverage(backbone, main.size(), continuation)};
     if (!main.empty())
       lines.push_back(energies(main));
     for (std::string &line : exact_errors(main, bar, contact))

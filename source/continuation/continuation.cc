@@ -60,7 +60,10 @@ namespace nsm
           if (end == SegmentEnd::max_steps)
             {
               backbone.end = BackboneEnd::max_steps;
-              return backbone.events.push_back(event_message("Max steps reached", omega));
+              return backbone.events.push_back(event_message(
+                "Continuation/Max steps = " + std::to_string(context.scene.continuation.max_steps) +
+                  " points reached (raise it to go on)",
+                omega));
             }
           if (end == SegmentEnd::refused)
             {

@@ -13,5 +13,5 @@
 namespace nsm
 {
   std::vector<std::string> backbone_result(const Backbone &backbone, const BarModel &bar,
-                                           const Scene::Contact &contact);
+                                           const Scene::Contact &contact, const Scene::Continuation &continuation);
 } // namespace nsm
