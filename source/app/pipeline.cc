@@ -53,17 +53,18 @@ namespace nsm
 
     /// A field is solved on the computed branch; beyond its first or last
     /// point (before grazing, or past where it was lost) Newton could only
-    /// land on something that was not traced, so the Omega is refused.
-    void require_on_branch(const Backbone &backbone, const double omega)
+    /// land on something that was not traced. Empty if omega is on it, else
+    /// why not.
+    std::string off_branch(const Backbone &backbone, const double omega)
     {
       const double low = *backbone.omega_reached(-1), high = *backbone.omega_reached(1);
       if (omega >= low && omega <= high)
-        return;
+        return "";
       std::ostringstream s;
       s.precision(8);
-      s << "parameter 'Output/Fields at' = " << omega << " is out of range: allowed within the computed branch, "
-        << low << " to " << high << " (how it ended: " << backbone_end_name(backbone.end) << ")";
-      throw InputError(s.str());
+      s << "beyond the computed branch, " << low << " to " << high << " (how it ended: "
+        << backbone_end_name(backbone.end) << ")";
+      return s.str();
     }
 
     /// The summary line of a field's verification.
@@ -207,7 +208,6 @@ namespace nsm
           const auto  report_count = [&] { return std::to_string(fields_.size()) + " fields"; };
           for (const double omega : o.fields_at)
             {
-              require_on_branch(backbone_, omega);
               const std::optional<BackbonePoint> point = field_point(omega);
               if (!point)
                 continue;
@@ -273,43 +273,54 @@ namespace nsm
         report_.stages.push_back({name, timer.wall_time(), timer.cpu_time()});
       }
 
-      /// The point of a field at omega: solved on the branch, or else the
-      /// nearest main point within Continuation/Search reach (said in a
-      /// note); none (the failure recorded, naming the nearest main Omega on
-      /// each side) if there is none within reach.
+      /// The point of a field at omega: solved on the branch, or else (off
+      /// the computed branch, or no converged solution there) the nearest
+      /// main point within Continuation/Search reach.
       std::optional<BackbonePoint> field_point(const double omega)
       {
+        std::string why = off_branch(backbone_, omega);
+        if (!why.empty())
+          return nearest_main_point(omega, why);
         try
           {
             return solve_on_branch(*hb_, scene_, backbone_, omega);
           }
         catch (const NumericalError &e)
           {
-            const BackbonePoint *below = nullptr, *above = nullptr;
-            for (const BackbonePoint &p : backbone_.points)
-              if (p.branch == Branch::main && p.omega <= omega && (!below || p.omega > below->omega))
-                below = &p;
-              else if (p.branch == Branch::main && p.omega > omega && (!above || p.omega < above->omega))
-                above = &p;
-            const BackbonePoint *nearest =
-              !below ? above : !above ? below : omega - below->omega <= above->omega - omega ? below : above;
-            std::ostringstream s;
-            s.precision(8);
-            if (nearest && std::abs(nearest->omega - omega) <= scene_.continuation.search_reach)
-              {
-                s << "field at Omega = " << omega << " (Output/Fields at) moved to the nearest main point, Omega = "
-                  << nearest->omega << " (" << e.what() << "; within Continuation/Search reach = "
-                  << scene_.continuation.search_reach << ")";
-                report_.notes.push_back(s.str());
-                return *nearest;
-              }
-            s << "parameter 'Output/Fields at' = " << omega << ": " << e.what()
-              << ", and no main point within Continuation/Search reach = " << scene_.continuation.search_reach
-              << "; nearest main points: " << (below ? std::to_string(below->omega) : std::string("none"))
-              << " below, " << (above ? std::to_string(above->omega) : std::string("none")) << " above";
-            report_.failure += (report_.failure.empty() ? "" : "; ") + s.str();
-            return std::nullopt;
+            return nearest_main_point(omega, e.what());
           }
+      }
+
+      /// The main point nearest omega within Continuation/Search reach, said
+      /// in a note; none if there is none within reach: the failure is
+      /// recorded (the run exits 3 after writing the rest), naming the
+      /// nearest main Omega on each side.
+      std::optional<BackbonePoint> nearest_main_point(const double omega, const std::string &why)
+      {
+        const BackbonePoint *below = nullptr, *above = nullptr;
+        for (const BackbonePoint &p : backbone_.points)
+          if (p.branch == Branch::main && p.omega <= omega && (!below || p.omega > below->omega))
+            below = &p;
+          else if (p.branch == Branch::main && p.omega > omega && (!above || p.omega < above->omega))
+            above = &p;
+        const BackbonePoint *nearest =
+          !below ? above : !above ? below : omega - below->omega <= above->omega - omega ? below : above;
+        std::ostringstream s;
+        s.precision(8);
+        if (nearest && std::abs(nearest->omega - omega) <= scene_.continuation.search_reach)
+          {
+            s << "field at Omega = " << omega << " (Output/Fields at) moved to the nearest main point, Omega = "
+              << nearest->omega << " (" << why << "; within Continuation/Search reach = "
+              << scene_.continuation.search_reach << ")";
+            report_.notes.push_back(s.str());
+            return *nearest;
+          }
+        s << "parameter 'Output/Fields at' = " << omega << ": " << why
+          << ", and no main point within Continuation/Search reach = " << scene_.continuation.search_reach
+          << "; nearest main points: " << (below ? std::to_string(below->omega) : std::string("none"))
+          << " below, " << (above ? std::to_string(above->omega) : std::string("none")) << " above";
+        report_.failure += (report_.failure.empty() ? "" : "; ") + s.str();
+        return std::nullopt;
       }
 
       /// The summary line of a field point's orbit.
