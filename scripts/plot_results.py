@@ -191,7 +191,8 @@ def field_plots(directory, gap):
 
 STUDY_ERRORS = (("spectrum_error", "eigenfrequencies"), ("receptance_error", "receptance"),
                 ("energy_error_max", "main-branch energy (max)"),
-                ("main_energy_error_median", "energy of the main points (median)"))
+                ("main_energy_error_median", "energy of the main points (median)"),
+                ("main_time_defect_median", "one-period defect in time / g0 (median)"))
 
 
 def natural(key):
@@ -236,7 +237,9 @@ def study_plot(directory):
         groups = {}
         for r in valid:
             groups.setdefault(tuple(r[c] for c in varying), []).append(r)
-        colours = plt.cm.viridis([i / max(1, len(groups) - 1) for i in range(len(groups))])
+        # Up to 10 series in colours told apart (tab10); more along viridis.
+        colours = (plt.cm.tab10(range(len(groups))) if len(groups) <= 10 else
+                   plt.cm.viridis([i / max(1, len(groups) - 1) for i in range(len(groups))]))
         styles = {}
         for (key, group), colour in zip(sorted(groups.items(), key=lambda g: natural(g[0])), colours):
             group.sort(key=lambda r: int(r[size_column]))
@@ -267,7 +270,8 @@ def study_plot(directory):
             a.set_ylabel("relative error: " + name)
             a.grid(True, which="both", alpha=0.3)
         by_time.legend(fontsize=7)
-        by_dofs.legend(fontsize=6, ncol=1 + len(groups) // 12, loc="upper left", bbox_to_anchor=(2.25, 1))
+        if (column, name) == measures[0]:  # the series' legend once, right of the first row
+            by_dofs.legend(fontsize=8, ncol=1 + len(groups) // 12, loc="upper left", bbox_to_anchor=(2.25, 1))
     figure.suptitle("Accuracy against cost, " + ", ".join(sorted({r["reference"] for r in rows})) +
                     " reference")
     save(figure, os.path.join(directory, "study.png"))
