@@ -174,6 +174,10 @@ namespace nsm
     orbit.energy       = flow.strain_energy(x);
     if (orbit.converged)
       whole_period(flow, omega, x, settings, orbit);
+    // An orbit that never reaches the wall is not a contact motion: near
+    // grazing Newton can land on the bar at rest.
+    if (orbit.converged && orbit.switches == 0)
+      orbit.converged = false;
     return orbit;
   }
 } // namespace nsm

@@ -359,6 +359,19 @@ def rows(executable):
         dict(name="verify_steps_few", scene=output(Directory="out", Backbone="true",
                                                    Verify_in_time="true", Verify_steps=3), code=2,
              words=["Output/Verify steps", "[16, 10000000]"]),
+        dict(name="refine_without_backbone", scene=spectrum_scene() + output(Refine_in_time="true"), code=2,
+             words=["Output/Refine in time", "Backbone = true"]),
+        dict(name="refine_every_zero", scene=output(Directory="out", Backbone="true", Refine_in_time="true",
+                                                    Refine_every=0), code=2,
+             words=["Output/Refine every", "[1, 1000000]"]),
+        dict(name="stability_margin_negative", scene=output(Directory="out", Backbone="true", Refine_in_time="true",
+                                                            Stability_margin=-1e-3), code=2,
+             words=["Output/Stability margin", "[0, 1]"]),
+        # The dense modes of the refinement: more than 2001 DoFs are refused
+        # before any work (the seed mesh has 4001).
+        dict(name="refine_too_many_dofs", scene=section("Discretisation", Degree=1, Cells=4000) +
+             output(Directory="out", Backbone="true", Refine_in_time="true"), code=2,
+             words=["Output/Refine in time", "2001 DoFs", "4001"]),
         # 9. accepted bad values
         dict(name="tolerance_loose", scene=section("Harmonic balance", Tolerance=1) +
              spectrum_scene(), code=2, words=["Harmonic balance/Tolerance", "1e-06"]),

@@ -49,7 +49,8 @@ namespace nsm
 
   /// Shoots from `guess` (nodal displacement at t = 0) to the orbit of
   /// frequency omega on `discretisation` against the wall of `law`.
-  /// A guess from which Newton does not converge gives converged = false.
+  /// A guess from which Newton does not converge, or converges to a motion
+  /// that never reaches the wall (the bar at rest), gives converged = false.
   PeriodicOrbit find_periodic_orbit(const Discretisation        &discretisation,
                                     const ContactLaw            &law,
                                     double                       omega,
