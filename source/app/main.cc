@@ -190,7 +190,8 @@ int main(int argc, char **argv)
                    "--output DIR                  the same as --set \"Output/Directory=DIR\"\n"
                    "--verbose                     print the continuation's events in the summary too\n"
                    "exit codes: 0 done, 2 bad input, 3 numerical failure, 4 other error, 5 a file could "
-                   "not be written whole, 130 / 143 a study stopped by SIGINT / SIGTERM\n";
+                   "not be written whole, 130 / 143 stopped by SIGINT / SIGTERM (a run writes what it computed, a study "
+                   "keeps its rows done)\n";
       return 0;
     }
   if (arguments.size() == 1 &&
