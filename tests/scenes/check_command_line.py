@@ -18,26 +18,13 @@ import shutil
 import subprocess
 import sys
 
-SCENE = """subsection Discretisation
-  set Degree = 10
-  set Cells = 7
-end
-subsection Receptance
-  set Method = modal
-end
-subsection Harmonic balance
-  set Harmonics = {harmonics}
-end
-subsection Continuation
-  set Omega max = 2.0
-  set Energy max = 1e-3
-end
-subsection Output
-  set Directory = {directory}
-  set Backbone = true
-  set Spectrum modes = 5
-end
-"""
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from small_scene import small_seed_scene  # noqa: E402
+
+
+
+def scene(harmonics, directory):
+    return small_seed_scene({"Directory": directory, "Backbone": "true", "Spectrum modes": 5}, harmonics=harmonics)
 
 
 def run(executable, *arguments):
@@ -55,9 +42,9 @@ def main():
     for d in ("base", "edited", "overridden", "bad"):
         shutil.rmtree(d, ignore_errors=True)
     with open("base.prm", "w") as f:
-        f.write(SCENE.format(harmonics=20, directory="base"))
+        f.write(scene(20, "base"))
     with open("edited.prm", "w") as f:
-        f.write(SCENE.format(harmonics=30, directory="edited"))
+        f.write(scene(30, "edited"))
 
     edited = run(executable, "edited.prm")
     overridden = run(executable, "base.prm", "--set", "Harmonic balance/Harmonics=30", "--output", "overridden")
@@ -91,7 +78,7 @@ def main():
     # energy error against the exact mode E = g0^2 / (2 (T - 3)^2), recomputed
     # here from backbone.csv (unit bar, T = 2 pi / Omega in (3, 4)).
     with open("uniform.prm", "w") as f:
-        f.write(SCENE.format(harmonics=20, directory="uniform").replace(
+        f.write(scene(20, "uniform").replace(
             "subsection Output", "subsection Bar\n  set Cross section = 1\nend\n"
             "subsection Continuation\n  set Omega min = 1.6\n  set Omega max = 1.8\nend\nsubsection Output"))
     shutil.rmtree("uniform", ignore_errors=True)

@@ -19,29 +19,11 @@ import sys
 import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from small_scene import small_seed_scene  # noqa: E402
 from stop_signals import blocked_writing_stderr, full_pipe  # noqa: E402
 
-SCENE = """subsection Discretisation
-  set Degree = 10
-  set Cells = 7
-end
-subsection Receptance
-  set Method = modal
-end
-subsection Harmonic balance
-  set Harmonics = 20
-end
-subsection Continuation
-  set Omega max = 2.2
-  set Energy max = 1e-3
-end
-subsection Output
-  set Directory = whole
-  set Backbone = true
-  set Plots = false
-  set Progress every = 1e-9
-end
-"""
+SCENE = small_seed_scene({"Directory": "whole", "Backbone": "true", "Plots": "false", "Progress every": 1e-9},
+                         omega_max=2.2)
 
 
 def main():

@@ -12,32 +12,16 @@ summary counts the same points shot and orbits found, and the same median
 |hb_energy_error|. Standard library only.
 """
 import csv
+import os
 import shutil
 import subprocess
 import sys
 
-SCENE = """subsection Discretisation
-  set Degree = 10
-  set Cells = 7
-end
-subsection Receptance
-  set Method = modal
-end
-subsection Harmonic balance
-  set Harmonics = 20
-end
-subsection Continuation
-  set Omega max = 2.0
-  set Energy max = 1e-3
-end
-subsection Output
-  set Directory = refined
-  set Backbone = true
-  set Refine in time = true
-  set Refine every = 5
-  set Stability margin = 1e-4
-end
-"""
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from small_scene import small_seed_scene  # noqa: E402
+
+SCENE = small_seed_scene({"Directory": "refined", "Backbone": "true", "Refine in time": "true",
+                          "Refine every": 5, "Stability margin": 1e-4})
 COLUMNS = ["orbit_energy", "hb_energy_error", "orbit_contact_fraction", "floquet_max", "stable", "isolation"]
 
 
