@@ -1,5 +1,6 @@
-// nsm-bar SCENE.prm [--set ...] [--output DIR]: argument handling only; the work is in run_scene(),
-// or in run_study() for a scene that is a study.
+// nsm-bar SCENE.prm [--set ...] [--output DIR] [--verbose]: argument handling
+// only; the work is in run_scene(), or in run_study() for a scene that is a
+// study.
 #include <nsm/app/pipeline.h>
 #include <nsm/scene/scene.h>
 #include <nsm/base/interruption.h>
@@ -128,10 +129,7 @@ namespace
         return 4;
       }
   }
-} // namespace
 
-namespace
-{
   const char *const usage = "usage: nsm-bar SCENE.prm [--set \"Section/Entry=value\"]... [--output DIR] [--verbose]\n"
                             "       mpirun --allow-run-as-root -np R nsm-bar STUDY.prm [--set ...]\n"
                             "       nsm-bar --print-parameters[=markdown]\n"

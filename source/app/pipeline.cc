@@ -217,7 +217,7 @@ namespace nsm
               if (o.verify_in_time)
                 report_.notes.push_back(field_verification(fields_.back(), *discretisation_, hb_->law(), scene_.output));
               if (o.refine_in_time)
-                report_.notes.push_back(field_refinement(fields_.back().point()));
+                report_.notes.push_back(field_refinement(fields_.back()));
               progress.update(report_count);
             }
           for (std::size_t i = 0; o.fields_every > 0 && i < backbone_.points.size(); i += o.fields_every)
@@ -297,14 +297,10 @@ namespace nsm
       /// nearest main Omega on each side.
       std::optional<BackbonePoint> nearest_main_point(const double omega, const std::string &why)
       {
-        const BackbonePoint *below = nullptr, *above = nullptr;
-        for (const BackbonePoint &p : backbone_.points)
-          if (p.branch == Branch::main && p.omega <= omega && (!below || p.omega > below->omega))
-            below = &p;
-          else if (p.branch == Branch::main && p.omega > omega && (!above || p.omega < above->omega))
-            above = &p;
-        const BackbonePoint *nearest =
-          !below ? above : !above ? below : omega - below->omega <= above->omega - omega ? below : above;
+        const auto          &p       = backbone_.points;
+        const BackbonePoint *below   = nearest_on_side(p, omega, -1, true);
+        const BackbonePoint *above   = nearest_on_side(p, omega, 1, true);
+        const BackbonePoint *nearest = nearest_on_side(p, omega, 0, true);
         std::ostringstream s;
         s.precision(8);
         if (nearest && std::abs(nearest->omega - omega) <= scene_.continuation.search_reach)
@@ -324,9 +320,10 @@ namespace nsm
       }
 
       /// The summary line of a field point's orbit.
-      std::string field_refinement(const BackbonePoint &p) const
+      std::string field_refinement(const PeriodicField &field) const
       {
-        const PeriodicOrbit orbit = refine_point(*hb_, *discretisation_, p, scene_.output, {});
+        const BackbonePoint &p     = field.point();
+        const PeriodicOrbit  orbit = refine_point(field, *discretisation_, hb_->law(), scene_.output, {});
         std::ostringstream  s;
         s.precision(6);
         s << "field at Omega = " << p.omega << " refined in time: ";

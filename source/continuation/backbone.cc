@@ -16,6 +16,17 @@ namespace nsm
     return ContactLaw(contact).sign();
   }
 
+  const BackbonePoint *nearest_on_side(const std::vector<BackbonePoint> &points, const double omega, const int side,
+                                       const bool main_only)
+  {
+    const BackbonePoint *best = nullptr;
+    for (const BackbonePoint &q : points)
+      if ((!main_only || q.branch == Branch::main) && side * (q.omega - omega) >= 0 &&
+          (!best || std::abs(q.omega - omega) < std::abs(best->omega - omega)))
+        best = &q;
+    return best;
+  }
+
   const char *backbone_end_name(const BackboneEnd end)
   {
     switch (end)

@@ -104,20 +104,6 @@ namespace nsm
 
 namespace nsm
 {
-  namespace
-  {
-    /// The point nearest to omega with side * (its Omega - omega) >= 0
-    /// (either side for 0); null if none.
-    const BackbonePoint *nearest_on_side(const std::vector<BackbonePoint> &points, const double omega,
-                                         const int side)
-    {
-      const BackbonePoint *best = nullptr;
-      for (const BackbonePoint &q : points)
-        if (side * (q.omega - omega) >= 0 && (!best || std::abs(q.omega - omega) < std::abs(best->omega - omega)))
-          best = &q;
-      return best;
-    }
-  } // namespace
 
   BackbonePoint solve_on_branch(HarmonicBalance &hb,
                                 const Scene     &scene,

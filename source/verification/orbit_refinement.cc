@@ -1,6 +1,5 @@
 #include <nsm/base/interruption.h>
 #include <nsm/base/progress.h>
-#include <nsm/verification/fields.h>
 #include <nsm/verification/orbit_refinement.h>
 
 #include <algorithm>
@@ -20,15 +19,13 @@ namespace nsm
     constexpr double summary_error_share = 0.01;
   } // namespace
 
-  PeriodicOrbit refine_point(HarmonicBalance &hb, const Discretisation &discretisation, const BackbonePoint &point,
+  PeriodicOrbit refine_point(const PeriodicField &field, const Discretisation &discretisation, const ContactLaw &law,
                              const Scene::Output &output, const dealii::Vector<double> &fallback)
   {
     const OrbitSettings settings{orbit_tolerance, output.stability_margin, true};
-    const PeriodicField field(hb, discretisation, point);
-    PeriodicOrbit       orbit =
-      find_periodic_orbit(discretisation, hb.law(), point.omega, field.displacement(0.0), settings);
+    PeriodicOrbit orbit = find_periodic_orbit(discretisation, law, field.omega(), field.displacement(0.0), settings);
     if (!orbit.converged && fallback.size() > 0)
-      orbit = find_periodic_orbit(discretisation, hb.law(), point.omega, fallback, settings);
+      orbit = find_periodic_orbit(discretisation, law, field.omega(), fallback, settings);
     return orbit;
   }
 
@@ -45,7 +42,8 @@ namespace nsm
     for (std::size_t i = 0; i < orbits.size() && point_stop_signal() == 0; ++i)
       if (backbone.points[i].branch == Branch::main && main++ % output.refine_every == 0)
         {
-          orbits[i] = refine_point(hb, discretisation, backbone.points[i], output, last);
+          const PeriodicField field(hb, discretisation, backbone.points[i]);
+          orbits[i] = refine_point(field, discretisation, hb.law(), output, last);
           if (orbits[i]->converged)
             last = orbits[i]->displacement;
           progress.update([&] { return "point " + std::to_string(i + 1) + " of " + std::to_string(orbits.size()); });

@@ -11,7 +11,7 @@ namespace nsm
     /// Newton steps before a shooting is given up.
     constexpr unsigned int max_newton_steps = 15;
     /// Rises of the damping before a step is given up.
-    constexpr unsigned int max_step_halvings = 6;
+    constexpr unsigned int max_damping_rises = 6;
     /// Singular values below this share of the largest are left out of the
     /// least-norm step: round-off of a Jacobian built from two dense
     /// eigenbases is about 1e-13 of its norm.
@@ -144,7 +144,7 @@ namespace nsm
               return;
             }
           bool lower = false;
-          for (unsigned int tries = 0; tries <= max_step_halvings && !lower; ++tries)
+          for (unsigned int tries = 0; tries <= max_damping_rises && !lower; ++tries)
             {
               dealii::Vector<double> trial = x;
               trial += damped_step(d, mu, flow.law().gap());

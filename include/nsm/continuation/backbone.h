@@ -63,6 +63,11 @@ namespace nsm
     interrupted ///< SIGINT or SIGTERM asked the run to stop (interruption.h)
   };
 
+  /// The point nearest to omega with side * (its Omega - omega) >= 0 (either
+  /// side for 0), among the main points if `main_only`; null if none.
+  const BackbonePoint *nearest_on_side(const std::vector<BackbonePoint> &points, double omega, int side,
+                                       bool main_only = false);
+
   /// "range", "max_steps", "lost", "energy_max", "refused" or "interrupted", as study.csv
   /// writes it.
   const char *backbone_end_name(BackboneEnd end);

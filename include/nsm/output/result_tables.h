@@ -28,21 +28,19 @@ namespace nsm
   /// frequencies.
   CsvTable receptance_table(const Receptance &receptance, const Scene::Output &output);
 
-  /// backbone.csv: one row per point; the verification columns only if
-  /// `verifications` is not empty.
-  /// One row per point; the verification columns if verifications is not
-  /// empty, the orbit columns if orbits is not empty (empty cells for a point
-  /// not refined or whose orbit was not found).
+  /// backbone.csv: one row per point; the verification columns if
+  /// `verifications` is not empty, the orbit columns if `orbits` is not empty
+  /// (empty cells for a point not refined or whose orbit was not found).
   CsvTable backbone_table(const Backbone &backbone, const Verifications &verifications, const RefinedOrbits &orbits);
 
   /// tongues.csv: one row per tongue.
   CsvTable tongue_table(const Backbone &backbone);
 
-  /// resonances.csv: the internal resonances w_j / k in the range.
   /// grazing.csv: the traced mode j, w_j and its grazing energy E_g =
   /// w_j^2 g0^2 / (2 phi_j(L)^2), the linear mode's energy with u(L) = g0
   /// (the plots' energy scale).
   CsvTable grazing_table(const Discretisation &discretisation, unsigned int mode, double gap);
 
+  /// resonances.csv: the internal resonances w_j / k in the range.
   CsvTable resonance_table(const std::vector<InternalResonance> &resonances);
 } // namespace nsm

@@ -23,7 +23,7 @@ namespace nsm
     /// The continuation's folds and leaps (continuation.log).
     std::vector<std::string> events;
     std::vector<StageTiming> stages;
-    std::vector<std::string> notes; ///< DoFs, refinement, continuation events
+    std::vector<std::string> notes; ///< DoFs, refinement, memory
     std::vector<std::string> files;
     /// The signal (SIGINT, SIGTERM) that stopped the run early; 0 if none.
     int stopped_by = 0;
@@ -32,7 +32,7 @@ namespace nsm
     std::string failure;
   };
 
-  /// The run summary: the stages' times, the notes, the files written.
+  /// The run summary: the result, the stages' times, the notes, the files written.
   /// With `verbose`, the continuation's events are printed too; otherwise a
   /// line counts them and names continuation.log.
   void print_report(const RunReport &report, std::ostream &out, bool verbose = false);

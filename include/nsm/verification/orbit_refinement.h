@@ -6,6 +6,7 @@
 #include <nsm/continuation/backbone.h>
 #include <nsm/harmonic_balance/harmonic_balance.h>
 #include <nsm/model/discretisation.h>
+#include <nsm/verification/fields.h>
 #include <nsm/verification/periodic_orbit.h>
 
 #include <optional>
@@ -21,9 +22,9 @@ namespace nsm
   /// take O(n^3) per Newton step.
   constexpr unsigned int max_refined_dofs = 2001;
 
-  /// Shoots from a point's HB motion at t = 0 (and, if that fails, from
-  /// `fallback`, a nearby orbit's displacement, when not empty).
-  PeriodicOrbit refine_point(HarmonicBalance &hb, const Discretisation &discretisation, const BackbonePoint &point,
+  /// Shoots from a point's HB motion at t = 0, `field` (and, if that fails,
+  /// from `fallback`, a nearby orbit's displacement, when not empty).
+  PeriodicOrbit refine_point(const PeriodicField &field, const Discretisation &discretisation, const ContactLaw &law,
                              const Scene::Output &output, const dealii::Vector<double> &fallback);
 
   /// The orbits of every Refine every-th main point (empty for the others),
