@@ -2,6 +2,9 @@
 as its stderr makes it wait in its next progress line, and Linux's
 /proc/PID/wchan tells when it waits there."""
 import os
+import subprocess
+import tempfile
+import time
 
 
 def blocked_writing_stderr(pid):
@@ -25,3 +28,23 @@ def full_pipe():
         pass
     os.set_blocking(write_end, True)  # the writer's writes must wait, not fail
     return read_end, write_end
+
+
+def signal_when_blocked(command, stop, what, cwd=None):
+    """Runs `command` with a full pipe as its stderr, sends it the signal
+    `stop` once it waits to write its first progress line, and returns its
+    exit code, stdout and stderr. `what` names the line, for a failure."""
+    read_end, write_end = full_pipe()
+    with tempfile.TemporaryFile(mode="w+") as out:
+        process = subprocess.Popen(command, cwd=cwd, stdout=out, stderr=write_end, text=True)
+        os.close(write_end)
+        deadline = time.time() + 300
+        while not blocked_writing_stderr(process.pid):
+            assert process.poll() is None and time.time() < deadline, f"the process never announced {what}"
+            time.sleep(0.01)
+        process.send_signal(stop)
+        with os.fdopen(read_end, "rb") as pipe:
+            stderr = pipe.read().decode(errors="replace").lstrip("x")
+        process.wait()
+        out.seek(0)
+        return process.returncode, out.read(), stderr

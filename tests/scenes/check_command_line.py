@@ -19,6 +19,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from failures import report  # noqa: E402
 from small_scene import small_seed_scene  # noqa: E402
 
 
@@ -102,10 +103,7 @@ def main():
     check(usage.returncode == 2 and usage.stderr.startswith("usage: nsm-bar SCENE.prm"),
           f"no scene: exit {usage.returncode}, stderr {usage.stderr!r}")
 
-    for f in failures:
-        print("FAIL: " + f)
-    print(f"{len(failures)} failures")
-    return 1 if failures else 0
+    return report(failures)
 
 
 if __name__ == "__main__":

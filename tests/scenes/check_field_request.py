@@ -17,6 +17,9 @@ import shutil
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from failures import report  # noqa: E402
+
 
 def main():
     executable, seed = sys.argv[1], sys.argv[2]
@@ -56,10 +59,7 @@ def main():
         if sorted(os.listdir("short")) != ["backbone.csv", "continuation.log", "grazing.csv", "nsm-bar.manifest",
                                            "resonances.csv", "spectrum.csv", "tongues.csv"]:
             failures.append(f"short branch wrote {sorted(os.listdir('short'))}")
-    for f in failures:
-        print("FAIL: " + f)
-    print(f"{len(failures)} failures")
-    return 1 if failures else 0
+    return report(failures)
 
 
 if __name__ == "__main__":

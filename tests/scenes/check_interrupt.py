@@ -16,11 +16,11 @@ import shutil
 import signal
 import subprocess
 import sys
-import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from failures import report  # noqa: E402
 from small_scene import small_seed_scene  # noqa: E402
-from stop_signals import blocked_writing_stderr, full_pipe  # noqa: E402
+from stop_signals import signal_when_blocked  # noqa: E402
 
 SCENE = small_seed_scene({"Directory": "whole", "Backbone": "true", "Plots": "false", "Progress every": 1e-9},
                          omega_max=2.2)
@@ -35,23 +35,12 @@ def main():
     whole = subprocess.run([executable, "scene.prm"], capture_output=True, text=True, timeout=600)
     assert whole.returncode == 0, whole.stderr
 
-    read_end, write_end = full_pipe()
-    process = subprocess.Popen([executable, "scene.prm", "--output", "stopped"], stdout=subprocess.PIPE,
-                               stderr=write_end, text=True)
-    os.close(write_end)
-    deadline = time.time() + 300
-    while not blocked_writing_stderr(process.pid):
-        assert process.poll() is None and time.time() < deadline, "the run never announced a point"
-        time.sleep(0.01)
-    process.send_signal(signal.SIGINT)
-    with os.fdopen(read_end, "rb") as pipe:
-        stderr = pipe.read().decode(errors="replace").lstrip("x")
-    stdout = process.stdout.read()
-    process.wait()
+    returncode, stdout, stderr = signal_when_blocked([executable, "scene.prm", "--output", "stopped"],
+                                                     signal.SIGINT, "a point")
 
     failures = []
-    if process.returncode != 128 + signal.SIGINT:
-        failures.append(f"exit {process.returncode}, not 130: {stderr[-300:]}")
+    if returncode != 128 + signal.SIGINT:
+        failures.append(f"exit {returncode}, not 130: {stderr[-300:]}")
     if not stderr.strip().splitlines()[-1].startswith("nsm-bar: stopped by SIGINT"):
         failures.append(f"stderr does not end with the stop: {stderr[-300:]!r}")
     if "interrupted by SIGINT" not in stdout:
@@ -69,10 +58,7 @@ def main():
     for name in ("tongues.csv", "resonances.csv"):
         if not os.path.exists(f"stopped/{name}"):
             failures.append(f"{name} missing from the stopped run")
-    for f in failures:
-        print("FAIL: " + f)
-    print(f"stopped after {len(stopped) - 1} of {len(expected) - 1} points; {len(failures)} failures")
-    return 1 if failures else 0
+    return report(failures, f"stopped after {len(stopped) - 1} of {len(expected) - 1} points")
 
 
 if __name__ == "__main__":

@@ -18,6 +18,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from failures import report  # noqa: E402
 from small_scene import small_seed_scene  # noqa: E402
 
 SCENE = small_seed_scene({"Directory": "refined", "Backbone": "true", "Refine in time": "true",
@@ -65,10 +66,7 @@ def main():
         failures.append(f"summary {line[0]!r} lacks the median {errors[len(errors) // 2]:.3g}")
     if not errors:
         failures.append("no orbit found: the scene no longer exercises the columns")
-    for f in failures:
-        print("FAIL: " + f)
-    print(f"{shot} points shot, {len(errors)} orbits found; {len(failures)} failures")
-    return 1 if failures else 0
+    return report(failures, f"{shot} points shot, {len(errors)} orbits found")
 
 
 if __name__ == "__main__":

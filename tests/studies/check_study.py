@@ -36,10 +36,9 @@ import shutil
 import signal
 import subprocess
 import sys
-import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from stop_signals import blocked_writing_stderr, full_pipe  # noqa: E402
+from stop_signals import signal_when_blocked  # noqa: E402
 
 import numpy as np
 from scipy.optimize import brentq
@@ -150,19 +149,8 @@ def resume(executable, studies):
     # whatever the machine's load. No timer races the study.
     directory = fresh("resume_stopped", studies, "resume.prm")
     study = os.path.join(directory, "out", "study.csv")
-    read_end, write_end = full_pipe()
-    process = subprocess.Popen([executable, "resume.prm"], cwd=directory,
-                               stdout=subprocess.DEVNULL, stderr=write_end)
-    os.close(write_end)
-    deadline = time.time() + 300
-    while not blocked_writing_stderr(process.pid):
-        assert process.poll() is None and time.time() < deadline, "the study never announced a row"
-        time.sleep(0.01)
-    process.send_signal(signal.SIGTERM)
-    with os.fdopen(read_end, "rb") as pipe:
-        stderr = pipe.read().decode(errors="replace").lstrip("x")
-    process.wait()
-    assert process.returncode == 128 + signal.SIGTERM, (process.returncode, stderr)
+    returncode, _, stderr = signal_when_blocked([executable, "resume.prm"], signal.SIGTERM, "a row", cwd=directory)
+    assert returncode == 128 + signal.SIGTERM, (returncode, stderr)
     assert stderr.strip().splitlines()[-1].startswith("nsm-bar: stopped by SIGTERM"), stderr
     stopped = read(study)  # complete CSV: read_csv would fail on a half row
     with open(study) as f:
