@@ -1,4 +1,4 @@
-// nsm-bar SCENE.prm [--set ...] [--output DIR] [--verbose]: argument handling
+// nsm-bar SCENE.prm [--set ...] [--output DIR] [--resume] [--verbose]: argument handling
 // only; the work is in run_scene(), or in run_study() for a scene that is a
 // study.
 #include <nsm/app/pipeline.h>
@@ -44,7 +44,7 @@ namespace
 
   /// Runs the scene (a study over the MPI ranks, if any); returns the exit
   /// code, the error printed.
-  int run(int &argc, char **&argv, const std::string &path, const bool verbose,
+  int run(int &argc, char **&argv, const std::string &path, const bool verbose, const bool resume,
           std::optional<dealii::Utilities::MPI::MPI_InitFinalize> &mpi)
   {
     try
@@ -57,7 +57,7 @@ namespace
             // and the run writes what it has (interruption.h).
             nsm::catch_stop_signals();
             nsm::stop_at_points(true);
-            const nsm::RunReport report = nsm::run_scene(file.scene);
+            const nsm::RunReport report = nsm::run_scene(file.scene, resume);
             nsm::print_report(report, std::cout, verbose);
             if (report.stopped_by != 0)
               {
@@ -70,6 +70,9 @@ namespace
             std::cerr << "nsm-bar: numerical failure: " << report.failure << '\n';
             return 3;
           }
+        if (resume)
+          throw nsm::InputError("command line: --resume is for a scene; a study resumes by itself (its rows "
+                                "done are kept in study.csv)");
         // MPI only where mpirun started the process: a serial study needs
         // none, and MPI's own start-up fails under tight resource limits.
         if (started_by_mpirun())
@@ -130,7 +133,7 @@ namespace
       }
   }
 
-  const char *const usage = "usage: nsm-bar SCENE.prm [--set \"Section/Entry=value\"]... [--output DIR] [--verbose]\n"
+  const char *const usage = "usage: nsm-bar SCENE.prm [--set \"Section/Entry=value\"]... [--output DIR] [--resume] [--verbose]\n"
                             "       mpirun --allow-run-as-root -np R nsm-bar STUDY.prm [--set ...]\n"
                             "       nsm-bar --print-parameters[=markdown]\n"
                             "       nsm-bar --help\n";
@@ -140,6 +143,7 @@ namespace
   {
     std::string                         scene;
     bool                                verbose = false;
+    bool                                resume  = false;
     std::vector<nsm::ParameterOverride> overrides;
   };
 
@@ -163,6 +167,8 @@ namespace
           line.overrides.push_back({"Output/Directory", value("--output")});
         else if (a == "--verbose")
           line.verbose = true;
+        else if (a == "--resume")
+          line.resume = true;
         else if (a.rfind("--", 0) == 0 && a.size() > 2)
           throw nsm::InputError("command line: unknown option '" + nsm::printable(a) + "' (nsm-bar --help)");
         else if (!line.scene.empty())
@@ -186,6 +192,8 @@ int main(int argc, char **argv)
       std::cout << usage
                 << "--set \"Section/Entry=value\"  override a scene entry (repeatable; checked like the file)\n"
                    "--output DIR                  the same as --set \"Output/Directory=DIR\"\n"
+                   "--resume                      go on with the continuation of this scene's interrupted run, from\n"
+                   "                              the checkpoint it left in Output/Directory (continuation.resume)\n"
                    "--verbose                     print the continuation's events in the summary too\n"
                    "exit codes: 0 done, 2 bad input, 3 numerical failure, 4 other error, 5 a file could "
                    "not be written whole, 130 / 143 stopped by SIGINT / SIGTERM (a run writes what it computed, a study "
@@ -224,7 +232,7 @@ int main(int argc, char **argv)
   std::signal(SIGXFSZ, SIG_IGN);
   nsm::use_one_thread();
   std::optional<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
-  const int code = run(argc, argv, line.scene, line.verbose, mpi);
+  const int code = run(argc, argv, line.scene, line.verbose, line.resume, mpi);
   // A rank that failed alone would leave the others waiting in a collective;
   // bad input fails on every rank alike.
   if (code != 0 && code != 2 && code < 128 && mpi && dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)

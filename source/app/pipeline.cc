@@ -1,5 +1,6 @@
 #include <nsm/model/adaptive_refinement.h>
 #include <nsm/model/bar_model.h>
+#include <nsm/continuation/checkpoint.h>
 #include <nsm/continuation/continuation.h>
 #include <nsm/output/field_output.h>
 #include <nsm/verification/fields.h>
@@ -101,6 +102,20 @@ namespace nsm
       return s.str();
     }
 
+    /// "resumed from ..." for the summary.
+    std::string resume_note(const ContinuationCheckpoint &c)
+    {
+      std::ostringstream s;
+      s.precision(8);
+      s << "resumed from " << checkpoint_file << ": " << c.points.size() << " points kept, "
+        << (c.complete ? "the continuation had ended" :
+            c.step     ? "going on from Omega = " :
+                         "the interrupted arclength segment traced again from Omega = ");
+      if (!c.complete)
+        s << c.points.back().omega;
+      return s.str();
+    }
+
     /// The stages of one run, in order; each adds its wall and CPU time
     /// (deal.II's Timer) to the report, and its tables, fields and notes to
     /// the report or the output stage.
@@ -153,16 +168,33 @@ namespace nsm
         timed("receptance", [&] { tables_.push_back(receptance_table(*receptance_, scene_.output)); });
       }
 
-      void harmonic_balance()
+      /// With `resume`, the continuation goes on from the checkpoint in
+      /// Output/Directory.
+      void harmonic_balance(const bool resume)
       {
         timed("harmonic balance", [&] {
           hb_         = std::make_unique<HarmonicBalance>(scene_, *receptance_);
           resonances_ = internal_resonances(*receptance_, scene_);
-          backbone_   = compute_backbone(*hb_, scene_, resonances_);
+          std::optional<ContinuationCheckpoint> checkpoint;
+          if (resume)
+            {
+              checkpoint = read_checkpoint(scene_.output.directory + "/" + checkpoint_file, scene_, *hb_);
+              report_.notes.push_back(resume_note(*checkpoint));
+            }
+          backbone_ = compute_backbone(*hb_, scene_, resonances_, checkpoint ? &*checkpoint : nullptr);
           report_.notes.push_back(backbone_note());
           report_.events = backbone_.events;
           report_.result = backbone_result(backbone_, *bar_, scene_.contact, scene_.continuation);
         });
+      }
+
+      /// Writes the continuation's checkpoint (a stop signal ended the run).
+      void write_checkpoint_file(const std::string &directory)
+      {
+        if (backbone_.checkpoint)
+          report_.files.push_back(write_atomically(directory + "/" + checkpoint_file, [&](std::ostream &out) {
+            write_checkpoint(out, *backbone_.checkpoint, scene_.computation_entries);
+          }));
       }
 
       void verify_in_time()
@@ -363,7 +395,7 @@ namespace nsm
     };
   } // namespace
 
-  RunReport run_scene(const Scene &scene)
+  RunReport run_scene(const Scene &scene, const bool resume)
   {
     const bool needs_spectrum   = scene.output.spectrum_modes > 0;
     const bool needs_receptance = !scene.output.receptance_frequencies.empty();
@@ -372,6 +404,9 @@ namespace nsm
     RunReport  report;
     // The cross-section is checked even when nothing else is to be done.
     const BarModel bar(scene.bar);
+    if (resume && !needs_backbone)
+      throw InputError("command line: --resume goes on with a continuation, and the scene asks for no backbone "
+                       "or field (Output/Backbone, Output/Fields at, Output/Fields every)");
     if (!needs_spectrum && !needs_receptance && !needs_backbone)
       {
         report.notes.push_back("the scene requests no output: nothing to do");
@@ -393,7 +428,7 @@ namespace nsm
     if (needs_receptance)
       run.receptance();
     if (needs_backbone)
-      run.harmonic_balance();
+      run.harmonic_balance(resume);
     // A stop asked for (SIGINT, SIGTERM) ends the continuation, the
     // verification or the refinement at its next point (the fields at the
     // end of their stage); the stages after it are left out, and what was
@@ -423,6 +458,8 @@ namespace nsm
         stop_notes.push_back(note);
       }
     run.write(output.staging());
+    if (report.stopped_by != 0)
+      run.write_checkpoint_file(output.staging());
     if (scene.output.plots)
       run.plots(output.staging());
     report.files = output.commit(report.files, stop_notes);

@@ -28,6 +28,14 @@ namespace nsm
 
   int point_stop_signal() { return at_points ? requested : 0; }
 
+  PointStopsDeferred::PointStopsDeferred()
+    : was_enabled_(at_points)
+  {
+    at_points = false;
+  }
+
+  PointStopsDeferred::~PointStopsDeferred() { at_points = was_enabled_; }
+
   int stop_exit_code(const int signal) { return 128 + signal; }
 
   const char *stop_signal_name(const int signal)

@@ -152,7 +152,8 @@ namespace nsm
       {
         Scene fewer                       = scene;
         fewer.harmonic_balance.harmonics = harmonics / 2;
-        HarmonicBalance model(fewer, hb.receptance());
+        HarmonicBalance          model(fewer, hb.receptance());
+        const PointStopsDeferred whole;
         fewer_harmonics_ = std::make_unique<Backbone>(compute_backbone(model, fewer, resonances));
       }
     return fewer_harmonics_.get();

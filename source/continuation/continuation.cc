@@ -1,5 +1,6 @@
 #include <nsm/base/interruption.h>
 #include <nsm/continuation/branch_context.h>
+#include <nsm/continuation/checkpoint.h>
 #include <nsm/continuation/continuation.h>
 #include <nsm/continuation/grazing_start.h>
 #include <nsm/continuation/leap.h>
@@ -34,13 +35,47 @@ namespace nsm
 
   namespace
   {
-    /// Segments joined by leaps over folds and tongues, until the range,
-    /// Max steps, or a leap that finds no branch.
-    void trace(BranchContext &context, Backbone &backbone)
+    /// The counts a segment started with (its first point the last):
+    /// an interrupted arclength segment is traced again from there.
+    struct SegmentStart
+    {
+      std::size_t  points, events, folds;
+      unsigned int leaps;
+    };
+
+    /// The checkpoint of a continuation interrupted in `segment`: the
+    /// sequential method goes on from its last point with its next step;
+    /// any other from the segment's first point.
+    std::shared_ptr<ContinuationCheckpoint> interrupted_checkpoint(const BranchContext &context,
+                                                                   const Backbone &backbone,
+                                                                   const unsigned int segment,
+                                                                   const SegmentStart &start)
+    {
+      auto c     = std::make_shared<ContinuationCheckpoint>();
+      c->segment = segment;
+      c->span    = context.span;
+      c->step    = context.next_step;
+      const bool whole = c->step.has_value();
+      const auto &b    = backbone;
+      c->points.assign(b.points.begin(), b.points.begin() + (whole ? b.points.size() : start.points));
+      c->events.assign(b.events.begin(), b.events.begin() + (whole ? b.events.size() : start.events));
+      c->folds.assign(b.folds.begin(), b.folds.begin() + (whole ? b.folds.size() : start.folds));
+      c->leaps = whole ? b.leaps : start.leaps;
+      c->end   = BackboneEnd::interrupted;
+      return c;
+    }
+
+    /// Segments joined by leaps over folds and tongues, from `segment` on,
+    /// until the range, Max steps, a leap that finds no branch, or a stop
+    /// signal (the checkpoint is then kept).
+    void trace(BranchContext &context, Backbone &backbone, unsigned int segment)
     {
       const std::unique_ptr<SegmentTracer> method = make_segment_tracer(context.scene.continuation.method);
-      for (unsigned int segment = 0;; ++segment)
+      for (;; ++segment)
         {
+          const SegmentStart start{backbone.points.size(), backbone.events.size(), backbone.folds.size(),
+                                   backbone.leaps};
+          context.next_step.reset();
           const SegmentEnd end   = method->trace(context, backbone, segment);
           const double omega = backbone.points.back().omega;
           if (end == SegmentEnd::range)
@@ -53,7 +88,8 @@ namespace nsm
             }
           if (end == SegmentEnd::max_steps && point_stop_signal() != 0)
             {
-              backbone.end = BackboneEnd::interrupted;
+              backbone.checkpoint = interrupted_checkpoint(context, backbone, segment, start);
+              backbone.end        = BackboneEnd::interrupted;
               return backbone.events.push_back(
                 event_message(std::string("stopped by ") + stop_signal_name(point_stop_signal()), omega));
             }
@@ -80,16 +116,55 @@ namespace nsm
           context.first_fold.reset();
         }
     }
+
+    /// The checkpoint of a continuation that ended: its points before the
+    /// range filter and labels.
+    std::shared_ptr<ContinuationCheckpoint> complete_checkpoint(const BranchContext &context,
+                                                                const Backbone      &backbone)
+    {
+      auto c      = std::make_shared<ContinuationCheckpoint>();
+      c->points   = backbone.points;
+      c->events   = backbone.events;
+      c->folds    = backbone.folds;
+      c->leaps    = backbone.leaps;
+      c->span     = context.span;
+      c->segment  = backbone.points.back().segment;
+      c->complete = true;
+      c->end      = backbone.end;
+      return c;
+    }
+
+    /// The backbone and the context as the checkpoint left them.
+    void restore(const ContinuationCheckpoint &c, BranchContext &context, Backbone &backbone)
+    {
+      backbone.points      = c.points;
+      backbone.events      = c.events;
+      backbone.folds       = c.folds;
+      backbone.leaps       = c.leaps;
+      backbone.end         = c.end;
+      context.span         = c.span;
+      context.resume_step  = c.step;
+    }
   } // namespace
 
   Backbone compute_backbone(HarmonicBalance                      &hb,
                             const Scene                          &scene,
-                            const std::vector<InternalResonance> &resonances)
+                            const std::vector<InternalResonance> &resonances,
+                            const ContinuationCheckpoint         *resume)
   {
     Backbone      backbone;
     BranchContext context(hb, scene, resonances);
-    backbone.points.push_back(start_at_grazing(context, backbone));
-    trace(context, backbone);
+    if (resume)
+      restore(*resume, context, backbone);
+    else
+      backbone.points.push_back(start_at_grazing(context, backbone));
+    if (!resume || !resume->complete)
+      {
+        backbone.end = BackboneEnd::range;
+        trace(context, backbone, resume ? resume->segment : 0);
+      }
+    if (!backbone.checkpoint)
+      backbone.checkpoint = complete_checkpoint(context, backbone);
     backbone.newton_cost = context.newton_cost();
     // Points traced on the way from grazing to the range are not written.
     auto &p = backbone.points;

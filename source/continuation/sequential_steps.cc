@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace nsm
 {
@@ -42,8 +43,10 @@ namespace nsm
                                 const bool hand_over)
   {
     const auto       &c     = context.scene.continuation;
-    double            step  = std::min(c.initial_step, context.max_step());
-    const std::size_t first = backbone.points.size() - 1;
+    double step = std::min(c.initial_step, context.max_step());
+    if (context.resume_step)
+      step = *std::exchange(context.resume_step, std::nullopt);
+    const std::size_t first = last_segment_start(backbone);
     while (!context.full(backbone))
       {
         const BackbonePoint &current = backbone.points.back();
@@ -72,6 +75,7 @@ namespace nsm
         if (step < c.min_step)
           return SegmentEnd::fold;
       }
+    context.next_step = step;
     return SegmentEnd::max_steps;
   }
 } // namespace nsm

@@ -303,6 +303,10 @@ namespace nsm
         scene.output.parse(prm);
         scene.resources.parse(prm);
         scene.check_consistency(is_study);
+        for (const DeclaredEntry &entry : declared_entries(prm))
+          if (entry.sections.empty() || (entry.sections.front() != "Output" &&
+                                         entry.sections.front() != "Resources" && entry.sections.front() != "Study"))
+            scene.computation_entries.push_back(entry.path() + " = " + entry.value);
       }
     catch (const InputError &e)
       {

@@ -50,7 +50,8 @@ namespace nsm
                              demangle(key),
                              child.get<std::string>("default_value"),
                              child.get<std::string>("pattern_description"),
-                             child.get<std::string>("documentation", "")});
+                             child.get<std::string>("documentation", ""),
+                             child.get<std::string>("value")});
         else
           {
             sections.push_back(demangle(key));

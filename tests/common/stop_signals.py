@@ -17,8 +17,12 @@ def blocked_writing_stderr(pid):
         return False
 
 
-def full_pipe():
-    """A pipe whose buffer is full: the first write to it waits for a read."""
+PAGE = 4096  # a pipe's buffer is made of pages; a write that fits no free page waits
+
+
+def full_pipe(room_pages=0):
+    """A pipe whose buffer is full but for `room_pages` free pages: the
+    writes that need more wait for a read."""
     read_end, write_end = os.pipe()
     os.set_blocking(write_end, False)
     try:
@@ -27,14 +31,18 @@ def full_pipe():
     except BlockingIOError:
         pass
     os.set_blocking(write_end, True)  # the writer's writes must wait, not fail
+    if room_pages:
+        os.read(read_end, room_pages * PAGE)
     return read_end, write_end
 
 
-def signal_when_blocked(command, stop, what, cwd=None):
+def signal_when_blocked(command, stop, what, cwd=None, room_pages=0):
     """Runs `command` with a full pipe as its stderr, sends it the signal
-    `stop` once it waits to write its first progress line, and returns its
-    exit code, stdout and stderr. `what` names the line, for a failure."""
-    read_end, write_end = full_pipe()
+    `stop` once it waits to write a progress line (its first, or the first
+    that finds no room in `room_pages` pages: a place set by the run's own
+    output), and returns its exit code, stdout and stderr. `what` names the
+    line, for a failure."""
+    read_end, write_end = full_pipe(room_pages)
     with tempfile.TemporaryFile(mode="w+") as out:
         process = subprocess.Popen(command, cwd=cwd, stdout=out, stderr=write_end, text=True)
         os.close(write_end)

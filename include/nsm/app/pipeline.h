@@ -12,6 +12,9 @@
 namespace nsm
 {
   /// Runs every stage the scene asks for; writes nothing unless all of them
-  /// succeeded. Throws InputError or NumericalError.
-  RunReport run_scene(const Scene &scene);
+  /// succeeded, or a stop signal asked for what was computed (with the
+  /// continuation's checkpoint). With `resume`, the continuation goes on
+  /// from the checkpoint an interrupted run of the same scene left in
+  /// Output/Directory. Throws InputError or NumericalError.
+  RunReport run_scene(const Scene &scene, bool resume = false);
 } // namespace nsm

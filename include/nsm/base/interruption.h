@@ -21,6 +21,22 @@ namespace nsm
   /// is off.
   int point_stop_signal();
 
+  /// Within its lifetime, point_stop_signal() is 0: work nested in a
+  /// continuation point (the branch with half the harmonics a leap asks
+  /// for) runs whole, so that the point it serves is the one an
+  /// uninterrupted run computes.
+  class PointStopsDeferred
+  {
+  public:
+    PointStopsDeferred();
+    ~PointStopsDeferred();
+    PointStopsDeferred(const PointStopsDeferred &) = delete;
+    PointStopsDeferred &operator=(const PointStopsDeferred &) = delete;
+
+  private:
+    bool was_enabled_;
+  };
+
   /// The exit code of a run stopped by `signal`: 128 + signal, as a shell
   /// reports a process the signal ended.
   int stop_exit_code(int signal);

@@ -7,6 +7,7 @@
 #include <nsm/harmonic_balance/solution_measures.h>
 #include <nsm/scene/scene.h>
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -72,6 +73,8 @@ namespace nsm
   /// writes it.
   const char *backbone_end_name(BackboneEnd end);
 
+  struct ContinuationCheckpoint;
+
   struct Backbone
   {
     std::vector<BackbonePoint> points;
@@ -81,6 +84,9 @@ namespace nsm
     std::vector<double>        folds;  ///< Omega of each fold turned or leapt
     unsigned int               leaps = 0;
     BackboneEnd                end   = BackboneEnd::range;
+    /// Where the continuation stood when it ended or was interrupted: what
+    /// a run stopped by a signal writes for --resume (checkpoint.h).
+    std::shared_ptr<const ContinuationCheckpoint> checkpoint;
 
     unsigned int main_points() const;
 

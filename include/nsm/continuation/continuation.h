@@ -21,11 +21,16 @@ namespace nsm
   std::vector<InternalResonance> internal_resonances(const Receptance &receptance,
                                                      const Scene      &scene);
 
-  /// Starts at grazing of Continuation/Mode and follows the branch with the
-  /// scene's method. Only converged, non-trivial points are kept.
+  struct ContinuationCheckpoint;
+
+  /// Starts at grazing of Continuation/Mode, or where `resume` stood (an
+  /// interrupted run's checkpoint, checkpoint.h), and follows the branch
+  /// with the scene's method. Only converged, non-trivial points are kept.
+  /// A resumed continuation computes the points an uninterrupted one does.
   Backbone compute_backbone(HarmonicBalance                      &hb,
                             const Scene                          &scene,
-                            const std::vector<InternalResonance> &resonances);
+                            const std::vector<InternalResonance> &resonances,
+                            const ContinuationCheckpoint         *resume = nullptr);
 
   /// The solution at exactly `omega` on the computed branch: Newton from the
   /// interpolation of two backbone points of one segment that bracket it

@@ -193,6 +193,11 @@ namespace nsm
       void        parse(dealii::ParameterHandler &prm);
     } output;
 
+    /// Every entry outside Output and Resources, as "Section/Entry = value":
+    /// what decides the continuation's points. A run resumed with --resume
+    /// must share them with the run it continues (continuation/checkpoint.h).
+    std::vector<std::string> computation_entries;
+
     /// Reads and validates a scene file; throws InputError.
     static Scene from_file(const std::string &path);
 

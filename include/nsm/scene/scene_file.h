@@ -57,6 +57,7 @@ namespace nsm
     std::string              default_value;
     std::string              pattern;
     std::string              documentation;
+    std::string              value; ///< as parsed (the default if the file did not set it)
 
     /// "Section/Subsection/Name".
     std::string path() const
