@@ -1,4 +1,5 @@
 #include <nsm/model/adaptive_refinement.h>
+#include <nsm/model/automatic_range.h>
 #include <nsm/model/bar_model.h>
 #include <nsm/continuation/checkpoint.h>
 #include <nsm/continuation/continuation.h>
@@ -136,12 +137,23 @@ namespace nsm
         if (scene_.discretisation.refinement == Refinement::adaptive)
           timed("adaptive refinement", [&] {
             Progress progress("adaptive refinement", scene_.output.progress_every);
+            // An automatic range is read off the initial mesh for the band,
+            // and again off the refined one for the run.
+            Scene initial = scene_;
+            if (traces_branch())
+              resolve_automatic_range(initial, *discretisation_);
             for (std::string &note :
-                 refine_adaptively(*discretisation_, scene_.discretisation, scene_.refinement_band(), &progress))
+                 refine_adaptively(*discretisation_, scene_.discretisation, initial.refinement_band(), &progress))
               report_.notes.push_back(std::move(note));
           });
         report_.notes.push_back(describe(*discretisation_));
+        if (traces_branch())
+          for (std::string &note : resolve_automatic_range(scene_, *discretisation_))
+            report_.notes.push_back(std::move(note));
       }
+
+      /// The run follows the branch: for the backbone or for fields.
+      bool traces_branch() const { return scene_.output.backbone || scene_.output.fields(); }
 
       void spectrum()
       {
@@ -380,7 +392,7 @@ namespace nsm
         return s.str();
       }
 
-      const Scene                    &scene_;
+      Scene                           scene_; ///< with its automatic range set (automatic_range.h)
       RunReport                      &report_;
       const BarModel                 *bar_ = nullptr;
       std::vector<CsvTable>           tables_;

@@ -1,5 +1,6 @@
 #include <nsm/model/discretisation.h>
 #include <nsm/model/receptance.h>
+#include <nsm/model/automatic_range.h>
 #include <nsm/output/result_tables.h>
 #include <nsm/verification/orbit_refinement.h>
 #include <nsm/model/spectrum.h>
@@ -108,11 +109,8 @@ namespace nsm
 
   CsvTable grazing_table(const Discretisation &d, const unsigned int mode, const double gap)
   {
-    const ModalData modes = compute_spectrum(d, EndCondition::clamped_free, mode, true);
-    const double    w2    = modes.eigenvalues[mode - 1];
-    return {"grazing.csv",
-            {"mode", "omega", "energy"},
-            {{double(mode), std::sqrt(w2), w2 * gap * gap / (2 * modes.contact_residues[mode - 1])}}};
+    const ModeFrequencies f = mode_frequencies(d, mode, gap);
+    return {"grazing.csv", {"mode", "omega", "energy"}, {{double(mode), f.free, f.grazing_energy}}};
   }
 
   CsvTable resonance_table(const std::vector<InternalResonance> &resonances)

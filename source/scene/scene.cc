@@ -258,8 +258,9 @@ namespace nsm
             "Output/Backbone",
             "false when Contact/Enabled = false (no contact, no nonsmooth mode)",
             "true");
+    // An automatic Omega max (0) is checked once the FE model sets it.
     for (const double w : output.fields_at)
-      require(w >= continuation.omega_min && w <= continuation.omega_max,
+      require(w >= continuation.omega_min && (continuation.omega_max == 0 || w <= continuation.omega_max),
               "Output/Fields at",
               "frequencies in [Omega min, Omega max] = [" + format_value(continuation.omega_min) +
                 ", " + format_value(continuation.omega_max) + "]",

@@ -36,12 +36,21 @@ namespace nsm
                       text(d.omega_max),
                       Patterns::Double(0, frequency_limit),
                       "Upper end of the Omega range, > Omega min; harmonics up to Harmonics x "
-                      "Omega max are resolved.");
+                      "Omega max are resolved. 0: from the FE model's spectrum, w_j + 0.8 (w_b - "
+                      "w_j), with w_j the clamped-free and w_b = 2 w_j w_cc / (w_j + w_cc) the "
+                      "bilinear estimate of the branch's infinite-energy limit (w_cc clamped-clamped); "
+                      "the summary says the value.");
     prm.declare_entry("Energy max",
                       text(d.energy_max),
-                      Patterns::Double(1e-300, 1e300),
+                      Patterns::Double(0, 1e300),
                       "Points above it are not kept: the branch is climbing a resonance tongue, "
-                      "and the run leaps past it to a new segment; above the energy at grazing.");
+                      "and the run leaps past it to a new segment; above the energy at grazing. "
+                      "0: Energy max over grazing times the grazing energy E_g (grazing.csv).");
+    prm.declare_entry("Energy max over grazing",
+                      text(d.energy_max_over_grazing),
+                      Patterns::Double(1, 1e300),
+                      "Where Energy max = 0, Energy max is this many times the grazing energy "
+                      "E_g of Mode, the energy of its linear mode with u(L) = g0.");
     prm.declare_entry("Initial step",
                       text(d.initial_step),
                       Patterns::Double(1e-15, frequency_limit),
@@ -115,11 +124,12 @@ namespace nsm
     mode      = get_unsigned(prm, "Mode");
     omega_min = prm.get_double("Omega min");
     omega_max = prm.get_double("Omega max");
-    require(omega_max > omega_min,
+    require(omega_max == 0 || omega_max > omega_min,
             "Continuation/Omega max",
-            "> Omega min = " + format_value(omega_min),
+            "> Omega min = " + format_value(omega_min) + ", or 0 (from the spectrum)",
             format_value(omega_max));
     energy_max   = prm.get_double("Energy max");
+    energy_max_over_grazing = prm.get_double("Energy max over grazing");
     initial_step = prm.get_double("Initial step");
     min_step     = prm.get_double("Min step");
     require(min_step <= initial_step,

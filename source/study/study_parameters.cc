@@ -253,6 +253,15 @@ namespace nsm
   {
     using scene_entries::format_value;
     const auto &c = scene.continuation;
+    // Rows differ in their meshes, and so in an automatic range: a study's
+    // rows share the range the scene states.
+    if (!study.backbone_omega_values.empty())
+      {
+        scene_entries::require(c.omega_max > 0, "Continuation/Omega max",
+                               "> 0 in a study (its rows share one range; 0, automatic, is for a single run)", "0");
+        scene_entries::require(c.energy_max > 0, "Continuation/Energy max",
+                               "> 0 in a study (its rows share one ceiling; 0, automatic, is for a single run)", "0");
+      }
     for (const double w : study.backbone_omega_values)
       scene_entries::require(scene.contact.enabled && w >= c.omega_min && w <= c.omega_max,
                              "Study/Backbone omegas",

@@ -113,7 +113,7 @@ namespace nsm
 
     struct Receptance
     {
-      ReceptanceMethod method = ReceptanceMethod::direct;
+      ReceptanceMethod method = ReceptanceMethod::modal;
       unsigned int     modes  = 0; ///< modal basis size, 0 = all
 
       static void declare(dealii::ParameterHandler &prm);
@@ -139,8 +139,9 @@ namespace nsm
       ContinuationMethod method         = ContinuationMethod::sequential;
       unsigned int       mode           = 1;
       double             omega_min      = 0.0;
-      double             omega_max      = 2.2;
-      double             energy_max     = 1.0;
+      double             omega_max      = 0.0; ///< 0: from the spectrum (automatic_range.h)
+      double             energy_max     = 0.0; ///< 0: energy_max_over_grazing x E_g
+      double             energy_max_over_grazing = 1000.0;
       double             initial_step   = 1e-3;
       double             min_step       = 1e-6;
       double             max_step       = 1e-2;

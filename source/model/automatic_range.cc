@@ -1,0 +1,65 @@
+#include <nsm/base/errors.h>
+#include <nsm/model/automatic_range.h>
+#include <nsm/model/spectrum.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace nsm
+{
+  ModeFrequencies mode_frequencies(const Discretisation &d, const unsigned int mode, const double gap)
+  {
+    const ModalData free    = compute_spectrum(d, EndCondition::clamped_free, mode, true);
+    const ModalData clamped = compute_spectrum(d, EndCondition::clamped_clamped, mode, false);
+    ModeFrequencies f;
+    const double    w2 = free.eigenvalues[mode - 1];
+    f.free             = std::sqrt(w2);
+    f.clamped          = std::sqrt(clamped.eigenvalues[mode - 1]);
+    f.bilinear         = 2 * f.free * f.clamped / (f.free + f.clamped);
+    f.grazing_energy   = w2 * gap * gap / (2 * free.contact_residues[mode - 1]);
+    return f;
+  }
+
+  namespace
+  {
+    std::string number(const double value)
+    {
+      std::ostringstream s;
+      s.precision(10);
+      s << value;
+      return s.str();
+    }
+  } // namespace
+
+  std::vector<std::string> resolve_automatic_range(Scene &scene, const Discretisation &d)
+  {
+    auto &c = scene.continuation;
+    if (c.omega_max > 0 && c.energy_max > 0)
+      return {};
+    const ModeFrequencies    f = mode_frequencies(d, c.mode, scene.contact.gap);
+    std::vector<std::string> notes;
+    if (c.omega_max == 0)
+      {
+        c.omega_max = f.free + automatic_range_share * (f.bilinear - f.free);
+        notes.push_back("Continuation/Omega max = 0: " + number(c.omega_max) + ", from the spectrum (w_" +
+                        std::to_string(c.mode) + " = " + number(f.free) + " clamped-free, " + number(f.clamped) +
+                        " clamped-clamped, bilinear limit " + number(f.bilinear) + ")");
+        if (!(c.omega_min < c.omega_max))
+          throw InputError("parameter 'Continuation/Omega min' = " + number(c.omega_min) +
+                           " is out of range: allowed below the automatic Omega max = " + number(c.omega_max) +
+                           " (Continuation/Omega max = 0); set Omega max");
+        for (const double w : scene.output.fields_at)
+          if (w < c.omega_min || w > c.omega_max)
+            throw InputError("parameter 'Output/Fields at' = " + number(w) +
+                             " is out of range: allowed frequencies in [Omega min, Omega max] = [" +
+                             number(c.omega_min) + ", " + number(c.omega_max) + "] (automatic Omega max)");
+      }
+    if (c.energy_max == 0)
+      {
+        c.energy_max = c.energy_max_over_grazing * f.grazing_energy;
+        notes.push_back("Continuation/Energy max = 0: " + number(c.energy_max) + " = Energy max over grazing = " +
+                        number(c.energy_max_over_grazing) + " times E_g = " + number(f.grazing_energy));
+      }
+    return notes;
+  }
+} // namespace nsm
