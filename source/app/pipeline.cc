@@ -236,9 +236,30 @@ namespace nsm
         });
       }
 
+      /// The largest |u| over the bar at each backbone point (Output/Bar
+      /// amplitude), from the point's field.
+      void bar_amplitudes()
+      {
+        timed("bar amplitude", [&] {
+          Progress progress("bar amplitude", scene_.output.progress_every);
+          for (std::size_t i = 0; i < backbone_.points.size() && point_stop_signal() == 0; ++i)
+            {
+              const PeriodicField field(*hb_, *discretisation_, backbone_.points[i]);
+              bar_amplitudes_.push_back(field.max_displacement(scene_.field_time_samples()));
+              progress.update([&] { return "point " + std::to_string(i + 1) + " of " +
+                                           std::to_string(backbone_.points.size()); });
+            }
+          // A stop leaves the column out rather than part-filled.
+          if (bar_amplitudes_.size() < backbone_.points.size())
+            bar_amplitudes_.clear();
+        });
+      }
+
       void backbone_tables()
       {
-        tables_.push_back(backbone_table(backbone_, verifications_, orbits_));
+        tables_.push_back(backbone_table(backbone_, verifications_, orbits_, bar_amplitudes_));
+        if (scene_.output.harmonics_table)
+          tables_.push_back(harmonics_table(*hb_, backbone_));
         tables_.push_back(tongue_table(backbone_));
         tables_.push_back(grazing_table(*discretisation_, scene_.continuation.mode, scene_.contact.gap));
         tables_.push_back(resonance_table(resonances_));
@@ -403,6 +424,7 @@ namespace nsm
       Backbone                        backbone_;
       Verifications                   verifications_;
       RefinedOrbits                   orbits_;
+      std::vector<double>             bar_amplitudes_;
       std::vector<PeriodicField>      fields_;
     };
   } // namespace
@@ -456,6 +478,7 @@ namespace nsm
     };
     stage(scene.output.verify_in_time, "verification in time", [&] { run.verify_in_time(); });
     stage(scene.output.refine_in_time, "refinement in time", [&] { run.refine_in_time(); });
+    stage(scene.output.bar_amplitude, "bar amplitude", [&] { run.bar_amplitudes(); });
     if (scene.output.backbone)
       run.backbone_tables();
     stage(needs_fields, "fields", [&] { run.fields(); });

@@ -60,13 +60,16 @@ namespace nsm
     return table;
   }
 
-  CsvTable backbone_table(const Backbone &backbone, const Verifications &verifications, const RefinedOrbits &orbits)
+  CsvTable backbone_table(const Backbone &backbone, const Verifications &verifications, const RefinedOrbits &orbits,
+                          const std::vector<double> &bar_amplitudes)
   {
     CsvTable table{"backbone.csv",
                    {"segment", "Omega", "energy", "energy_spread", "max_contact_force", "max_contact_displacement",
                     "contact_fraction", "newton_iterations", "residual", "branch",
                     "resonance_mode", "resonance_harmonic"},
                    {}};
+    if (!bar_amplitudes.empty())
+      table.columns.push_back("max_displacement");
     if (!verifications.empty())
       for (const char *c : {"verified", "periodicity_defect", "periodicity_defect_end", "energy_drift",
                             "impulse_ratio", "verified_contact_fraction"})
@@ -84,12 +87,29 @@ namespace nsm
                               p.measures.contact_fraction, double(p.newton_iterations),
                               p.residual, branch_name(p.branch),
                               double(p.resonance.mode), double(p.resonance.harmonic)});
+        if (!bar_amplitudes.empty())
+          table.rows.back().push_back(bar_amplitudes[i]);
         if (!verifications.empty())
           for (CsvCell &cell : verification_cells(verifications[i]))
             table.rows.back().push_back(std::move(cell));
         if (!orbits.empty())
           for (CsvCell &cell : orbit_cells(p, orbits[i]))
             table.rows.back().push_back(std::move(cell));
+      }
+    return table;
+  }
+
+  CsvTable harmonics_table(HarmonicBalance &hb, const Backbone &backbone)
+  {
+    CsvTable table{"harmonics.csv", {"point", "Omega", "branch", "k", "is_sine", "force", "displacement"}, {}};
+    for (std::size_t i = 0; i < backbone.points.size(); ++i)
+      {
+        const BackbonePoint &p = backbone.points[i];
+        hb.set_omega(p.omega);
+        const FourierCoefficients c = hb.coefficients(p.x);
+        for (std::size_t j = 0; j < c.order.size(); ++j)
+          table.rows.push_back({double(i), p.omega, branch_name(p.branch), double(c.order[j]), double(c.is_sine[j]),
+                                c.force[j], c.displacement[j]});
       }
     return table;
   }

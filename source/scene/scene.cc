@@ -250,6 +250,14 @@ namespace nsm
             "Output/Verify in time",
             "false unless Output/Backbone = true (the results are columns of backbone.csv)",
             "true");
+    require(!output.harmonics_table || output.backbone,
+            "Output/Harmonics table",
+            "false unless Output/Backbone = true (one row per backbone point and harmonic)",
+            "true");
+    require(!output.bar_amplitude || output.backbone,
+            "Output/Bar amplitude",
+            "false unless Output/Backbone = true (a column of backbone.csv)",
+            "true");
     require(!output.refine_in_time || output.backbone,
             "Output/Refine in time",
             "false unless Output/Backbone = true (the results are columns of backbone.csv)",

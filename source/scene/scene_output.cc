@@ -35,6 +35,17 @@ namespace nsm
                       "Frequencies of receptance.csv: numbers and ranges a:b:n separated by "
                       "commas, in [0, 1e100]; empty = none.");
     prm.declare_entry("Backbone", text(d.backbone), Patterns::Bool(), "Write backbone.csv and resonances.csv.");
+    prm.declare_entry("Harmonics table",
+                      text(d.harmonics_table),
+                      Patterns::Bool(),
+                      "Write harmonics.csv: every backbone point's harmonic coefficients of the "
+                      "contact force and the contact-end displacement; needs Backbone = true.");
+    prm.declare_entry("Bar amplitude",
+                      text(d.bar_amplitude),
+                      Patterns::Bool(),
+                      "Add backbone.csv's max_displacement: the largest |u(x, t)| over the bar's "
+                      "DoFs at Field time samples per period, from each point's field (costs a "
+                      "field per point); needs Backbone = true.");
     prm.declare_entry("Fields at",
                       "",
                       Patterns::Anything(),
@@ -114,6 +125,8 @@ namespace nsm
     receptance_frequencies =
       parse_frequency_list(prm.get("Receptance frequencies"), "Output/Receptance frequencies");
     backbone     = prm.get_bool("Backbone");
+    harmonics_table = prm.get_bool("Harmonics table");
+    bar_amplitude   = prm.get_bool("Bar amplitude");
     fields_at    = parse_frequency_list(prm.get("Fields at"), "Output/Fields at");
     fields_every = get_unsigned(prm, "Fields every");
     field_time_samples = get_unsigned(prm, "Field time samples");

@@ -1,5 +1,6 @@
 #include <nsm/verification/fields.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -68,6 +69,14 @@ namespace nsm
   dealii::Vector<double> PeriodicField::displacement(const double t) const
   {
     return nodal(t, false);
+  }
+
+  double PeriodicField::max_displacement(const unsigned int samples) const
+  {
+    double largest = 0;
+    for (unsigned int s = 0; s < samples; ++s)
+      largest = std::max(largest, displacement(s * period() / samples).linfty_norm());
+    return largest;
   }
 
   dealii::Vector<double> PeriodicField::velocity(const double t) const

@@ -420,6 +420,7 @@ def rows(executable):
              section("Study", Cells="4000, 10", Spectrum_modes=2) + output(Directory="out"),
              code=2, words=["study row 2", "Discretisation/Graded/Layers"]),
         dict(name="study_omega_range", scene=section("Study", Backbone_omegas="1.95, 3") +
+             section("Continuation", Omega_max=2.2, Energy_max=1) +
              output(Directory="out"), code=2, words=["Study/Backbone omegas", "[Omega min, Omega max]"]),
         dict(name="study_verify_without_omegas", scene=section("Study", Spectrum_modes=2, Verify_in_time="true") +
              output(Directory="out"), code=2, words=["Study/Verify in time", "Study/Backbone omegas"]),

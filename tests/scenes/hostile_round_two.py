@@ -689,7 +689,7 @@ def new_rows(executable):
         # The estimate that refuses a scene, against the peak it measures:
         # FE_Q(20) x 1e4 cells (2e5 DoFs, 8e6 nonzeros), one direct receptance.
         dict(name="memory_estimate_bounds_peak", scene=section("Discretisation", Degree=20, Cells=10000) +
-             output(Directory="out", Receptance_frequencies="1"), code=0, leaves={"out"},
+             section("Receptance", Method="direct") + output(Directory="out", Receptance_frequencies="1"), code=0, leaves={"out"},
              check=estimate_bounds_peak(executable)),
         dict(name="memory_bad_alloc_in_run", scene=linear(200000) + spectrum_scene("out", 2),
              code=(2, 3, 5), preexec=limits(address_space=startup_address_space(executable) + (40 << 20))),

@@ -327,7 +327,7 @@ def ended(executable, studies):
     assert "0 run now" in rerun and "1 row ended before the Omega range's end" in rerun, rerun
     rows = {int(r["harmonics"]): r for r in read(os.path.join(directory, "out", "study.csv"))}
     assert all(r["status"] == "ok" for r in rows.values()), rows
-    # The default Omega max; the last point lands on it exactly.
+    # The scene's Omega max; the last point lands on it exactly.
     assert rows[40]["backbone_end"] == "range" and float(rows[40]["omega_reached"]) == 2.2, rows[40]
     summary = plain_run(executable, directory, "plain", "", study="ended.prm", harmonics=160).stdout
     lost = re.search(r"branch lost after the fold at Omega = ([0-9.]+)", summary)

@@ -9,15 +9,19 @@
 
 namespace testing_helpers
 {
-  /// The seed bar (A = 1.5 - x) or the uniform bar on a given mesh.
+  /// The seed bar (A = 1.5 - x) or the uniform bar on a given mesh, with an
+  /// Omega range to 2.2 and Energy max 1 (the scene's automatic values, 0,
+  /// are set by the run from its FE model: automatic_range.h).
   inline nsm::Scene bar_scene(const std::string &section,
                               unsigned int       degree,
                               unsigned int       cells)
   {
     nsm::Scene scene;
-    scene.bar.cross_section       = section;
-    scene.discretisation.degree   = degree;
-    scene.discretisation.cells    = cells;
+    scene.bar.cross_section         = section;
+    scene.discretisation.degree     = degree;
+    scene.discretisation.cells      = cells;
+    scene.continuation.omega_max    = 2.2;
+    scene.continuation.energy_max   = 1.0;
     return scene;
   }
 

@@ -30,8 +30,15 @@ namespace nsm
 
   /// backbone.csv: one row per point; the verification columns if
   /// `verifications` is not empty, the orbit columns if `orbits` is not empty
-  /// (empty cells for a point not refined or whose orbit was not found).
-  CsvTable backbone_table(const Backbone &backbone, const Verifications &verifications, const RefinedOrbits &orbits);
+  /// (empty cells for a point not refined or whose orbit was not found), and
+  /// max_displacement if `bar_amplitudes` (one per point) is not empty.
+  CsvTable backbone_table(const Backbone &backbone, const Verifications &verifications, const RefinedOrbits &orbits,
+                          const std::vector<double> &bar_amplitudes = {});
+
+  /// harmonics.csv: per backbone point (its row in backbone.csv from 0) and
+  /// harmonic, the contact force's and the contact end's displacement
+  /// coefficients (hb's basis: cos k W t, or sin k W t where is_sine).
+  CsvTable harmonics_table(HarmonicBalance &hb, const Backbone &backbone);
 
   /// tongues.csv: one row per tongue.
   CsvTable tongue_table(const Backbone &backbone);

@@ -35,6 +35,9 @@ namespace nsm
     double displacement(unsigned int dof, double t) const;
     double velocity(unsigned int dof, double t) const;
 
+    /// max |u| over the DoFs and the times s T / samples, s = 0 .. samples - 1.
+    double max_displacement(unsigned int samples) const;
+
     double contact_force(double t) const;
     double contact_displacement(double t) const;
 
