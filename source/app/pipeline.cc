@@ -18,6 +18,7 @@
 #include <nsm/output/result_tables.h>
 #include <nsm/verification/orbit_refinement.h>
 #include <nsm/verification/time_verification.h>
+#include <nsm/verification/verification_checkpoint.h>
 
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/timer.h>
@@ -184,6 +185,7 @@ namespace nsm
       /// Output/Directory.
       void harmonic_balance(const bool resume)
       {
+        resume_ = resume;
         timed("harmonic balance", [&] {
           hb_         = std::make_unique<HarmonicBalance>(scene_, *receptance_);
           resonances_ = internal_resonances(*receptance_, scene_);
@@ -207,13 +209,27 @@ namespace nsm
           report_.files.push_back(write_atomically(directory + "/" + checkpoint_file, [&](std::ostream &out) {
             write_checkpoint(out, *backbone_.checkpoint, scene_.computation_entries);
           }));
+        if (std::any_of(verifications_.begin(), verifications_.end(), [](const auto &v) { return v.has_value(); }))
+          report_.files.push_back(
+            write_atomically(directory + "/" + verification_checkpoint_file, [&](std::ostream &out) {
+              write_verification_checkpoint(out, backbone_, verifications_, scene_.output);
+            }));
       }
 
       void verify_in_time()
       {
         timed("verification in time", [&] {
           Progress progress("verification in time", scene_.output.progress_every);
-          verifications_ = verify_backbone(*hb_, *discretisation_, backbone_, scene_.output, progress);
+          Verifications known;
+          if (resume_)
+            {
+              known = read_verification_checkpoint(scene_.output.directory + "/" + verification_checkpoint_file,
+                                                   backbone_, scene_.output);
+              const auto kept = std::count_if(known.begin(), known.end(), [](const auto &v) { return v.has_value(); });
+              report_.notes.push_back("resumed verification in time: " + std::to_string(kept) + " points from " +
+                                      verification_checkpoint_file + " (the same Verify steps and periods)");
+            }
+          verifications_ = verify_backbone(*hb_, *discretisation_, backbone_, scene_.output, progress, known);
           report_.result.push_back(verification_summary(verifications_, scene_));
         });
       }
@@ -425,6 +441,7 @@ namespace nsm
       Verifications                   verifications_;
       RefinedOrbits                   orbits_;
       std::vector<double>             bar_amplitudes_;
+      bool                            resume_ = false; ///< --resume: checkpoints are read
       std::vector<PeriodicField>      fields_;
     };
   } // namespace

@@ -211,17 +211,24 @@ namespace nsm
     return result;
   }
 
-  std::vector<std::optional<PointVerification>> verify_backbone(HarmonicBalance      &hb,
-                                                                const Discretisation &discretisation,
-                                                                const Backbone       &backbone,
-                                                                const Scene::Output  &o,
-                                                                Progress             &progress)
+  std::vector<std::optional<PointVerification>> verify_backbone(
+    HarmonicBalance                                     &hb,
+    const Discretisation                                &discretisation,
+    const Backbone                                      &backbone,
+    const Scene::Output                                 &o,
+    Progress                                            &progress,
+    const std::vector<std::optional<PointVerification>> &known)
   {
     std::vector<std::optional<PointVerification>> results(backbone.points.size());
     // A stop asked for leaves the remaining points unverified (empty cells).
     for (std::size_t i = 0; i < results.size() && point_stop_signal() == 0; ++i)
       if (i % o.verify_every == 0 || (o.fields_every > 0 && i % o.fields_every == 0))
         {
+          if (i < known.size() && known[i])
+            {
+              results[i] = known[i];
+              continue;
+            }
           const PeriodicField field(hb, discretisation, backbone.points[i]);
           results[i] = verify_in_time(field, discretisation, hb.law(), o);
           progress.update([&] {

@@ -11,12 +11,15 @@ progress line that finds no room. The resumed run's backbone.csv,
 tongues.csv and continuation.log must equal the whole run's byte for byte
 (a shorter, or any other, branch fails), and it must leave no checkpoint.
 A run stopped in its verification in time (the continuation complete) is
-resumed the same way. A scene changed outside Output, a missing checkpoint
+resumed the same way, and keeps the points verified before the stop
+(verification.resume) instead of integrating them again. A scene changed outside Output, a missing checkpoint
 and a damaged one each exit 2 with one line naming --resume, and leave the
 output as it was. Standard library only.
 """
+import csv
 import filecmp
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -42,6 +45,11 @@ def lines(path):
         return f.read().splitlines()
 
 
+def verified_rows(path):
+    with open(path) as f:
+        return sum(1 for row in csv.DictReader(f) if row.get("verified"))
+
+
 def stop_and_resume(executable, name, text, room_pages, failures, stopped_in):
     """Whole run, stopped run, resumed run; the comparisons. Returns the
     stopped and whole backbones' lengths."""
@@ -57,8 +65,9 @@ def stop_and_resume(executable, name, text, room_pages, failures, stopped_in):
                                                f"a progress line past {room_pages} pages", room_pages=room_pages)
     if code != 130 or not os.path.exists(f"{name}/{CHECKPOINT}"):
         failures.append(f"{name}: the stopped run exited {code} with no {CHECKPOINT}: {stderr[-300:]!r}")
-        return 0, 0
+        return 0, 0, 0
     stopped, expected = len(lines(f"{name}/backbone.csv")), len(lines("whole/backbone.csv"))
+    verified_before = verified_rows(f"{name}/backbone.csv")
     if not stopped_in(stopped, expected):
         failures.append(f"{name}: stopped with {stopped} of {expected} backbone lines: not where the check "
                         f"meant to stop it")
@@ -69,9 +78,19 @@ def stop_and_resume(executable, name, text, room_pages, failures, stopped_in):
     for f in COMPARED:
         if not filecmp.cmp(f"whole/{f}", f"{name}/{f}", shallow=False):
             failures.append(f"{name}: the resumed {f} differs from the uninterrupted run's")
-    if os.path.exists(f"{name}/{CHECKPOINT}"):
-        failures.append(f"{name}: the resumed run, complete, still holds {CHECKPOINT}")
-    return stopped, expected
+    for checkpoint in (CHECKPOINT, "verification.resume"):
+        if os.path.exists(f"{name}/{checkpoint}"):
+            failures.append(f"{name}: the resumed run, complete, still holds {checkpoint}")
+    # The points the stopped run verified are taken, not integrated again.
+    kept = re.search(r"resumed verification in time: (\d+) points", resumed.stdout)
+    integrated = sum(1 for l in resumed.stderr.splitlines() if l.startswith("nsm-bar: verification in time: point"))
+    if verified_before and integrated != verified_rows("whole/backbone.csv") - verified_before:
+        failures.append(f"{name}: the resumed run integrated {integrated} points in time, not only the "
+                        f"{verified_rows('whole/backbone.csv') - verified_before} the stopped run had not")
+    if verified_before and (not kept or int(kept.group(1)) != verified_before):
+        failures.append(f"{name}: the stopped run verified {verified_before} points; the resumed run kept "
+                        f"{kept.group(1) if kept else 'none'}")
+    return stopped, expected, verified_before
 
 
 def verification_room(stderr):
@@ -120,11 +139,14 @@ def main():
     executable = sys.argv[1]
     failures, said = [], []
     for method in ("sequential", "arclength"):
-        stopped, whole = stop_and_resume(executable, method, scene(method, "false", 2.2), 3, failures,
+        stopped, whole, _ = stop_and_resume(executable, method, scene(method, "false", 2.2), 3, failures,
                                          lambda s, e: 2 <= s < e)
         said.append(f"{method}: stopped at {stopped - 1} of {whole - 1} points")
-    stop_and_resume(executable, "verification", scene("sequential", "true", 2.2), verification_room, failures,
-                    lambda s, e: s == e)
+    _, _, verified = stop_and_resume(executable, "verification", scene("sequential", "true", 2.2),
+                                     verification_room, failures, lambda s, e: s == e)
+    if not verified:
+        failures.append("verification: the run was not stopped after verifying a point")
+    said.append(f"verification: stopped after {verified} points verified, kept on --resume")
     refusals(executable, failures)
     return report(failures, "; ".join(said) + "; resumed runs equal the whole runs")
 

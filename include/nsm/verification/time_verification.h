@@ -98,9 +98,13 @@ namespace nsm
 
   /// Verifies every Verify every-th backbone point and every Fields every-th
   /// (the fields' points), against hb's contact law; empty for the others.
-  std::vector<std::optional<PointVerification>> verify_backbone(HarmonicBalance      &hb,
-                                                                const Discretisation &discretisation,
-                                                                const Backbone       &backbone,
-                                                                const Scene::Output  &output,
-                                                                Progress             &progress);
+  /// A point `known` holds (a resumed run's, verification_checkpoint.h) is
+  /// taken from it, not integrated again.
+  std::vector<std::optional<PointVerification>> verify_backbone(
+    HarmonicBalance                                     &hb,
+    const Discretisation                                &discretisation,
+    const Backbone                                      &backbone,
+    const Scene::Output                                 &output,
+    Progress                                            &progress,
+    const std::vector<std::optional<PointVerification>> &known = {});
 } // namespace nsm
