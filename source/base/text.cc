@@ -1,6 +1,7 @@
 #include <nsm/base/text.h>
 
 #include <cstdio>
+#include <sstream>
 
 namespace nsm
 {
@@ -34,5 +35,13 @@ namespace nsm
       if (is_control(c))
         return true;
     return false;
+  }
+
+  std::string significant(const double value, const int digits)
+  {
+    std::ostringstream s;
+    s.precision(digits);
+    s << value;
+    return s.str();
   }
 } // namespace nsm

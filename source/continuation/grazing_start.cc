@@ -1,3 +1,4 @@
+#include <nsm/base/text.h>
 #include <nsm/continuation/constants.h>
 #include <nsm/continuation/grazing_start.h>
 
@@ -8,15 +9,7 @@ namespace nsm
 {
   namespace
   {
-    /// Six significant digits, whatever the scale (energies go down to 1e-20
-    /// with small gaps).
-    std::string text(const double value)
-    {
-      std::ostringstream s;
-      s.precision(6);
-      s << value;
-      return s.str();
-    }
+    std::string text(const double value) { return significant(value, 6); }
 
     /// The branch leaves grazing beyond the range's far end: the range holds
     /// none of it, whatever Newton does.

@@ -1,4 +1,5 @@
 #include <nsm/base/errors.h>
+#include <nsm/base/text.h>
 #include <nsm/model/automatic_range.h>
 #include <nsm/model/spectrum.h>
 
@@ -22,13 +23,7 @@ namespace nsm
 
   namespace
   {
-    std::string number(const double value)
-    {
-      std::ostringstream s;
-      s.precision(10);
-      s << value;
-      return s.str();
-    }
+    std::string number(const double value) { return significant(value, 10); }
   } // namespace
 
   std::vector<std::string> resolve_automatic_range(Scene &scene, const Discretisation &d)

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <tuple>
 #include <utility>
 
 namespace nsm
@@ -246,22 +247,14 @@ namespace nsm
             "Output/Fields at",
             "empty (and Fields every = 0) when Contact/Enabled = false",
             "a list");
-    require(!output.verify_in_time || output.backbone,
-            "Output/Verify in time",
-            "false unless Output/Backbone = true (the results are columns of backbone.csv)",
-            "true");
-    require(!output.harmonics_table || output.backbone,
-            "Output/Harmonics table",
-            "false unless Output/Backbone = true (one row per backbone point and harmonic)",
-            "true");
-    require(!output.bar_amplitude || output.backbone,
-            "Output/Bar amplitude",
-            "false unless Output/Backbone = true (a column of backbone.csv)",
-            "true");
-    require(!output.refine_in_time || output.backbone,
-            "Output/Refine in time",
-            "false unless Output/Backbone = true (the results are columns of backbone.csv)",
-            "true");
+    // Outputs that are columns or rows of the backbone's tables.
+    for (const auto &[wanted, entry, what] :
+         {std::tuple{output.verify_in_time, "Output/Verify in time", "the results are columns of backbone.csv"},
+          std::tuple{output.refine_in_time, "Output/Refine in time", "the results are columns of backbone.csv"},
+          std::tuple{output.harmonics_table, "Output/Harmonics table", "one row per backbone point and harmonic"},
+          std::tuple{output.bar_amplitude, "Output/Bar amplitude", "a column of backbone.csv"}})
+      require(!wanted || output.backbone, entry,
+              std::string("false unless Output/Backbone = true (") + what + ")", "true");
     require(!output.backbone || contact.enabled,
             "Output/Backbone",
             "false when Contact/Enabled = false (no contact, no nonsmooth mode)",

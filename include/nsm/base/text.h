@@ -1,4 +1,4 @@
-// Text from the user, as messages show it.
+// Text from the user, and numbers, as messages show them.
 #pragma once
 
 #include <string>
@@ -11,4 +11,8 @@ namespace nsm
 
   /// Whether `text` holds a control character.
   bool has_control_character(const std::string &text);
+
+  /// `value` to `digits` significant digits, whatever its scale (energies go
+  /// down to 1e-20 with small gaps), as messages and notes print numbers.
+  std::string significant(double value, int digits);
 } // namespace nsm
