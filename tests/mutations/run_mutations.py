@@ -129,6 +129,13 @@ MUTATIONS = [
     ("a leap from fewer harmonics puts each harmonic in the next one's slot", "source/continuation/leap.cc",
      "std::copy(q->x.begin(), q->x.end(), guess.begin());",
      "std::copy(q->x.begin(), q->x.end() - 1, guess.begin() + 1);"),
+    ("a resumed sequential segment starts again from the initial step", "source/continuation/continuation.cc",
+     "context.resume_step  = c.step;", "context.resume_step.reset();"),
+    ("the automatic range's limit from the mean of the free and held frequencies", "source/model/automatic_range.cc",
+     "f.bilinear         = 2 * f.free * f.clamped / (f.free + f.clamped);",
+     "f.bilinear         = (f.free + f.clamped) / 2;"),
+    ("a resumed verification integrates the points it kept again", "source/verification/time_verification.cc",
+     "if (i < known.size() && known[i])", "if (false && i < known.size() && known[i])"),
 ]
 
 
