@@ -24,6 +24,7 @@
 #include <deal.II/base/timer.h>
 
 #include <algorithm>
+#include <fstream>
 #include <iomanip>
 #include <memory>
 #include <optional>
@@ -466,6 +467,9 @@ namespace nsm
 
     // Checked before any work: an unwritable directory is known now.
     check_memory(scene);
+    if (!resume && std::ifstream(scene.output.directory + "/" + checkpoint_file).good())
+      report.notes.push_back("Output/Directory held a stopped run's " + std::string(checkpoint_file) +
+                             ": this run started again and replaces it (--resume goes on from one)");
     OutputDirectory output(scene.output.directory);
     report.notes.push_back(memory_note(scene));
     SceneRun        run(scene, report);
@@ -499,7 +503,7 @@ namespace nsm
     if (scene.output.backbone)
       run.backbone_tables();
     stage(needs_fields, "fields", [&] { run.fields(); });
-    std::vector<std::string> stop_notes;
+    std::vector<std::string> manifest_notes;
     if ((report.stopped_by = point_stop_signal()) != 0)
       {
         std::string note = std::string("interrupted by ") + stop_signal_name(report.stopped_by) +
@@ -507,14 +511,21 @@ namespace nsm
         for (const std::string &s : skipped)
           note += (&s == &skipped.front() ? "; left out: " : ", ") + s;
         report.notes.insert(report.notes.begin(), note);
-        stop_notes.push_back(note);
+        manifest_notes.push_back(note);
+      }
+    // A request the run could not meet (a field out of reach) is said in the
+    // summary and the manifest too, not on stderr alone.
+    if (!report.failure.empty())
+      {
+        report.notes.insert(report.notes.begin(), "not written: " + report.failure);
+        manifest_notes.push_back("not written: " + report.failure);
       }
     run.write(output.staging());
     if (report.stopped_by != 0)
       run.write_checkpoint_file(output.staging());
     if (scene.output.plots)
       run.plots(output.staging());
-    report.files = output.commit(report.files, stop_notes);
+    report.files = output.commit(report.files, manifest_notes);
     return report;
   }
 

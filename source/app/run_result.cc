@@ -1,4 +1,5 @@
 #include <nsm/app/run_result.h>
+#include <nsm/base/text.h>
 #include <nsm/model/exact_references.h>
 
 #include <algorithm>
@@ -30,11 +31,17 @@ namespace nsm
       switch (backbone.end)
         {
           case BackboneEnd::range:
-            return "range: Continuation/Omega min or max";
+            {
+              // The end of the range the branch reached (it runs down in Omega with eq. (5)).
+              const double last  = backbone.points.back().omega;
+              const bool   upper = std::abs(last - c.omega_max) <= std::abs(last - c.omega_min);
+              return std::string("range: Continuation/") + (upper ? "Omega max = " : "Omega min = ") +
+                     significant(upper ? c.omega_max : c.omega_min, 8);
+            }
           case BackboneEnd::max_steps:
             return "max_steps: Continuation/Max steps = " + std::to_string(c.max_steps) + " points";
           case BackboneEnd::energy_max:
-            return "energy_max: the branch goes on above Continuation/Energy max";
+            return "energy_max: the branch goes on above Continuation/Energy max = " + significant(c.energy_max, 6);
           default:
             return backbone_end_name(backbone.end) + std::string(": continuation.log says how");
         }
