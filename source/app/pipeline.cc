@@ -232,6 +232,9 @@ namespace nsm
             }
           verifications_ = verify_backbone(*hb_, *discretisation_, backbone_, scene_.output, progress, known);
           report_.result.push_back(verification_summary(verifications_, scene_));
+          if (const int signal = point_stop_signal(); signal != 0)
+            report_.result.back() += std::string(" (stopped by ") + stop_signal_name(signal) +
+                                     " before the other points: --resume verifies them)";
         });
       }
 

@@ -306,6 +306,36 @@ namespace nsm
     return override_list();
   }
 
+  namespace
+  {
+    /// deal.II's "Line <n> of file <f>: No entry with name <x> was declared
+    /// in the current subsection." said with the entry's full path, from the
+    /// PRM text's subsections up to line n; other messages as they are. Both
+    /// end with where the parameters are listed.
+    std::string undeclared_entry(const std::string &message, const std::string &prm_text)
+    {
+      const std::string hint = " (nsm-bar --print-parameters lists them)";
+      std::smatch       match;
+      if (prm_text.empty() ||
+          !std::regex_search(message, match, std::regex(R"(Line <(\d+)>.*No entry with name <([^>]*)> was declared)")))
+        return message + hint;
+      const unsigned long      line = std::stoul(match[1]);
+      std::vector<std::string> sections;
+      std::istringstream       in(prm_text);
+      std::string              text;
+      std::smatch              words;
+      for (unsigned long n = 1; n < line && std::getline(in, text); ++n)
+        if (std::regex_match(text, words, std::regex(R"(\s*subsection\s+(.*?)\s*(#.*)?)")))
+          sections.push_back(words[1]);
+        else if (std::regex_match(text, std::regex(R"(\s*end\s*(#.*)?)")) && !sections.empty())
+          sections.pop_back();
+      std::string entry;
+      for (const std::string &section : sections)
+        entry += section + "/";
+      return "line " + match[1].str() + ": no parameter '" + printable(entry + match[2].str()) + "'" + hint;
+    }
+  } // namespace
+
   void read_scene_file(const std::string &path, dealii::ParameterHandler &prm)
   {
     const std::string extension = fs::path(path).extension().string();
@@ -340,7 +370,8 @@ namespace nsm
       }
     catch (const dealii::ExceptionBase &e)
       {
-        throw InputError("scene '" + shown(path) + "': " + one_line_message(e));
+        throw InputError("scene '" + shown(path) + "': " +
+                         undeclared_entry(one_line_message(e), tree_format ? "" : flat.str()));
       }
     catch (const std::exception &e)
       {

@@ -419,6 +419,9 @@ def rows(executable):
              "subsection Discretisation\n subsection Graded\n  set Layers = 40\n end\nend\n" +
              section("Study", Cells="4000, 10", Spectrum_modes=2) + output(Directory="out"),
              code=2, words=["study row 2", "Discretisation/Graded/Layers"]),
+        # A misspelt entry is named with its section, and where the entries are listed.
+        dict(name="misspelt_entry", scene=section("Continuation", Omega_maks=2) + output(Directory="out"),
+             code=2, words=["line 2", "no parameter 'Continuation/Omega maks'", "--print-parameters"]),
         dict(name="study_omega_range", scene=section("Study", Backbone_omegas="1.95, 3") +
              section("Continuation", Omega_max=2.2, Energy_max=1) +
              output(Directory="out"), code=2, words=["Study/Backbone omegas", "[Omega min, Omega max]"]),

@@ -26,7 +26,7 @@ namespace
   std::vector<BadInput> bad_inputs()
   {
     return {
-      {"unknown_parameter", "subsection Bar\n set Lenght = 1\nend\n", "Lenght", "declared"},
+      {"unknown_parameter", "subsection Bar\n set Lenght = 1\nend\n", "Bar/Lenght", "no parameter"},
       {"unknown_subsection", "subsection Baar\n set Length = 1\nend\n", "Baar", "no such subsection"},
       {"malformed_section", "subsection Bar\n set Cross section = 1.5 - * x\nend\n", "Bar/Cross section", "expression"},
       {"unknown_variable", "subsection Bar\n set Cross section = 1.5 - y\nend\n", "Bar/Cross section", "expression"},
