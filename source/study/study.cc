@@ -166,7 +166,7 @@ namespace nsm
       const auto varying = varying_columns(table, key_size);
       const std::size_t        time = column("wall_total_median");
       std::vector<std::string> notes;
-      for (const char *error : {"spectrum_error", "receptance_error", "energy_error_max"})
+      for (const char *error : {"spectrum_error", "receptance_error", "energy_error_max", "main_time_defect_median"})
         {
           const bool backbone_error = std::string(error) == "energy_error_max";
           std::vector<std::pair<double, const std::vector<CsvCell> *>> rows;
