@@ -62,6 +62,19 @@ def place_labels(axes, labels, min_gap=0.045):
             placed.append((fx, fy))
 
 
+def tongue_top(points, tongues, i):
+    """(Omega, energy) of tongue i's highest point: its tongue points between
+    its feet (tongues.csv); the resonance's own Omega if none is found."""
+    begin, end = tongues["foot_omega_begin"][i], tongues["foot_omega_end"][i]
+    low, high = min(begin, end), max(begin, end)
+    on = [(e, w) for w, e, b in zip(points["Omega"], points["energy"], points["branch"])
+          if b == "tongue" and low <= w <= high]
+    if not on:
+        return tongues["omega_resonance"][i], tongues["max_energy"][i]
+    energy, omega = max(on)
+    return omega, energy
+
+
 def backbone_plot(directory):
     points = read(os.path.join(directory, "backbone.csv"))
     mode, w_mode, e_g = grazing_scale(directory)
@@ -128,9 +141,14 @@ def backbone_plot(directory):
         top = axes.secondary_xaxis("top", functions=(lambda x: x / w_mode, lambda x: x * w_mode))
         top.set_xlabel(f"$\\Omega / \\omega_{mode}$", fontsize=8)
         top.tick_params(labelsize=7)
-    # Tongue labels w_j/k at their top, the highest tongues first, none overlapping.
-    order = sorted(range(len(t.get("points", []))), key=lambda i: -t["max_energy"][i])
-    place_labels(axes, [(t["omega_resonance"][i], t["max_energy"][i] / e_g,
+    # Tongue labels w_j/k at each tongue's highest point, the highest tongues
+    # first, none overlapping; the axis is raised so that the top ones fit.
+    tops = [tongue_top(points, t, i) for i in range(len(t.get("points", [])))]
+    if tops:
+        low_e, high_e = axes.get_ylim()
+        axes.set_ylim(low_e, max(high_e, 3 * max(e for _, e in tops) / e_g))
+    order = sorted(range(len(tops)), key=lambda i: -tops[i][1])
+    place_labels(axes, [(tops[i][0], tops[i][1] / e_g,
                          f"$\\omega_{{{int(t['mode'][i])}}}/{int(t['harmonic'][i])}$") for i in order])
     main = points["branch"].count("main")
     title = (f"Backbone: {main} main points, {len(points['Omega']) - main} on tongues, "
@@ -142,7 +160,11 @@ def backbone_plot(directory):
         found = sum(s in ("true", "false") for s in points["stable"])
         title += f"\n{found} orbits found in time, {points['stable'].count('false')} unstable"
     axes.set_title(title, fontsize=10, pad=22 if w_mode else 6)
-    axes.legend(loc="best", fontsize=7, framealpha=0.9)
+    # A branch that rises in Omega (the physical sign) climbs away from
+    # grazing: the corner below its far end is free of points and of tongue
+    # labels (they sit at the tongues' tops). The eq. (5) branch runs flat.
+    rising = points["Omega"][-1] >= points["Omega"][0]
+    axes.legend(loc="lower right" if rising else "best", fontsize=7, framealpha=0.9)
     save(figure, os.path.join(directory, "backbone.png"))
 
 
