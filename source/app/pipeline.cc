@@ -203,8 +203,9 @@ namespace nsm
         });
       }
 
-      /// Writes the continuation's checkpoint (a stop signal ended the run).
-      void write_checkpoint_file(const std::string &directory)
+      /// Writes the continuation's checkpoint and the points verified so far
+      /// (a stop signal ended the run).
+      void write_checkpoints(const std::string &directory)
       {
         if (backbone_.checkpoint)
           report_.files.push_back(write_atomically(directory + "/" + checkpoint_file, [&](std::ostream &out) {
@@ -228,7 +229,7 @@ namespace nsm
                                                    backbone_, scene_.output);
               const auto kept = std::count_if(known.begin(), known.end(), [](const auto &v) { return v.has_value(); });
               report_.notes.push_back("resumed verification in time: " + std::to_string(kept) + " points from " +
-                                      verification_checkpoint_file + " (the same Verify steps and periods)");
+                                      verification_checkpoint_file + " (kept only with the same Verify steps and periods)");
             }
           verifications_ = verify_backbone(*hb_, *discretisation_, backbone_, scene_.output, progress, known);
           report_.result.push_back(verification_summary(verifications_, scene_));
@@ -525,7 +526,7 @@ namespace nsm
       }
     run.write(output.staging());
     if (report.stopped_by != 0)
-      run.write_checkpoint_file(output.staging());
+      run.write_checkpoints(output.staging());
     if (scene.output.plots)
       run.plots(output.staging());
     report.files = output.commit(report.files, manifest_notes);
