@@ -13,7 +13,6 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include <algorithm>
 #include <csignal>
 #include <cstdlib>
 #include <iostream>
@@ -62,12 +61,9 @@ namespace
             nsm::print_report(report, std::cout, verbose);
             if (report.stopped_by != 0)
               {
-                const bool resumable = std::any_of(report.files.begin(), report.files.end(), [](const std::string &f) {
-                  return f.size() >= 20 && f.compare(f.size() - 20, 20, "/continuation.resume") == 0;
-                });
                 std::cerr << "nsm-bar: stopped by " << nsm::stop_signal_name(report.stopped_by)
                           << "; the output holds what was computed before"
-                          << (resumable ? " (nsm-bar " + nsm::printable(path) + " --resume goes on from it, with the same --set and --output)" : "")
+                          << (report.resumable ? " (nsm-bar " + nsm::printable(path) + " --resume goes on from it, with the same --set and --output)" : "")
                           << '\n';
                 return nsm::stop_exit_code(report.stopped_by);
               }

@@ -125,9 +125,12 @@ namespace nsm
     class SceneRun
     {
     public:
-      SceneRun(const Scene &scene, RunReport &report)
+      /// With `resume`, the continuation and the verification go on from the
+      /// checkpoints in Output/Directory.
+      SceneRun(const Scene &scene, RunReport &report, const bool resume)
         : scene_(scene)
         , report_(report)
+        , resume_(resume)
       {}
 
       void mesh(const BarModel &bar)
@@ -182,16 +185,13 @@ namespace nsm
         timed("receptance", [&] { tables_.push_back(receptance_table(*receptance_, scene_.output)); });
       }
 
-      /// With `resume`, the continuation goes on from the checkpoint in
-      /// Output/Directory.
-      void harmonic_balance(const bool resume)
+      void harmonic_balance()
       {
-        resume_ = resume;
         timed("harmonic balance", [&] {
           hb_         = std::make_unique<HarmonicBalance>(scene_, *receptance_);
           resonances_ = internal_resonances(*receptance_, scene_);
           std::optional<ContinuationCheckpoint> checkpoint;
-          if (resume)
+          if (resume_)
             {
               checkpoint = read_checkpoint(scene_.output.directory + "/" + checkpoint_file, scene_, *hb_);
               report_.notes.push_back(resume_note(*checkpoint));
@@ -207,7 +207,7 @@ namespace nsm
       /// (a stop signal ended the run).
       void write_checkpoints(const std::string &directory)
       {
-        if (backbone_.checkpoint)
+        if ((report_.resumable = backbone_.checkpoint != nullptr))
           report_.files.push_back(write_atomically(directory + "/" + checkpoint_file, [&](std::ostream &out) {
             write_checkpoint(out, *backbone_.checkpoint, scene_.computation_entries);
           }));
@@ -436,6 +436,7 @@ namespace nsm
 
       Scene                           scene_; ///< with its automatic range set (automatic_range.h)
       RunReport                      &report_;
+      const bool                      resume_; ///< --resume: checkpoints are read
       const BarModel                 *bar_ = nullptr;
       std::vector<CsvTable>           tables_;
       std::unique_ptr<Discretisation> discretisation_;
@@ -446,7 +447,6 @@ namespace nsm
       Verifications                   verifications_;
       RefinedOrbits                   orbits_;
       std::vector<double>             bar_amplitudes_;
-      bool                            resume_ = false; ///< --resume: checkpoints are read
       std::vector<PeriodicField>      fields_;
     };
   } // namespace
@@ -476,7 +476,7 @@ namespace nsm
                              ": this run started again and replaces it (--resume goes on from one)");
     OutputDirectory output(scene.output.directory);
     report.notes.push_back(memory_note(scene));
-    SceneRun        run(scene, report);
+    SceneRun        run(scene, report, resume);
     run.mesh(bar);
     if (scene.output.refine_in_time)
       run.check_refinement_size();
@@ -487,7 +487,7 @@ namespace nsm
     if (needs_receptance)
       run.receptance();
     if (needs_backbone)
-      run.harmonic_balance(resume);
+      run.harmonic_balance();
     // A stop asked for (SIGINT, SIGTERM) ends the continuation, the
     // verification or the refinement at its next point (the fields at the
     // end of their stage); the stages after it are left out, and what was

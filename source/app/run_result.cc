@@ -93,7 +93,7 @@ namespace nsm
       s.precision(3);
       s << "against the exact mode (" << exact->name() << "): main-point energy error median "
         << 100 * errors[errors.size() / 2] << " %, 90th percentile " << 100 * errors[errors.size() * 9 / 10]
-        << " %, within 5 %: " << within << " of " << errors.size();
+        << " %, within " << 100 * exact_error_share << " %: " << within << " of " << errors.size();
       return {s.str()};
     }
   } // namespace

@@ -1,13 +1,9 @@
+#include <nsm/base/checkpoint_reader.h>
 #include <nsm/base/errors.h>
 #include <nsm/base/text.h>
 #include <nsm/continuation/checkpoint.h>
 #include <nsm/harmonic_balance/harmonic_balance.h>
 
-#include <cerrno>
-#include <cmath>
-#include <cstdlib>
-#include <fstream>
-#include <ios>
 #include <sstream>
 
 namespace nsm
@@ -15,82 +11,6 @@ namespace nsm
   namespace
   {
     constexpr const char *format_line = "nsm-bar continuation checkpoint 1";
-
-    /// An exact double: hexadecimal floating point.
-    std::string exact(const double value)
-    {
-      std::ostringstream s;
-      s << std::hexfloat << value;
-      return s.str();
-    }
-
-    /// The checkpoint's lines, read one at a time; any line that is not what
-    /// the writer wrote is refused, naming the file and the line.
-    class CheckpointReader
-    {
-    public:
-      explicit CheckpointReader(const std::string &path)
-        : path_(path)
-        , in_(path)
-      {
-        if (!in_)
-          throw InputError("command line: --resume needs the interrupted run's " + std::string(checkpoint_file) +
-                           " in Output/Directory, and '" + printable(path) +
-                           "' cannot be read: run the scene without --resume");
-      }
-
-      /// The next line, split at the first blank: its key and the rest.
-      std::istringstream next(const std::string &key)
-      {
-        std::string line;
-        if (!std::getline(in_, line))
-          damaged("it ends early");
-        ++number_;
-        if (line.compare(0, key.size(), key) != 0)
-          damaged("'" + key + "' expected");
-        return std::istringstream(line.substr(key.size()));
-      }
-
-      std::string text_line()
-      {
-        std::string line;
-        if (!std::getline(in_, line))
-          damaged("it ends early");
-        ++number_;
-        return line;
-      }
-
-      double number(std::istringstream &in)
-      {
-        std::string token;
-        in >> token;
-        char *end = nullptr;
-        errno     = 0;
-        const double value = std::strtod(token.c_str(), &end);
-        if (token.empty() || *end != '\0' || errno != 0 || !std::isfinite(value))
-          damaged("a finite number expected");
-        return value;
-      }
-
-      std::size_t count(std::istringstream &in, const std::size_t limit)
-      {
-        const double value = number(in);
-        if (!(value >= 0 && value <= static_cast<double>(limit)) || value != static_cast<std::size_t>(value))
-          damaged("a count in [0, " + std::to_string(limit) + "] expected");
-        return static_cast<std::size_t>(value);
-      }
-
-      [[noreturn]] void damaged(const std::string &why) const
-      {
-        throw InputError("command line: --resume: '" + printable(path_) + "' is not a checkpoint nsm-bar wrote (line " +
-                         std::to_string(number_) + ": " + why + "): run the scene without --resume");
-      }
-
-    private:
-      std::string   path_;
-      std::ifstream in_;
-      unsigned int  number_ = 0;
-    };
 
     /// The interrupted run's entries must be the scene's: the first that
     /// differs is named with both values.
@@ -151,6 +71,10 @@ namespace nsm
   ContinuationCheckpoint read_checkpoint(const std::string &path, const Scene &scene, HarmonicBalance &hb)
   {
     CheckpointReader reader(path);
+    if (!reader.opened())
+      throw InputError("command line: --resume needs the interrupted run's " + std::string(checkpoint_file) +
+                       " in Output/Directory, and '" + printable(path) +
+                       "' cannot be read: run the scene without --resume");
     if (reader.text_line() != format_line)
       reader.damaged("'" + std::string(format_line) + "' expected");
     check_entries(reader, scene.computation_entries);

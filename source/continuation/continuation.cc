@@ -35,33 +35,41 @@ namespace nsm
 
   namespace
   {
-    /// The counts a segment started with (its first point the last):
-    /// an interrupted arclength segment is traced again from there.
-    struct SegmentStart
+    /// How far the backbone's lists reach: at a segment's start (its first
+    /// point the last), where an interrupted arclength segment is traced
+    /// again from, or at its end.
+    struct Counts
     {
       std::size_t  points, events, folds;
       unsigned int leaps;
     };
+
+    Counts counts(const Backbone &b) { return {b.points.size(), b.events.size(), b.folds.size(), b.leaps}; }
+
+    /// A checkpoint of the backbone's lists up to `cut`, with the context's span.
+    std::shared_ptr<ContinuationCheckpoint> checkpoint_up_to(const BranchContext &context, const Backbone &b,
+                                                             const Counts &cut)
+    {
+      auto c = std::make_shared<ContinuationCheckpoint>();
+      c->points.assign(b.points.begin(), b.points.begin() + cut.points);
+      c->events.assign(b.events.begin(), b.events.begin() + cut.events);
+      c->folds.assign(b.folds.begin(), b.folds.begin() + cut.folds);
+      c->leaps = cut.leaps;
+      c->span  = context.span;
+      return c;
+    }
 
     /// The checkpoint of a continuation interrupted in `segment`: the
     /// sequential method goes on from its last point with its next step;
     /// any other from the segment's first point.
     std::shared_ptr<ContinuationCheckpoint> interrupted_checkpoint(const BranchContext &context,
                                                                    const Backbone &backbone,
-                                                                   const unsigned int segment,
-                                                                   const SegmentStart &start)
+                                                                   const unsigned int segment, const Counts &start)
     {
-      auto c     = std::make_shared<ContinuationCheckpoint>();
+      auto c     = checkpoint_up_to(context, backbone, context.next_step ? counts(backbone) : start);
       c->segment = segment;
-      c->span    = context.span;
       c->step    = context.next_step;
-      const bool whole = c->step.has_value();
-      const auto &b    = backbone;
-      c->points.assign(b.points.begin(), b.points.begin() + (whole ? b.points.size() : start.points));
-      c->events.assign(b.events.begin(), b.events.begin() + (whole ? b.events.size() : start.events));
-      c->folds.assign(b.folds.begin(), b.folds.begin() + (whole ? b.folds.size() : start.folds));
-      c->leaps = whole ? b.leaps : start.leaps;
-      c->end   = BackboneEnd::interrupted;
+      c->end     = BackboneEnd::interrupted;
       return c;
     }
 
@@ -73,8 +81,7 @@ namespace nsm
       const std::unique_ptr<SegmentTracer> method = make_segment_tracer(context.scene.continuation.method);
       for (;; ++segment)
         {
-          const SegmentStart start{backbone.points.size(), backbone.events.size(), backbone.folds.size(),
-                                   backbone.leaps};
+          const Counts start = counts(backbone);
           context.next_step.reset();
           const SegmentEnd end   = method->trace(context, backbone, segment);
           const double omega = backbone.points.back().omega;
@@ -122,12 +129,7 @@ namespace nsm
     std::shared_ptr<ContinuationCheckpoint> complete_checkpoint(const BranchContext &context,
                                                                 const Backbone      &backbone)
     {
-      auto c      = std::make_shared<ContinuationCheckpoint>();
-      c->points   = backbone.points;
-      c->events   = backbone.events;
-      c->folds    = backbone.folds;
-      c->leaps    = backbone.leaps;
-      c->span     = context.span;
+      auto c      = checkpoint_up_to(context, backbone, counts(backbone));
       c->segment  = backbone.points.back().segment;
       c->complete = true;
       c->end      = backbone.end;

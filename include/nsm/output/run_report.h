@@ -27,6 +27,8 @@ namespace nsm
     std::vector<std::string> files;
     /// The signal (SIGINT, SIGTERM) that stopped the run early; 0 if none.
     int stopped_by = 0;
+    /// The stopped run wrote its continuation's checkpoint: --resume goes on from it.
+    bool resumable = false;
     /// A request the run could not meet after writing everything else
     /// (a field with no main point within reach); the run exits 3.
     std::string failure;
