@@ -58,6 +58,7 @@ namespace nsm
     : basis_(std::move(basis))
     , integration_(integration)
     , samples_(samples)
+    , cached_gram_(basis_)
   {
     const unsigned int harmonics = basis_.order.empty() ? 0 : basis_.order.back();
     top_ = 2 * harmonics + 1;
@@ -73,27 +74,7 @@ namespace nsm
 
   double ActiveSet::value(const std::vector<double> &v, const double tau, double *slope) const
   {
-    // cos k tau and sin k tau by the angle-sum recurrence, basis functions
-    // being ordered by k.
-    const double c1 = std::cos(tau), s1 = std::sin(tau);
-    double       c = 1, s = 0, q = 0, dq = 0;
-    unsigned int k = 0;
-    for (unsigned int i = 0; i < basis_.size(); ++i)
-      {
-        for (; k < basis_.order[i]; ++k)
-          {
-            const double next = c * c1 - s * s1;
-            s = s * c1 + c * s1;
-            c = next;
-          }
-        if (basis_.sine[i])
-          q += v[i] * s, dq += v[i] * k * c;
-        else
-          q += v[i] * c, dq -= v[i] * k * s;
-      }
-    if (slope)
-      *slope = dq;
-    return q;
+    return TrigonometricSeries(basis_, v)(tau, slope);
   }
 
   std::vector<double> ActiveSet::roots(const std::vector<double> &v) const
@@ -110,14 +91,14 @@ namespace nsm
       curvature += std::abs(v[i]) * basis_.order[i] * basis_.order[i];
     const double reach = 0.5 * h * h * curvature;
 
-    const auto          q_of = [&](double tau, double *slope) { return value(v, tau, slope); };
-    std::vector<double> found;
+    const TrigonometricSeries series(basis_, v);
+    std::vector<double>       found;
     for (unsigned int t = 0; t < samples_; ++t)
       {
         const unsigned int next = (t + 1) % samples_;
         if ((q[t] > 0) != (q[next] > 0))
-          found.push_back(bracketed_root(t * h, t * h + h, q[t], q[next], q_of));
-        crossings_near_extremum(v, q, t, reach, found);
+          found.push_back(bracketed_root(t * h, t * h + h, q[t], q[next], series));
+        crossings_near_extremum(series, q, t, reach, found);
       }
     for (double &r : found)
       r = std::fmod(r + two_pi, two_pi);
@@ -128,7 +109,7 @@ namespace nsm
     return found;
   }
 
-  void ActiveSet::crossings_near_extremum(const std::vector<double> &v, const std::vector<double> &q,
+  void ActiveSet::crossings_near_extremum(const TrigonometricSeries &series, const std::vector<double> &q,
                                           const unsigned int t, const double reach,
                                           std::vector<double> &found) const
   {
@@ -147,116 +128,72 @@ namespace nsm
       return;
     const double h  = two_pi / samples_;
     double       lo = t * h - h, hi = t * h + h, s_lo, s_hi;
-    value(v, lo, &s_lo);
-    value(v, hi, &s_hi);
+    series(lo, &s_lo);
+    series(hi, &s_hi);
     if ((s_lo > 0) == (s_hi > 0))
       return;
-    const auto q_of = [&](double tau, double *slope) { return value(v, tau, slope); };
     // q' with its own slope q'', for the extremum between samples.
     const auto dq_of = [&](double tau, double *slope) {
       const double e = harmonic_balance_constants::extremum_slope_step;
       double       d0, dp, dm;
-      value(v, tau, &d0);
+      series(tau, &d0);
       if (slope)
         {
-          value(v, tau + e, &dp);
-          value(v, tau - e, &dm);
+          series(tau + e, &dp);
+          series(tau - e, &dm);
           *slope = (dp - dm) / (2 * e);
         }
       return d0;
     };
     const double extremum   = bracketed_root(lo, hi, s_lo, s_hi, dq_of);
-    const double q_extremum = value(v, extremum, nullptr);
+    const double q_extremum = series(extremum, nullptr);
     if ((q_extremum > 0) == (q[t] > 0))
       return;
-    found.push_back(bracketed_root(lo, extremum, q[prev], q_extremum, q_of));
-    found.push_back(bracketed_root(extremum, hi, q_extremum, q[next], q_of));
+    found.push_back(bracketed_root(lo, extremum, q[prev], q_extremum, series));
+    found.push_back(bracketed_root(extremum, hi, q_extremum, q[next], series));
   }
 
-  double ActiveSet::gram_exact(const std::vector<double> &v, std::vector<double> &gram) const
+  void ActiveSet::gram_exact(const std::vector<double> &v) const
   {
-    const unsigned int n = basis_.size(), top = top_;
-    const std::vector<double> r = roots(v);
+    const std::vector<double>              r = roots(v);
+    const TrigonometricSeries              series(basis_, v);
     std::vector<std::pair<double, double>> intervals;
     if (r.empty())
       {
-        if (value(v, 0.0, nullptr) > 0)
+        if (series(0.0, nullptr) > 0)
           intervals.emplace_back(0.0, two_pi);
       }
     else
       for (std::size_t i = 0; i < r.size(); ++i)
         {
           const double a = r[i], b = i + 1 < r.size() ? r[i + 1] : r[0] + two_pi;
-          if (value(v, 0.5 * (a + b), nullptr) > 0)
+          if (series(0.5 * (a + b), nullptr) > 0)
             intervals.emplace_back(a, b);
         }
-
-    // Integrals of cos m tau and sin m tau over the active set.
-    std::vector<double> ic(top, 0.0), is(top, 0.0), ca, sa, cb, sb;
-    double              measure = 0;
-    for (const auto &[a, b] : intervals)
-      {
-        measure += b - a;
-        trig_table(a, top, ca, sa);
-        trig_table(b, top, cb, sb);
-        ic[0] += b - a;
-        for (unsigned int m = 1; m < top; ++m)
-          {
-            ic[m] += (sb[m] - sa[m]) / m;
-            is[m] += (ca[m] - cb[m]) / m;
-          }
-      }
-    gram.assign(n * n, 0.0);
-    for (unsigned int i = 0; i < n; ++i)
-      {
-        const double norm = (basis_.order[i] == 0 ? 1.0 : 2.0) / two_pi;
-        for (unsigned int j = 0; j < n; ++j)
-          product_terms(basis_.sine[i], basis_.order[i], basis_.sine[j], basis_.order[j],
-                        [&](bool sine_term, int m, double coefficient) {
-                          gram[i * n + j] += norm * coefficient * (sine_term ? is[m] : ic[m]);
-                        });
-      }
-    return measure / two_pi;
+    cached_gram_.set_intervals(intervals);
   }
 
-  double ActiveSet::gram_sampled(const std::vector<double> &v, std::vector<double> &gram) const
+  void ActiveSet::gram_sampled(const std::vector<double> &v) const
   {
-    const unsigned int        n = basis_.size();
+    std::vector<double> q(samples_, 0.0);
+    sample_series(basis_.size(), samples_, v.data(), table_.data(), q.data());
     std::vector<unsigned int> active;
     for (unsigned int t = 0; t < samples_; ++t)
-      {
-        double q = 0;
-        for (unsigned int i = 0; i < n; ++i)
-          q += v[i] * table_[i * samples_ + t];
-        if (q > 0)
-          active.push_back(t);
-      }
-    gram.assign(n * n, 0.0);
-    for (unsigned int i = 0; i < n; ++i)
-      {
-        const double norm = (basis_.order[i] == 0 ? 1.0 : 2.0) / samples_;
-        for (unsigned int j = i; j < n; ++j)
-          {
-            double sum = 0;
-            for (const unsigned int t : active)
-              sum += table_[i * samples_ + t] * table_[j * samples_ + t];
-            gram[i * n + j] = norm * sum;
-            gram[j * n + i] = (basis_.order[j] == 0 ? 1.0 : 2.0) / samples_ * sum;
-          }
-      }
-    return double(active.size()) / samples_;
+      if (q[t] > 0)
+        active.push_back(t);
+    cached_gram_.set_samples(active, samples_);
   }
 
-  double ActiveSet::gram(const std::vector<double> &v, std::vector<double> &gram) const
+  const StructuredGram &ActiveSet::gram(const std::vector<double> &v) const
   {
     if (v != cached_coefficients_)
       {
-        cached_fraction_ = integration_ == Integration::exact ?
-                             gram_exact(v, cached_gram_) :
-                             gram_sampled(v, cached_gram_);
+        if (integration_ == Integration::exact)
+          gram_exact(v);
+        else
+          gram_sampled(v);
         cached_coefficients_ = v;
       }
-    gram = cached_gram_;
-    return cached_fraction_;
+    return cached_gram_;
   }
 } // namespace nsm

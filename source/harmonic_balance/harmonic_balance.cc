@@ -107,46 +107,50 @@ namespace nsm
     const unsigned int n = n_unknowns();
     const ScopedTimer  timer(jacobian || domega ? cost_.jacobian_seconds : cost_.residual_seconds);
     ++(jacobian || domega ? cost_.jacobians : cost_.residuals);
-    const std::vector<double> v = contact_coefficients(x);
-    std::vector<double>       gram;
-    active_set_.gram(v, gram);
+    const std::vector<double> v    = contact_coefficients(x);
+    const StructuredGram     &gram = active_set_.gram(v);
     const auto is_unfolding = [&](unsigned int i) { return has_unfolding() && i == 1; };
 
     if (residual)
       {
-        residual->assign(n, 0.0);
+        gram.multiply(v, *residual);
         for (unsigned int i = 0; i < n; ++i)
-          {
-            double projection = 0;
-            for (unsigned int j = 0; j < n; ++j)
-              projection += gram[i * n + j] * v[j];
-            (*residual)[i] = (is_unfolding(i) ? x[i] : x[i] * phases_[functions_.order[i]].cos) - projection;
-          }
+          (*residual)[i] = (is_unfolding(i) ? x[i] : x[i] * phases_[functions_.order[i]].cos) - (*residual)[i];
       }
     if (jacobian)
       {
-        jacobian->assign(n * n, 0.0);
+        // J = diag(cos) - G diag(D), column-major.
+        std::vector<double> dense;
+        gram.fill(dense);
+        jacobian->resize(std::size_t(n) * n);
         for (unsigned int j = 0; j < n; ++j)
           {
             const HarmonicPhase &p = phases_[functions_.order[j]];
             const double d = is_unfolding(j) ? 0.0 : law_.indicator_weight(p.cos, p.sin);
             for (unsigned int i = 0; i < n; ++i)
-              (*jacobian)[i + j * n] = -gram[i * n + j] * d;
-            (*jacobian)[j + j * n] += is_unfolding(j) ? 1.0 : p.cos;
+              (*jacobian)[i + std::size_t(j) * n] = -dense[std::size_t(i) * n + j] * d;
+            (*jacobian)[j + std::size_t(j) * n] += is_unfolding(j) ? 1.0 : p.cos;
           }
       }
     if (domega)
       {
-        domega->assign(n, 0.0);
+        // dR/dW = -x sin(theta) dtheta/dW - G (dD/dW x).
+        std::vector<double> w(n, 0.0);
+        for (unsigned int i = 0; i < n; ++i)
+          if (!is_unfolding(i))
+            {
+              const HarmonicPhase &p = phases_[functions_.order[i]];
+              w[i] = law_.indicator_weight_slope(p.cos, p.sin) * p.dtheta_domega * x[i];
+            }
+        gram.multiply(w, *domega);
         for (unsigned int i = 0; i < n; ++i)
           {
-            if (is_unfolding(i))
-              continue;
-            const HarmonicPhase &p = phases_[functions_.order[i]];
-            (*domega)[i] -= x[i] * p.sin * p.dtheta_domega;
-            const double dd = law_.indicator_weight_slope(p.cos, p.sin) * p.dtheta_domega;
-            for (unsigned int r = 0; r < n; ++r)
-              (*domega)[r] -= gram[r * n + i] * dd * x[i];
+            (*domega)[i] = -(*domega)[i];
+            if (!is_unfolding(i))
+              {
+                const HarmonicPhase &p = phases_[functions_.order[i]];
+                (*domega)[i] -= x[i] * p.sin * p.dtheta_domega;
+              }
           }
       }
   }
@@ -202,8 +206,7 @@ namespace nsm
 
   double HarmonicBalance::contact_fraction(const std::vector<double> &x) const
   {
-    std::vector<double> gram;
-    return active_set_.gram(contact_coefficients(x), gram);
+    return active_set_.gram(contact_coefficients(x)).share();
   }
 
   PeriodicSolutionMeasures HarmonicBalance::measure(const std::vector<double> &x) const
@@ -213,8 +216,7 @@ namespace nsm
     PeriodicSolutionMeasures  result{};
     measures_.energy(solution, result);
     measures_.force_and_gap(solution, active_set_, law_, result);
-    std::vector<double> gram;
-    result.contact_fraction = active_set_.gram(contact_coefficients(x), gram);
+    result.contact_fraction = active_set_.gram(contact_coefficients(x)).share();
     return result;
   }
 } // namespace nsm

@@ -40,6 +40,34 @@ TEST(DenseLu, SolvesARandomSystemOfTheJacobiansSize)
     EXPECT_NEAR(b[i], x[i], 1e-11) << i;
 }
 
+TEST(DenseLu, IsBackwardStableAtTheJacobiansSizesForHighHarmonics)
+{
+  // M = 160 and 320 (cosine basis), and sizes between whole blocks of the
+  // factorisation: LU with partial pivoting solves a nearby system, |A x - b|
+  // <= c n eps |A| |x| with c of order the growth factor (a few for random
+  // matrices); 4 n eps fails a wrong multiplier or a skipped update by
+  // orders of magnitude.
+  for (const int n : {7, 9, 161, 321})
+    {
+      std::mt19937                           engine(n);
+      std::uniform_real_distribution<double> uniform(-1, 1);
+      std::vector<double>                    a(n * n), x(n);
+      for (double &v : a)
+        v = uniform(engine);
+      for (double &v : x)
+        v = uniform(engine);
+      const std::vector<double> b = times(a, x);
+      std::vector<double>       solution = b, lu = a;
+      ASSERT_TRUE(nsm::dense_solve(n, lu.data(), solution.data()));
+      const std::vector<double> back = times(a, solution);
+      double                    largest = 0;
+      for (const double v : solution)
+        largest = std::max(largest, std::abs(v));
+      for (int i = 0; i < n; ++i)
+        EXPECT_LE(std::abs(back[i] - b[i]), 4 * n * 2.2e-16 * largest * n) << n << ' ' << i;
+    }
+}
+
 TEST(DenseLu, PivotsPastAZeroDiagonal)
 {
   // [[0, 2, 0], [1, 0, 0], [0, 1, 3]] (column-major below) has a zero first

@@ -1,7 +1,7 @@
-// Solves a small dense system by LU with partial pivoting, unblocked and
-// vectorised: for the harmonic balance's Jacobian (M + 1 or 2M + 1 unknowns)
-// the reference LAPACK's blocked dgetrf spends more in its BLAS calls than in
-// arithmetic.
+// Solves a small dense system by LU with partial pivoting, in blocks of
+// pivots with a vectorised trailing update: for the harmonic balance's
+// Jacobian (M + 1 or 2M + 1 unknowns) the reference LAPACK's dgetrf spends
+// more in its BLAS calls than in arithmetic.
 #pragma once
 
 namespace nsm

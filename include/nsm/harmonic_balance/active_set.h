@@ -9,7 +9,9 @@
 #pragma once
 
 #include <nsm/scene/scene.h>
+#include <nsm/harmonic_balance/structured_gram.h>
 #include <nsm/harmonic_balance/trigonometric.h>
+#include <nsm/harmonic_balance/trigonometric_series.h>
 
 #include <vector>
 
@@ -27,10 +29,10 @@ namespace nsm
     /// one row of samples per basis function).
     const std::vector<double> &table() const { return table_; }
 
-    /// The Gram matrix over {q > 0} (row-major n x n); returns the share of
-    /// the period where q > 0. The last v's result is kept: NOX asks for the
-    /// residual and the Jacobian at one point separately.
-    double gram(const std::vector<double> &v, std::vector<double> &gram) const;
+    /// The Gram matrix over {q > 0}, in structured form (its share() is the
+    /// share of the period where q > 0). The last v's result is kept: NOX
+    /// asks for the residual and the Jacobian at one point separately.
+    const StructuredGram &gram(const std::vector<double> &v) const;
 
     /// q(tau), and q'(tau) if slope is given.
     double value(const std::vector<double> &v, double tau, double *slope) const;
@@ -41,10 +43,10 @@ namespace nsm
     /// Adds to `found` the two roots of q around sample t when q has an
     /// extremum there towards zero that the samples q (of v) do not show
     /// crossing it; `reach` bounds how far q departs between samples.
-    void crossings_near_extremum(const std::vector<double> &v, const std::vector<double> &q, unsigned int t,
+    void crossings_near_extremum(const TrigonometricSeries &series, const std::vector<double> &q, unsigned int t,
                                  double reach, std::vector<double> &found) const;
-    double gram_exact(const std::vector<double> &v, std::vector<double> &gram) const;
-    double gram_sampled(const std::vector<double> &v, std::vector<double> &gram) const;
+    void gram_exact(const std::vector<double> &v) const;
+    void gram_sampled(const std::vector<double> &v) const;
 
     TrigonometricBasis  basis_;
     Integration         integration_;
@@ -52,7 +54,7 @@ namespace nsm
     unsigned int        top_; ///< 2 M + 1: the orders of the products' terms
     std::vector<double> table_;
 
-    mutable std::vector<double> cached_coefficients_, cached_gram_;
-    mutable double              cached_fraction_ = 0;
+    mutable std::vector<double> cached_coefficients_;
+    mutable StructuredGram      cached_gram_;
   };
 } // namespace nsm
