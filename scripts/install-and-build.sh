@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 packages=(cmake g++ make libdeal.ii-dev openmpi-bin libgtest-dev python3-matplotlib python3-vtk9 python3-numpy
-          python3-scipy valgrind)
+          python3-scipy valgrind libfftw3-dev)
 missing=()
 for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" \

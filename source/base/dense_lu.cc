@@ -29,8 +29,8 @@ namespace nsm
 
     /// Below this many unknowns (M < 64 in the cosine basis) the unblocked
     /// elimination is faster: the blocks' bookkeeping outweighs the loads
-    /// they save (tests/benchmarks/benchmark_linear_solve: 5.8 against 7.4 us
-    /// at n = 41, 252 against 200 us at n = 161).
+    /// they save (tests/benchmarks/benchmark_linear_solve, medians: 6.4
+    /// against 7.2 us at n = 41, 252 against 187 us at n = 161).
     constexpr int blocked_from = 64;
 
     /// Unblocked LU with partial pivoting, whole rows swapped.
@@ -131,7 +131,7 @@ namespace nsm
 
     /// LU with partial pivoting of the panel of columns k0..k0+width-1 (rows
     /// k0..), whole rows swapped; then U12, the panel's rows right of it.
-    bool factor_panel(const int n, const int k0, const int width, double *a, int *pivots)
+    __attribute__((target_clones("arch=x86-64-v3", "default"))) bool factor_panel(const int n, const int k0, const int width, double *a, int *pivots)
     {
       auto at = [a, n](const int i, const int j) -> double & { return a[i + std::size_t(j) * n]; };
       for (int k = k0; k < k0 + width; ++k)
@@ -167,12 +167,23 @@ namespace nsm
       for (int k = 0; k < width; ++k)
         for (int i = 0; i < width; ++i)
           unit_lower[k][i] = at(k0 + i, k0 + k);
-      for (int j = k0 + width; j < n; ++j)
+      // Four columns side by side: the substitution's chain (each u_k waits
+      // for the rows above it) runs on four independent columns at once.
+      constexpr int columns = 4;
+      for (int j = k0 + width; j < n; j += columns)
         {
-          double *u = &at(k0, j);
+          const int count = std::min(columns, n - j);
+          double    u[block][columns] = {};
+          for (int c = 0; c < count; ++c)
+            for (int i = 0; i < width; ++i)
+              u[i][c] = at(k0 + i, j + c);
           for (int k = 0; k < width; ++k)
             for (int i = k + 1; i < width; ++i)
-              u[i] -= unit_lower[k][i] * u[k];
+              for (int c = 0; c < columns; ++c)
+                u[i][c] -= unit_lower[k][i] * u[k][c];
+          for (int c = 0; c < count; ++c)
+            for (int i = 0; i < width; ++i)
+              at(k0 + i, j + c) = u[i][c];
         }
       return true;
     }

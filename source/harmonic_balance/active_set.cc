@@ -8,18 +8,6 @@ namespace nsm
 {
   namespace
   {
-    /// q(t_s) = sum_i v_i phi_i(t_s) on the samples (table row-major, one
-    /// row of `samples` per basis function): contiguous axpys, built for AVX2
-    /// and FMA where the processor has them (GCC function multiversioning).
-    __attribute__((target_clones("arch=x86-64-v3", "default"))) void
-    sample_series(const unsigned int n, const unsigned int samples, const double *__restrict v,
-                  const double *__restrict table, double *__restrict q)
-    {
-      for (unsigned int i = 0; i < n; ++i)
-        for (unsigned int t = 0; t < samples; ++t)
-          q[t] += v[i] * table[std::size_t(i) * samples + t];
-    }
-
     /// Safeguarded Newton on a bracket [a, b] where f changes sign, from the
     /// regula falsi point, to root_tolerance in tau. f(x, &slope) returns f
     /// and sets f'.
@@ -58,19 +46,9 @@ namespace nsm
     : basis_(std::move(basis))
     , integration_(integration)
     , samples_(samples)
+    , sampler_(basis_, samples)
     , cached_gram_(basis_)
-  {
-    const unsigned int harmonics = basis_.order.empty() ? 0 : basis_.order.back();
-    top_ = 2 * harmonics + 1;
-    table_.resize(basis_.size() * samples_);
-    std::vector<double> c, s;
-    for (unsigned int t = 0; t < samples_; ++t)
-      {
-        trig_table(two_pi * t / samples_, harmonics + 1, c, s);
-        for (unsigned int i = 0; i < basis_.size(); ++i)
-          table_[i * samples_ + t] = basis_.sine[i] ? s[basis_.order[i]] : c[basis_.order[i]];
-      }
-  }
+  {}
 
   double ActiveSet::value(const std::vector<double> &v, const double tau, double *slope) const
   {
@@ -79,8 +57,8 @@ namespace nsm
 
   std::vector<double> ActiveSet::roots(const std::vector<double> &v) const
   {
-    std::vector<double> q(samples_, 0.0);
-    sample_series(basis_.size(), samples_, v.data(), table_.data(), q.data());
+    std::vector<double> q;
+    sampler_(v, q);
 
     // Between samples q departs from a sampled extremum by at most
     // |q''|max h^2 / 2 <= h^2 / 2 sum |v_i| k_i^2: only extrema closer to zero
@@ -175,8 +153,8 @@ namespace nsm
 
   void ActiveSet::gram_sampled(const std::vector<double> &v) const
   {
-    std::vector<double> q(samples_, 0.0);
-    sample_series(basis_.size(), samples_, v.data(), table_.data(), q.data());
+    std::vector<double> q;
+    sampler_(v, q);
     std::vector<unsigned int> active;
     for (unsigned int t = 0; t < samples_; ++t)
       if (q[t] > 0)

@@ -98,18 +98,19 @@ namespace nsm
     const std::vector<double> &x         = solution.x;
     double lambda_max = -std::numeric_limits<double>::max(), lambda_min = -lambda_max;
     double gap_min = lambda_min, complementarity = 0, amplitude = 0;
-    const unsigned int         n = functions.size(), count = samples.n_samples();
-    const std::vector<double> &table = samples.table();
+    const unsigned int  n = functions.size(), count = samples.n_samples();
+    std::vector<double> force(n), displacement(n), lambdas, us;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const HarmonicPhase &p = solution.phases[functions.order[i]];
+        force[i]        = solution.scale * x[i] * p.cos;
+        displacement[i] = -law.sign() * solution.scale * x[i] * p.sin;
+      }
+    samples.sample(force, lambdas);
+    samples.sample(displacement, us);
     for (unsigned int t = 0; t < count; ++t)
       {
-        double lambda = 0, u = 0;
-        for (unsigned int i = 0; i < n; ++i)
-          {
-            const HarmonicPhase &p = solution.phases[functions.order[i]];
-            lambda += x[i] * p.cos * table[i * count + t];
-            u -= law.sign() * x[i] * p.sin * table[i * count + t];
-          }
-        lambda *= solution.scale, u *= solution.scale;
+        const double lambda = lambdas[t], u = us[t];
         const double g = law.gap_at(u);
         lambda_max = std::max(lambda_max, lambda), lambda_min = std::min(lambda_min, lambda);
         gap_min = std::min(gap_min, g);

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <nsm/scene/scene.h>
+#include <nsm/harmonic_balance/series_samples.h>
 #include <nsm/harmonic_balance/structured_gram.h>
 #include <nsm/harmonic_balance/trigonometric.h>
 #include <nsm/harmonic_balance/trigonometric_series.h>
@@ -25,9 +26,9 @@ namespace nsm
     ActiveSet(TrigonometricBasis basis, Integration integration, unsigned int samples);
 
     unsigned int n_samples() const { return samples_; }
-    /// phi_i(tau_s) on the samples tau_s = 2 pi s / samples (row-major,
-    /// one row of samples per basis function).
-    const std::vector<double> &table() const { return table_; }
+    /// A series on the basis with coefficients v at the samples
+    /// tau_s = 2 pi s / samples.
+    void sample(const std::vector<double> &v, std::vector<double> &q) const { sampler_(v, q); }
 
     /// The Gram matrix over {q > 0}, in structured form (its share() is the
     /// share of the period where q > 0). The last v's result is kept: NOX
@@ -51,8 +52,7 @@ namespace nsm
     TrigonometricBasis  basis_;
     Integration         integration_;
     unsigned int        samples_;
-    unsigned int        top_; ///< 2 M + 1: the orders of the products' terms
-    std::vector<double> table_;
+    SeriesSamples       sampler_;
 
     mutable std::vector<double> cached_coefficients_;
     mutable StructuredGram      cached_gram_;
