@@ -27,11 +27,12 @@ namespace nsm
         }
     }
 
-    /// Below this many unknowns (M < 64 in the cosine basis) the unblocked
-    /// elimination is faster: the blocks' bookkeeping outweighs the loads
-    /// they save (tests/benchmarks/benchmark_linear_solve, medians: 6.4
-    /// against 7.2 us at n = 41, 252 against 187 us at n = 161).
-    constexpr int blocked_from = 64;
+    /// Below this many unknowns (M < 96 in the cosine basis) the unblocked
+    /// elimination is as fast or faster: the panels' bookkeeping outweighs
+    /// the loads they save (tests/benchmarks/benchmark_linear_solve, medians
+    /// unblocked against blocked: 6.5 / 7.8 us at n = 41, 35.3 / 36.3 at 81,
+    /// 268 / 188 at 161, 1916 / 1080 at 321).
+    constexpr int blocked_from = 96;
 
     /// Unblocked LU with partial pivoting, whole rows swapped.
     bool factor_unblocked(const int n, double *a, int *pivots)
@@ -189,23 +190,23 @@ namespace nsm
     }
   } // namespace
 
-  bool dense_solve(const int n, double *a, double *x)
+  bool lu_factor(const int n, double *a, int *pivots)
   {
-    auto             at = [a, n](const int i, const int j) -> double & { return a[i + std::size_t(j) * n]; };
-    std::vector<int> pivots(n);
     if (n < blocked_from)
+      return factor_unblocked(n, a, pivots);
+    for (int k0 = 0; k0 < n; k0 += block)
       {
-        if (!factor_unblocked(n, a, pivots.data()))
+        const int width = std::min(block, n - k0);
+        if (!factor_panel(n, k0, width, a, pivots))
           return false;
+        update_trailing(n, k0, width, a);
       }
-    else
-      for (int k0 = 0; k0 < n; k0 += block)
-        {
-          const int width = std::min(block, n - k0);
-          if (!factor_panel(n, k0, width, a, pivots.data()))
-            return false;
-          update_trailing(n, k0, width, a);
-        }
+    return true;
+  }
+
+  void lu_solve(const int n, const double *a, const int *pivots, double *x)
+  {
+    auto at = [a, n](const int i, const int j) { return a[i + std::size_t(j) * n]; };
     // Whole rows were swapped (the multipliers too): P A = L U, so P x first.
     for (int k = 0; k < n; ++k)
       std::swap(x[k], x[pivots[k]]);
@@ -218,6 +219,14 @@ namespace nsm
         for (int i = 0; i < k; ++i)
           x[i] -= at(i, k) * x[k];
       }
+  }
+
+  bool dense_solve(const int n, double *a, double *x)
+  {
+    std::vector<int> pivots(n);
+    if (!lu_factor(n, a, pivots.data()))
+      return false;
+    lu_solve(n, a, pivots.data(), x);
     return true;
   }
 } // namespace nsm

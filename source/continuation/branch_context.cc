@@ -99,18 +99,19 @@ namespace nsm
   }
 
   bool BranchContext::solve(const double omega, const std::vector<double> &guess,
-                            const unsigned int segment, BackbonePoint &point, const bool leaping)
+                            const unsigned int segment, BackbonePoint &point, const Newton newton)
   {
     bool converged = false, at_limit = false;
     for (NewtonSolver *solver : {&newton_, &leap_newton_})
       {
+        if ((solver == &newton_ && newton == Newton::line_search) ||
+            (solver == &leap_newton_ && newton == Newton::full_steps))
+          continue;
         const NewtonResult r = solver->solve(omega, guess);
         if (r.converged && make_point(r.x, omega, r.residual, r.iterations, segment, point))
           return true;
         converged = converged || r.converged;
         at_limit  = at_limit || r.at_iteration_limit;
-        if (!leaping)
-          break;
       }
     last_failure_ = at_limit ? SolveFailure::iteration_limit : converged ? SolveFailure::no_contact : SolveFailure::stalled;
     return false;

@@ -213,11 +213,11 @@ namespace nsm
     if (!main_only && !p.empty())
       {
         for (const BackbonePoint *q : {nearest_on_side(p, omega, -1), nearest_on_side(p, omega, 1)})
-          if (q && context.solve(omega, q->x, q->segment, point, true))
+          if (q && context.solve(omega, q->x, q->segment, point, BranchContext::Newton::both))
             return labelled();
         hb.set_omega(omega);
         const std::vector<double> guess = hb.grazing_guess();
-        if (!guess.empty() && context.solve(omega, guess, nearest_on_side(p, omega, 0)->segment, point, true))
+        if (!guess.empty() && context.solve(omega, guess, nearest_on_side(p, omega, 0)->segment, point, BranchContext::Newton::both))
           return labelled();
       }
     std::ostringstream s;

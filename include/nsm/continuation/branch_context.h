@@ -51,10 +51,19 @@ namespace nsm
     bool make_point(const std::vector<double> &x, double omega, double residual,
                     unsigned int iterations, unsigned int segment, BackbonePoint &point);
 
-    /// Newton from the guess; a leap that fails with full steps tries again
-    /// with a line search and more iterations.
+    /// Which Newton a solve runs: full steps (a continuation step), a line
+    /// search with more iterations (for a guess far from the solution), or
+    /// the first and, where it fails, the second.
+    enum class Newton
+    {
+      full_steps,
+      line_search,
+      both
+    };
+
+    /// Newton from the guess.
     bool solve(double omega, const std::vector<double> &guess, unsigned int segment,
-               BackbonePoint &point, bool leaping = false);
+               BackbonePoint &point, Newton newton = Newton::full_steps);
 
     /// Why the last solve() gave no point: Newton stopped unconverged at Max
     /// iterations (in either try; more iterations might converge), stalled or
