@@ -1,5 +1,11 @@
-// Prototype study: from each leap's landing, sequential steps backwards
-// (towards the fold the leap jumped) fill the gap?
+// Study (not a test): how much of the gaps that leaps leave does sequential
+// continuation backwards from each landing fill? The seed bar (FE_Q(10) x 20,
+// exact integration, grazing to 2.2) at M (argument, default 160): for every
+// leap wider than 0.003, steps of 1e-3 (grown by 1.5 after easy solves,
+// quartered on failure down to 1e-6) from the landing towards the front of
+// the segment before, with the same branch guard as the sequential method;
+// prints how far back each gets, with the energies on the way.
+//   study_backfill [M]
 #include <nsm/base/threads.h>
 #include <nsm/continuation/sequential_steps.h>
 #include <nsm/harmonic_balance/newton_solver.h>
