@@ -34,17 +34,31 @@ namespace nsm
     /// 268 / 188 at 161, 1916 / 1080 at 321).
     constexpr int blocked_from = 96;
 
+    /// Partial pivoting's row for column k: the largest |a_ik|, i >= k, by a
+    /// vectorised reduction, then its first row (the row a one-pass search
+    /// picks); -1 if the column is zero there (A singular).
+    int pivot_row(const int n, const int k, const double *column)
+    {
+      double largest = 0;
+#pragma omp simd reduction(max : largest)
+      for (int i = k; i < n; ++i)
+        largest = std::max(largest, std::abs(column[i]));
+      if (largest == 0)
+        return -1;
+      int pivot = k;
+      while (std::abs(column[pivot]) != largest)
+        ++pivot;
+      return pivot;
+    }
+
     /// Unblocked LU with partial pivoting, whole rows swapped.
     bool factor_unblocked(const int n, double *a, int *pivots)
     {
       auto at = [a, n](const int i, const int j) -> double & { return a[i + std::size_t(j) * n]; };
       for (int k = 0; k < n; ++k)
         {
-          int pivot = k;
-          for (int i = k + 1; i < n; ++i)
-            if (std::abs(at(i, k)) > std::abs(at(pivot, k)))
-              pivot = i;
-          if (at(pivot, k) == 0)
+          const int pivot = pivot_row(n, k, &at(0, k));
+          if (pivot < 0)
             return false;
           pivots[k] = pivot;
           if (pivot != k)
@@ -137,11 +151,8 @@ namespace nsm
       auto at = [a, n](const int i, const int j) -> double & { return a[i + std::size_t(j) * n]; };
       for (int k = k0; k < k0 + width; ++k)
         {
-          int pivot = k;
-          for (int i = k + 1; i < n; ++i)
-            if (std::abs(at(i, k)) > std::abs(at(pivot, k)))
-              pivot = i;
-          if (at(pivot, k) == 0)
+          const int pivot = pivot_row(n, k, &at(0, k));
+          if (pivot < 0)
             return false;
           pivots[k] = pivot;
           if (pivot != k)

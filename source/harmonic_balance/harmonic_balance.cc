@@ -120,8 +120,7 @@ namespace nsm
     if (jacobian)
       {
         // J = diag(cos) - G diag(D), column-major.
-        std::vector<double> dense;
-        gram.fill(dense);
+        const std::vector<double> &dense = gram.dense();
         jacobian->resize(std::size_t(n) * n);
         for (unsigned int j = 0; j < n; ++j)
           {

@@ -8,21 +8,9 @@ namespace nsm
 {
   SolutionMeasures::SolutionMeasures(const unsigned int harmonics)
     : harmonics_(harmonics)
-  {
-    std::vector<double> c, s;
-    const unsigned int  top = 2 * harmonics_ + 1, points = 4 * top;
-    energy_cos_.resize(top * points);
-    energy_sin_.resize(top * points);
-    for (unsigned int t = 0; t < points; ++t)
-      {
-        trig_table(two_pi * t / points, top, c, s);
-        for (unsigned int m = 0; m < top; ++m)
-          {
-            energy_cos_[m * points + t] = c[m];
-            energy_sin_[m * points + t] = s[m];
-          }
-      }
-  }
+    , energy_basis_(harmonic_basis(2 * harmonics, true))
+    , energy_samples_(energy_basis_, 4 * (2 * harmonics + 1))
+  {}
 
   void SolutionMeasures::energy(const PhasedSolution &solution, PeriodicSolutionMeasures &result) const
   {
@@ -65,11 +53,13 @@ namespace nsm
         }
 
     result.energy = ec[0];
-    const unsigned int  points = 4 * top;
-    std::vector<double> e(points, 0.0);
-    for (unsigned int m = 0; m < top; ++m)
-      for (unsigned int t = 0; t < points; ++t)
-        e[t] += ec[m] * energy_cos_[m * points + t] + es[m] * energy_sin_[m * points + t];
+    // The full basis of degree 2M orders its coefficients 1, then sin and
+    // cos of each m.
+    std::vector<double> coefficients(energy_basis_.size()), e;
+    coefficients[0] = ec[0];
+    for (unsigned int m = 1; m < top; ++m)
+      coefficients[2 * m - 1] = es[m], coefficients[2 * m] = ec[m];
+    energy_samples_(coefficients, e);
     const double e_min = *std::min_element(e.begin(), e.end());
     const double e_max = *std::max_element(e.begin(), e.end());
     result.energy_spread = (e_max - e_min) / result.energy;

@@ -49,7 +49,8 @@ namespace nsm
         cos_integrals_[m] = sum_s / m;
         sin_integrals_[m] = -sum_c / m;
       }
-    share_ = measure / two_pi;
+    share_       = measure / two_pi;
+    dense_valid_ = false;
   }
 
   void StructuredGram::set_samples(const std::vector<unsigned int> &active, const unsigned int samples)
@@ -73,7 +74,8 @@ namespace nsm
         cos_integrals_[m] = weight * sum_c;
         sin_integrals_[m] = weight * sum_s;
       }
-    share_ = double(active.size()) / samples;
+    share_       = double(active.size()) / samples;
+    dense_valid_ = false;
   }
 
   double StructuredGram::entry(const unsigned int i, const unsigned int j) const
@@ -117,7 +119,31 @@ namespace nsm
       }
   }
 
+  const std::vector<double> &StructuredGram::dense() const
+  {
+    if (!dense_valid_)
+      fill(dense_);
+    dense_valid_ = true;
+    return dense_;
+  }
+
   void StructuredGram::multiply(const std::vector<double> &v, std::vector<double> &out) const
+  {
+    const unsigned int         n = basis_.size();
+    const std::vector<double> &g = dense();
+    out.resize(n);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const double *row = g.data() + std::size_t(i) * n;
+        double        sum = 0;
+#pragma omp simd reduction(+ : sum)
+        for (unsigned int j = 0; j < n; ++j)
+          sum += row[j] * v[j];
+        out[i] = sum;
+      }
+  }
+
+  void StructuredGram::multiply_structured(const std::vector<double> &v, std::vector<double> &out) const
   {
     const unsigned int n = basis_.size();
     out.assign(n, 0.0);

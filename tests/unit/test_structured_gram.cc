@@ -104,18 +104,20 @@ TEST(StructuredGram, AgreesWithQuadratureOnRandomActiveSets)
           measure += e - a;
         EXPECT_NEAR(gram.share(), measure / (2 * M_PI), 1e-15);
 
-        // The product without the matrix, on a random state.
+        // The products with and without the matrix, on a random state.
         std::uniform_real_distribution<double> uniform(-1, 1);
-        std::vector<double>                    v(n), product;
+        std::vector<double>                    v(n), product, structured;
         for (double &x : v)
           x = uniform(engine);
         gram.multiply(v, product);
+        gram.multiply_structured(v, structured);
         for (unsigned int i = 0; i < n; ++i)
           {
             double expected = 0;
             for (unsigned int j = 0; j < n; ++j)
               expected += reference[i * n + j] * v[j];
             EXPECT_NEAR(product[i], expected, 1e-12) << (full ? "full " : "cosine ") << i;
+            EXPECT_NEAR(structured[i], expected, 1e-12) << (full ? "full " : "cosine ") << i;
           }
       }
 }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <nsm/harmonic_balance/active_set.h>
+#include <nsm/harmonic_balance/series_samples.h>
 #include <nsm/model/contact_law.h>
 #include <nsm/harmonic_balance/trigonometric.h>
 
@@ -67,8 +68,9 @@ namespace nsm
 
   private:
     unsigned int harmonics_;
-    /// cos m tau and sin m tau, m = 0..2M, at the 4 (2M + 1) points where the
-    /// energy over the period is evaluated (row-major, m x points).
-    std::vector<double> energy_cos_, energy_sin_;
+    /// The basis of the energy over the period (1, sin and cos of m tau, m =
+    /// 1..2M) and its values at the 4 (2M + 1) points of the spread, by FFT.
+    TrigonometricBasis energy_basis_;
+    SeriesSamples      energy_samples_;
   };
 } // namespace nsm

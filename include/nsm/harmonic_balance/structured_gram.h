@@ -32,9 +32,14 @@ namespace nsm
     /// |A| / 2 pi.
     double share() const { return share_; }
 
-    /// out = G v.
+    /// out = G v, from the dense matrix (formed once per active set: NOX
+    /// asks for the Jacobian at the point of each residual but the last).
     void multiply(const std::vector<double> &v, std::vector<double> &out) const;
-    /// G, row-major n x n.
+    /// out = G v in O(n^2) from C and S alone, without the matrix.
+    void multiply_structured(const std::vector<double> &v, std::vector<double> &out) const;
+    /// G, row-major n x n, formed on the first call after set_*.
+    const std::vector<double> &dense() const;
+    /// G into `dense`, row-major n x n.
     void fill(std::vector<double> &dense) const;
 
   private:
@@ -46,5 +51,7 @@ namespace nsm
     std::vector<double> norm_;         ///< the projection's norm per basis function
     std::vector<double> cos_integrals_, sin_integrals_;
     double              share_ = 0;
+    mutable std::vector<double> dense_;
+    mutable bool                dense_valid_ = false;
   };
 } // namespace nsm
