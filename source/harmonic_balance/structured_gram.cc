@@ -142,32 +142,4 @@ namespace nsm
         out[i] = sum;
       }
   }
-
-  void StructuredGram::multiply_structured(const std::vector<double> &v, std::vector<double> &out) const
-  {
-    const unsigned int n = basis_.size();
-    out.assign(n, 0.0);
-    if (!cosines_only_)
-      {
-        for (unsigned int i = 0; i < n; ++i)
-          for (unsigned int j = 0; j < n; ++j)
-            out[i] += entry(i, j) * v[j];
-        return;
-      }
-    const double *c = cos_integrals_.data();
-    for (unsigned int i = 0; i < n; ++i)
-      {
-        double toeplitz = 0, hankel = 0;
-#pragma omp simd reduction(+ : toeplitz)
-        for (unsigned int j = 0; j < i; ++j)
-          toeplitz += c[i - j] * v[j];
-#pragma omp simd reduction(+ : toeplitz)
-        for (unsigned int j = i; j < n; ++j)
-          toeplitz += c[j - i] * v[j];
-#pragma omp simd reduction(+ : hankel)
-        for (unsigned int j = 0; j < n; ++j)
-          hankel += c[i + j] * v[j];
-        out[i] = 0.5 * norm_[i] * (toeplitz + hankel);
-      }
-  }
 } // namespace nsm

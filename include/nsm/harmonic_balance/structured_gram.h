@@ -9,7 +9,8 @@
 //     cos k sin l: (S_k+l - sgn(k-l) S_|k-l|) / 2,
 // times the projection's norm (1 / 2 pi for k = 0, 1 / pi otherwise): a
 // Toeplitz part in |k - l| plus a Hankel part in k + l. The 2 (2M + 1)
-// numbers hold the n x n matrix; a product G v costs O(n^2) without forming G.
+// numbers hold the n x n matrix, computed in O(M) per interval end (or per
+// active sample); the matrix is formed from them once per active set.
 #pragma once
 
 #include <nsm/harmonic_balance/trigonometric.h>
@@ -35,8 +36,6 @@ namespace nsm
     /// out = G v, from the dense matrix (formed once per active set: NOX
     /// asks for the Jacobian at the point of each residual but the last).
     void multiply(const std::vector<double> &v, std::vector<double> &out) const;
-    /// out = G v in O(n^2) from C and S alone, without the matrix.
-    void multiply_structured(const std::vector<double> &v, std::vector<double> &out) const;
     /// G, row-major n x n, formed on the first call after set_*.
     const std::vector<double> &dense() const;
     /// G into `dense`, row-major n x n.
