@@ -28,10 +28,12 @@ namespace nsm
     }
 
     /// Below this many unknowns (M < 96 in the cosine basis) the unblocked
-    /// elimination is as fast or faster: the panels' bookkeeping outweighs
-    /// the loads they save (tests/benchmarks/benchmark_linear_solve, medians
-    /// unblocked against blocked: 6.5 / 7.8 us at n = 41, 35.3 / 36.3 at 81,
-    /// 268 / 188 at 161, 1916 / 1080 at 321).
+    /// elimination is used. On random systems the panels pay from about
+    /// n = 64 (tests/benchmarks/benchmark_linear_solve, medians unblocked
+    /// against blocked: 6.1 / 6.7 us at n = 41, 32.5 / 31.0 at 81, 270 / 165
+    /// at 161, 1900 / 991 at 321), but on the harmonic balance's own
+    /// Jacobians at n = 81 they do not: the authors' work at M = 80 (doc/log.md)
+    /// takes 1.31 to 1.33 s in its HB stage with them, 1.26 to 1.28 s without.
     constexpr int blocked_from = 96;
 
     /// Partial pivoting's row for column k: the largest |a_ik|, i >= k, by a
