@@ -3,9 +3,11 @@
 // the basis over it, G_ij = P_i[phi_j on {q > 0}]: the projection of the
 // Signorini law max(q, 0) (harmonic_balance.h).
 //
-// The exact rule finds the roots of q (bracketed on a grid of samples, then
-// refined) and integrates the products of basis functions in closed form; the
-// sampled rule sums them over the samples where q > 0.
+// Both rules sample q by FFT (series_samples.h). The exact rule finds the
+// roots of q (bracketed on the samples, then refined on the series,
+// trigonometric_series.h) and integrates cos m tau and sin m tau between them
+// in closed form; the sampled rule sums them over the samples where q > 0. The
+// Gram matrix follows from those integrals (structured_gram.h).
 #pragma once
 
 #include <nsm/scene/scene.h>
