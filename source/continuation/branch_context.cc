@@ -33,14 +33,22 @@ namespace nsm
     return first;
   }
 
+  const BackbonePoint *lowest_point_behind(const BranchContext &context, const Backbone &backbone, const double omega,
+                                           const double reach)
+  {
+    const BackbonePoint *lowest = nullptr;
+    for (const BackbonePoint &p : backbone.points)
+      if (std::abs(p.omega - omega) <= reach && !context.beyond(p.omega, omega) &&
+          (!lowest || p.measures.energy < lowest->measures.energy))
+        lowest = &p;
+    return lowest;
+  }
+
   double least_energy_behind(const BranchContext &context, const Backbone &backbone, const double omega,
                              const double reach)
   {
-    double least = std::numeric_limits<double>::infinity();
-    for (const BackbonePoint &p : backbone.points)
-      if (std::abs(p.omega - omega) <= reach && !context.beyond(p.omega, omega))
-        least = std::min(least, p.measures.energy);
-    return least;
+    const BackbonePoint *lowest = lowest_point_behind(context, backbone, omega, reach);
+    return lowest ? lowest->measures.energy : std::numeric_limits<double>::infinity();
   }
 
   std::vector<double> interpolated_guess(const BackbonePoint &a, const BackbonePoint &b, const double omega)

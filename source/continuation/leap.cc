@@ -138,46 +138,17 @@ namespace nsm
         return context_.beyond(omega, context_.far_end) ? context_.far_end : omega;
       }
 
-      /// Guesses at distances growing from Initial step to the reach beyond
-      /// the front: the front, the segment's first point and the impulsive
-      /// guess, or (`last_resort`) the last point before the segment alone.
-      bool from_guesses(const bool last_resort)
+      /// try_at(omega) at distances growing from Initial step to the reach
+      /// beyond the front (the range's far end the last); true at the first
+      /// that lands.
+      template <typename Try>
+      bool at_growing_distances(const Try &try_at)
       {
         for (double distance = c_.initial_step; distance <= reach_ && context_.beyond(context_.far_end, front_.omega);
              distance *= continuation_constants::search_growth)
           {
             const double omega = beyond_front(distance);
-            context_.hb.set_omega(omega);
-            const std::vector<std::vector<double>> guesses =
-              last_resort ? std::vector<std::vector<double>>{backbone_.points[first_ - 1].x} :
-                            std::vector<std::vector<double>>{front_.x, backbone_.points[first_].x,
-                                                             context_.hb.grazing_guess()};
-            for (const std::vector<double> &guess : guesses)
-              if (!guess.empty() && lands(omega, guess,
-                                          last_resort ? "leapt to a new segment from the fold before the tongue" :
-                                                        "leapt to a new segment"))
-                return true;
-            if (omega == context_.far_end)
-              break;
-          }
-        return false;
-      }
-
-      /// The point of least energy within reach behind the front, where the
-      /// branch was lowest before it climbed the tongue that ends in the fold:
-      /// at distances growing as in from_guesses, Newton from it and from the
-      /// secant through it and its neighbour in its segment.
-      bool from_lowest_behind()
-      {
-        const std::size_t lowest = lowest_behind();
-        if (lowest == backbone_.points.size())
-          return false;
-        const BackbonePoint &low = backbone_.points[lowest];
-        for (double distance = c_.initial_step; distance <= reach_ && context_.beyond(context_.far_end, front_.omega);
-             distance *= continuation_constants::search_growth)
-          {
-            const double omega = beyond_front(distance);
-            if (lands(omega, low.x, "leapt to a new segment from the lowest point before the tongue"))
+            if (try_at(omega))
               return true;
             if (omega == context_.far_end)
               break;
@@ -185,19 +156,38 @@ namespace nsm
         return false;
       }
 
-      /// Index of the point of least energy within reach behind the front
-      /// (the backbone's size if none).
-      std::size_t lowest_behind() const
+      /// Guesses at growing distances: the front, the segment's first point
+      /// and the impulsive guess, or (`last_resort`) the last point before the
+      /// segment alone.
+      bool from_guesses(const bool last_resort)
       {
-        std::size_t lowest = backbone_.points.size();
-        for (std::size_t i = 0; i < backbone_.points.size(); ++i)
-          {
-            const BackbonePoint &p = backbone_.points[i];
-            if (std::abs(p.omega - front_.omega) <= reach_ && !context_.beyond(p.omega, front_.omega) &&
-                (lowest == backbone_.points.size() || p.measures.energy < backbone_.points[lowest].measures.energy))
-              lowest = i;
-          }
-        return lowest;
+        return at_growing_distances([&](const double omega) {
+          context_.hb.set_omega(omega);
+          const std::vector<std::vector<double>> guesses =
+            last_resort ? std::vector<std::vector<double>>{backbone_.points[first_ - 1].x} :
+                          std::vector<std::vector<double>>{front_.x, backbone_.points[first_].x,
+                                                           context_.hb.grazing_guess()};
+          for (const std::vector<double> &guess : guesses)
+            if (!guess.empty() && lands(omega, guess,
+                                        last_resort ? "leapt to a new segment from the fold before the tongue" :
+                                                      "leapt to a new segment"))
+              return true;
+          return false;
+        });
+      }
+
+      /// The point of least energy within reach behind the front, where the
+      /// branch was lowest before it climbed the tongue that ends in the
+      /// fold, as the only guess at growing distances.
+      bool from_lowest_behind()
+      {
+        const BackbonePoint *lowest = lowest_point_behind(context_, backbone_, front_.omega, reach_);
+        if (!lowest)
+          return false;
+        const std::vector<double> guess = lowest->x; // the backbone grows when a leap lands
+        return at_growing_distances([&](const double omega) {
+          return lands(omega, guess, "leapt to a new segment from the lowest point before the tongue");
+        });
       }
 
       /// The main points of the branch with half the harmonics within reach

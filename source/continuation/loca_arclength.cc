@@ -40,32 +40,14 @@ namespace nsm
       applyJacobianInverseMultiVector(Teuchos::ParameterList &, const NOX::Abstract::MultiVector &input,
                                       NOX::Abstract::MultiVector &result) const override
       {
-        const auto start = std::chrono::steady_clock::now();
-        bool       ok    = isJacobian() && factor();
-        for (int c = 0; ok && c < input.numVectors(); ++c)
-          {
-            auto &x = dynamic_cast<NOX::LAPACK::Vector &>(result[c]);
-            x       = dynamic_cast<const NOX::LAPACK::Vector &>(input[c]);
-            lu_solve(x.length(), factors_.data(), pivots_.data(), &x(0));
-          }
-        hb_.record_linear_solve(seconds_since(start));
-        return ok ? NOX::Abstract::Group::Ok : NOX::Abstract::Group::Failed;
+        return timed_solves(input.numVectors(), [&](const int c) { solve(input[c], result[c]); });
       }
 
       using LOCA::LAPACK::Group::applyJacobianInverse;
       NOX::Abstract::Group::ReturnType applyJacobianInverse(Teuchos::ParameterList &, const NOX::Abstract::Vector &input,
                                                             NOX::Abstract::Vector &result) const override
       {
-        const auto start = std::chrono::steady_clock::now();
-        const bool ok    = isJacobian() && factor();
-        if (ok)
-          {
-            auto &x = dynamic_cast<NOX::LAPACK::Vector &>(result);
-            x       = dynamic_cast<const NOX::LAPACK::Vector &>(input);
-            lu_solve(x.length(), factors_.data(), pivots_.data(), &x(0));
-          }
-        hb_.record_linear_solve(seconds_since(start));
-        return ok ? NOX::Abstract::Group::Ok : NOX::Abstract::Group::Failed;
+        return timed_solves(1, [&](int) { solve(input, result); });
       }
 
       Teuchos::RCP<NOX::Abstract::Group> clone(NOX::CopyType type) const override
@@ -93,6 +75,26 @@ namespace nsm
       }
 
     private:
+      /// `count` solves by solve_column(c), after the Jacobian's LU; timed.
+      template <typename Solve>
+      NOX::Abstract::Group::ReturnType timed_solves(const int count, const Solve &solve_column) const
+      {
+        const auto start = std::chrono::steady_clock::now();
+        const bool ok    = isJacobian() && factor();
+        for (int c = 0; ok && c < count; ++c)
+          solve_column(c);
+        hb_.record_linear_solve(seconds_since(start));
+        return ok ? NOX::Abstract::Group::Ok : NOX::Abstract::Group::Failed;
+      }
+
+      /// result = J^-1 input, from the kept factors.
+      void solve(const NOX::Abstract::Vector &input, NOX::Abstract::Vector &result) const
+      {
+        auto &x = dynamic_cast<NOX::LAPACK::Vector &>(result);
+        x       = dynamic_cast<const NOX::LAPACK::Vector &>(input);
+        lu_solve(x.length(), factors_.data(), pivots_.data(), &x(0));
+      }
+
       /// LU of the current Jacobian, unless the kept factors are of it.
       bool factor() const
       {

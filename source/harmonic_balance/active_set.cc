@@ -57,6 +57,11 @@ namespace nsm
 
   std::vector<double> ActiveSet::roots(const std::vector<double> &v) const
   {
+    return roots(v, TrigonometricSeries(basis_, v));
+  }
+
+  std::vector<double> ActiveSet::roots(const std::vector<double> &v, const TrigonometricSeries &series) const
+  {
     std::vector<double> q;
     sampler_(v, q);
 
@@ -69,8 +74,7 @@ namespace nsm
       curvature += std::abs(v[i]) * basis_.order[i] * basis_.order[i];
     const double reach = 0.5 * h * h * curvature;
 
-    const TrigonometricSeries series(basis_, v);
-    std::vector<double>       found;
+    std::vector<double> found;
     for (unsigned int t = 0; t < samples_; ++t)
       {
         const unsigned int next = (t + 1) % samples_;
@@ -133,8 +137,8 @@ namespace nsm
 
   void ActiveSet::gram_exact(const std::vector<double> &v) const
   {
-    const std::vector<double>              r = roots(v);
     const TrigonometricSeries              series(basis_, v);
+    const std::vector<double>              r = roots(v, series);
     std::vector<std::pair<double, double>> intervals;
     if (r.empty())
       {

@@ -115,7 +115,11 @@ namespace nsm
     std::unique_ptr<Backbone> fewer_harmonics_;
   };
 
-  /// The least energy written within `reach` of omega and not beyond it in
-  /// the direction of continuation: how low a landing there may go.
+  /// The point of least energy written within `reach` of omega and not
+  /// beyond it in the direction of continuation; null if none.
+  const BackbonePoint *lowest_point_behind(const BranchContext &context, const Backbone &backbone, double omega,
+                                           double reach);
+
+  /// Its energy (infinity if none): how low a landing there may go.
   double least_energy_behind(const BranchContext &context, const Backbone &backbone, double omega, double reach);
 } // namespace nsm

@@ -46,6 +46,8 @@ namespace nsm
     /// Adds to `found` the two roots of q around sample t when q has an
     /// extremum there towards zero that the samples q (of v) do not show
     /// crossing it; `reach` bounds how far q departs between samples.
+    /// roots(v), with the series of v already made.
+    std::vector<double> roots(const std::vector<double> &v, const TrigonometricSeries &series) const;
     void crossings_near_extremum(const TrigonometricSeries &series, const std::vector<double> &q, unsigned int t,
                                  double reach, std::vector<double> &found) const;
     void gram_exact(const std::vector<double> &v) const;
