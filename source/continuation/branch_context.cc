@@ -155,12 +155,14 @@ namespace nsm
   const Backbone *BranchContext::fewer_harmonics()
   {
     const unsigned int harmonics = scene.harmonic_balance.harmonics;
-    if (!scene.continuation.leap_from_fewer_harmonics || harmonics < 2)
+    if (harmonics < 2)
       return nullptr;
     if (!fewer_harmonics_)
       {
         Scene fewer                       = scene;
         fewer.harmonic_balance.harmonics = harmonics / 2;
+        // Unfilled, so that a run's leaps do not depend on whether it fills its gaps.
+        fewer.continuation.fill_gaps_wider_than = 0;
         HarmonicBalance          model(fewer, hb.receptance());
         const PointStopsDeferred whole;
         fewer_harmonics_ = std::make_unique<Backbone>(compute_backbone(model, fewer, resonances));

@@ -2,6 +2,7 @@
 #include <nsm/continuation/branch_context.h>
 #include <nsm/continuation/checkpoint.h>
 #include <nsm/continuation/continuation.h>
+#include <nsm/continuation/gap_filling.h>
 #include <nsm/continuation/grazing_start.h>
 #include <nsm/continuation/leap.h>
 #include <nsm/continuation/main_branch.h>
@@ -91,7 +92,7 @@ namespace nsm
                 context.in_range(omega) ? "end of the Omega range" : "left the Omega range", omega));
               if (context.in_range(omega))
                 find_branch_below_at_end(context, backbone, segment);
-              return;
+              return fill_gaps(context, backbone);
             }
           if (end == SegmentEnd::max_steps && point_stop_signal() != 0)
             {

@@ -195,7 +195,7 @@ namespace nsm
       std::vector<const BackbonePoint *> fewer_harmonics_near_front()
       {
         std::vector<const BackbonePoint *> near;
-        const Backbone                    *fewer = context_.fewer_harmonics();
+        const Backbone *fewer = c_.leap_from_fewer_harmonics ? context_.fewer_harmonics() : nullptr;
         if (!fewer)
           return near;
         for (const BackbonePoint &q : fewer->points)

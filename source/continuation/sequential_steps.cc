@@ -60,6 +60,8 @@ namespace nsm
           omega = context.near_end;
         if (context.beyond(omega, context.far_end))
           omega = context.far_end;
+        if (context.join_at && !context.beyond(*context.join_at, omega))
+          return SegmentEnd::joined;
         BackbonePoint point;
         if (context.solve(omega, secant_guess(backbone, first, omega), segment, point) &&
             stays_on_branch(current, point, c))

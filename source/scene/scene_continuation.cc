@@ -114,6 +114,13 @@ namespace nsm
                       "points within reach of the same branch traced once with half the "
                       "harmonics, their higher harmonics zero. Near dense internal resonances "
                       "(the seed bar at M = 160) Newton converges from nothing else.");
+    prm.declare_entry("Fill gaps wider than",
+                      text(d.fill_gaps_wider_than),
+                      Patterns::Double(0, 1),
+                      "Once the range's end is reached, every gap between main points wider "
+                      "than this (in Omega) is searched from the main points inside it of the "
+                      "branch traced with half the harmonics; a main solution found there starts "
+                      "a segment of sequential steps up to the gap's far side. 0: no filling.");
     prm.leave_subsection();
   }
 
@@ -150,6 +157,7 @@ namespace nsm
     leap_energy_ratio   = prm.get_double("Leap energy ratio");
     search_reach        = prm.get_double("Search reach");
     leap_from_fewer_harmonics = prm.get_bool("Leap from fewer harmonics");
+    fill_gaps_wider_than      = prm.get_double("Fill gaps wider than");
     require(grazing_offset < search_reach,
             "Continuation/Grazing offset",
             "< Search reach = " + format_value(search_reach),

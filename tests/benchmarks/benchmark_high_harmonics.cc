@@ -3,7 +3,8 @@
 // arclength: whole-run time, where the harmonic-balance time goes (converged
 // and failed Newton solves, residuals, Jacobians, linear solves), and the
 // widest gaps between main points in [w1, 2.2].
-//   benchmark_high_harmonics [sequential|arclength] M...
+//   benchmark_high_harmonics [sequential|arclength] [fill=WIDTH] M...
+// (fill=WIDTH: Continuation/Fill gaps wider than, 0 by default)
 #include <nsm/base/threads.h>
 
 #include <algorithm>
@@ -16,12 +17,13 @@
 
 namespace
 {
-  void run(const unsigned int harmonics, const nsm::ContinuationMethod method)
+  void run(const unsigned int harmonics, const nsm::ContinuationMethod method, const double fill)
   {
     nsm::Scene scene = testing_helpers::seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
     scene.discretisation.cells       = 20;
     scene.harmonic_balance.harmonics = harmonics;
     scene.continuation.method        = method;
+    scene.continuation.fill_gaps_wider_than = fill;
     const auto               start = std::chrono::steady_clock::now();
     testing_helpers::HbModel model(scene);
     const nsm::Backbone      b       = model.backbone();
@@ -69,6 +71,9 @@ int main(int argc, char **argv)
   std::printf("| M | method | run [s] | points | main | leaps | Omega reached | converged solves | failed solves "
               "| failed share | residuals / Jacobians / linear solves | per linear solve | widest main gaps |\n"
               "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  double fill = 0;
+  if (first < argc && std::strncmp(argv[first], "fill=", 5) == 0)
+    fill = std::atof(argv[first++] + 5);
   for (int a = first; a < argc; ++a)
-    run(static_cast<unsigned int>(std::atoi(argv[a])), method);
+    run(static_cast<unsigned int>(std::atoi(argv[a])), method, fill);
 }

@@ -24,7 +24,8 @@ namespace nsm
     tongue,    ///< energy above Energy max (climbing a resonance tongue)
     max_steps, ///< Max steps points in all
     refused,   ///< arclength reached a point that is not a contact motion
-    jump       ///< an arclength step left the branch (shortened and retried)
+    jump,      ///< an arclength step left the branch (shortened and retried)
+    joined     ///< sequential steps reached BranchContext::join_at (gap_filling.h)
   };
 
   /// "what at Omega = ..." for the run summary, with the nearest internal
@@ -91,8 +92,9 @@ namespace nsm
     NewtonCost newton_cost() const;
 
     /// The same branch traced with half the harmonics (computed once, on
-    /// first use; null below 2 harmonics): where a leap finds no landing,
-    /// its main points are guesses that lie near solutions.
+    /// first use; null below 2 harmonics): where a leap finds no landing, or
+    /// in a gap of the main branch (gap_filling.h), its main points are
+    /// guesses that lie near solutions.
     const Backbone *fewer_harmonics();
 
     HarmonicBalance                     &hb;
@@ -106,6 +108,9 @@ namespace nsm
     /// (it stopped at Max steps with a stop signal), and where a resumed
     /// segment starts (checkpoint.h).
     std::optional<double>                next_step, resume_step;
+    /// Where sequential steps end (`joined`) before they would pass it: the
+    /// far side of a gap being filled (gap_filling.h).
+    std::optional<double>                join_at;
 
   private:
     NewtonSolver newton_;

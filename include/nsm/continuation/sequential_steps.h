@@ -16,7 +16,8 @@ namespace nsm
   /// solve of at most 4 iterations, up to the context's max_step(), and is
   /// quartered on failure or on a jump to another branch, down to Min step
   /// (a fold). Steps stop exactly at the start of the range (coming from
-  /// before it) and at its end. With `hand_over` it ends (`approach`) once
+  /// before it) and at its end, and end (`joined`) before they would pass
+  /// the context's `join_at`. With `hand_over` it ends (`approach`) once
   /// the range is reached: another method traces the range.
   SegmentEnd sequential_segment(BranchContext &context, Backbone &backbone, unsigned int segment,
                                 bool hand_over = false);

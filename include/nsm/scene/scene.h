@@ -154,6 +154,7 @@ namespace nsm
       double             leap_energy_ratio   = 4.0;
       double             search_reach        = 0.05;
       bool               leap_from_fewer_harmonics = true;
+      double             fill_gaps_wider_than      = 0.0; ///< 0: no filling (gap_filling.h)
 
       static void declare(dealii::ParameterHandler &prm);
       void        parse(dealii::ParameterHandler &prm);

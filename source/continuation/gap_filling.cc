@@ -1,0 +1,117 @@
+#include <nsm/base/interruption.h>
+#include <nsm/continuation/gap_filling.h>
+#include <nsm/continuation/main_branch.h>
+#include <nsm/continuation/sequential_steps.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <utility>
+
+namespace nsm
+{
+  namespace
+  {
+    /// From `from` to `to` in the direction of continuation.
+    struct Gap
+    {
+      double from, to;
+    };
+
+    /// The points in the range, labelled as they would be written.
+    std::vector<BackbonePoint> labelled_in_range(BranchContext &context, const Backbone &backbone)
+    {
+      std::vector<BackbonePoint> points;
+      for (const BackbonePoint &p : backbone.points)
+        if (context.in_range(p.omega))
+          points.push_back(p);
+      label_branches(context.hb, context.scene, points);
+      return points;
+    }
+
+    /// The gaps wider than `width` between main points, in the direction of
+    /// continuation; the last main point's distance to the range's end too.
+    std::vector<Gap> main_gaps(const BranchContext &context, const std::vector<BackbonePoint> &points,
+                               const double width)
+    {
+      std::vector<double> main;
+      for (const BackbonePoint &p : points)
+        if (p.branch == Branch::main)
+          main.push_back(p.omega);
+      if (main.empty())
+        return {};
+      std::sort(main.begin(), main.end(), [&](double a, double b) { return context.beyond(b, a); });
+      main.push_back(context.far_end);
+      std::vector<Gap> gaps;
+      for (std::size_t i = 1; i < main.size(); ++i)
+        if (std::abs(main[i] - main[i - 1]) > width)
+          gaps.push_back({main[i - 1], main[i]});
+      return gaps;
+    }
+
+    /// The main points of the branch with half the harmonics strictly inside
+    /// the gap, nearest its start first.
+    std::vector<const BackbonePoint *> guesses_in(BranchContext &context, const Gap &gap)
+    {
+      std::vector<const BackbonePoint *> inside;
+      if (const Backbone *fewer = context.fewer_harmonics())
+        for (const BackbonePoint &q : fewer->points)
+          if (context.beyond(q.omega, gap.from) && context.beyond(gap.to, q.omega))
+            inside.push_back(&q);
+      std::sort(inside.begin(), inside.end(), [&](const BackbonePoint *a, const BackbonePoint *b) {
+        if (a->branch != b->branch)
+          return a->branch == Branch::main;
+        return context.beyond(b->omega, a->omega);
+      });
+      return inside;
+    }
+
+    /// The first landing on the main branch inside the gap becomes the first
+    /// point of a new segment, traced until it folds or joins the gap's far side.
+    bool fill(BranchContext &context, Backbone &backbone, const std::vector<BackbonePoint> &labelled, const Gap &gap)
+    {
+      unsigned int segment = 0;
+      for (const BackbonePoint &p : backbone.points)
+        segment = std::max(segment, p.segment + 1);
+      for (const BackbonePoint *q : guesses_in(context, gap))
+        {
+          std::vector<double> guess(context.hb.n_unknowns(), 0.0);
+          std::copy_n(q->x.begin(), std::min(q->x.size(), guess.size()), guess.begin());
+          BackbonePoint point;
+          if (!context.solve(q->omega, guess, segment, point, BranchContext::Newton::both))
+            continue;
+          label_point(context.hb, context.scene, labelled, point);
+          if (point.branch != Branch::main)
+            continue;
+          backbone.events.push_back(
+            event_message("filled a gap of the main branch from the branch with half the harmonics", q->omega));
+          backbone.points.push_back(std::move(point));
+          context.join_at = gap.to;
+          sequential_segment(context, backbone, segment);
+          context.join_at.reset();
+          return true;
+        }
+      return false;
+    }
+  } // namespace
+
+  void fill_gaps(BranchContext &context, Backbone &backbone)
+  {
+    const double width = context.scene.continuation.fill_gaps_wider_than;
+    if (width <= 0)
+      return;
+    const PointStopsDeferred whole;
+    std::set<std::pair<double, double>> tried; // gaps with no landing
+    for (bool filled = true; filled && !context.full(backbone);)
+      {
+        filled                                   = false;
+        const std::vector<BackbonePoint> labelled = labelled_in_range(context, backbone);
+        for (const Gap &gap : main_gaps(context, labelled, width))
+          if (tried.insert({gap.from, gap.to}).second && fill(context, backbone, labelled, gap))
+            {
+              filled = true;
+              break;
+            }
+      }
+  }
+} // namespace nsm

@@ -1,0 +1,102 @@
+// Filling the main branch's gaps from the branch with half the harmonics
+// (continuation/gap_filling.h), on the seed bar at M = 80 (FE_Q(10) x 20),
+// where the plain sequential run leaves main gaps up to 0.06 wide
+// (tests/benchmarks/study_coverage: Newton finds main solutions in all of them).
+#include <nsm/continuation/branch_context.h>
+#include <nsm/continuation/main_branch.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "hb_model.h"
+
+namespace
+{
+  constexpr double fill_width = 0.01;
+
+  nsm::Scene seed_at(const unsigned int harmonics, const double fill)
+  {
+    nsm::Scene scene = testing_helpers::seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
+    scene.discretisation.cells              = 20;
+    scene.harmonic_balance.harmonics        = harmonics;
+    scene.continuation.fill_gaps_wider_than = fill;
+    return scene;
+  }
+
+  /// The gaps between main points wider than `width`, the range's end included.
+  std::vector<std::pair<double, double>> main_gaps(const nsm::Backbone &b, const double width)
+  {
+    std::vector<double> main;
+    for (const nsm::BackbonePoint &p : b.points)
+      if (p.branch == nsm::Branch::main)
+        main.push_back(p.omega);
+    std::sort(main.begin(), main.end());
+    main.push_back(2.2);
+    std::vector<std::pair<double, double>> gaps;
+    for (std::size_t i = 1; i < main.size(); ++i)
+      if (main[i] - main[i - 1] > width)
+        gaps.emplace_back(main[i - 1], main[i]);
+    return gaps;
+  }
+
+  double widest(const std::vector<std::pair<double, double>> &gaps)
+  {
+    double w = 0;
+    for (const auto &g : gaps)
+      w = std::max(w, g.second - g.first);
+    return w;
+  }
+} // namespace
+
+TEST(GapFilling, FillsTheMainBranchWhereNewtonFindsItAndKeepsTheTracedPoints)
+{
+  testing_helpers::HbModel plain_model(seed_at(80, 0)), filled_model(seed_at(80, fill_width));
+  const nsm::Backbone      plain = plain_model.backbone(), filled = filled_model.backbone();
+
+  // The filling comes after the trace: the plain run's points come first, unchanged.
+  ASSERT_GT(filled.points.size(), plain.points.size());
+  for (std::size_t i = 0; i < plain.points.size(); ++i)
+    {
+      ASSERT_EQ(filled.points[i].omega, plain.points[i].omega) << i;
+      ASSERT_EQ(filled.points[i].measures.energy, plain.points[i].measures.energy) << i;
+    }
+  // Every point added lies inside a gap of the plain run: the filling
+  // segments start there and end before they reach the branch beyond.
+  const auto plain_gaps = main_gaps(plain, fill_width);
+  for (std::size_t i = plain.points.size(); i < filled.points.size(); ++i)
+    {
+      const double w = filled.points[i].omega;
+      EXPECT_TRUE(std::any_of(plain_gaps.begin(), plain_gaps.end(),
+                              [&](const auto &g) { return g.first < w && w < g.second; }))
+        << w;
+    }
+  // More of the range is main, and the widest gap narrows.
+  EXPECT_GT(filled.main_points(), plain.main_points());
+  const auto filled_gaps = main_gaps(filled, fill_width);
+  EXPECT_LT(widest(filled_gaps), widest(plain_gaps));
+
+  // What is left: Newton at M = 80 from every point of the M = 40 branch
+  // inside a remaining gap finds no solution the labels put on the main branch.
+  const nsm::Backbone fewer = testing_helpers::HbModel(seed_at(40, 0)).backbone(); // as the run's, unfilled
+  unsigned int        tried = 0, converged = 0;
+  for (const auto &g : filled_gaps)
+    for (const nsm::BackbonePoint &q : fewer.points)
+      if (g.first < q.omega && q.omega < g.second)
+        {
+          nsm::BranchContext  context(filled_model.hb, filled_model.scene, {});
+          std::vector<double> guess(filled_model.hb.n_unknowns(), 0.0);
+          std::copy(q.x.begin(), q.x.end(), guess.begin());
+          nsm::BackbonePoint point;
+          ++tried;
+          if (!context.solve(q.omega, guess, 0, point, nsm::BranchContext::Newton::both))
+            continue;
+          ++converged;
+          nsm::label_point(filled_model.hb, filled_model.scene, filled.points, point);
+          EXPECT_NE(point.branch, nsm::Branch::main) << "a main solution in a remaining gap at " << q.omega;
+        }
+  // The search is not empty: the remaining gaps hold guesses, and some converge (on tongues).
+  EXPECT_GT(tried, 0u);
+  EXPECT_GT(converged, 0u);
+}
