@@ -16,24 +16,29 @@ namespace nsm
     /// The exact-mode error a main point is counted within (5 %).
     constexpr double exact_error_share = 0.05;
 
-    std::vector<const BackbonePoint *> main_points(const Backbone &backbone)
+    /// In the order of Omega along the branch (filled gaps are traced last,
+    /// gap_filling.h).
+    std::vector<const BackbonePoint *> main_points(const Backbone &backbone, const double direction)
     {
       std::vector<const BackbonePoint *> main;
       for (const BackbonePoint &p : backbone.points)
         if (p.branch == Branch::main)
           main.push_back(&p);
+      std::stable_sort(main.begin(), main.end(), [&](const BackbonePoint *a, const BackbonePoint *b) {
+        return direction * a->omega < direction * b->omega;
+      });
       return main;
     }
 
     /// How the backbone ended, naming the parameter that ended it.
-    std::string ending(const Backbone &backbone, const Scene::Continuation &c)
+    std::string ending(const Backbone &backbone, const double reached, const Scene::Continuation &c)
     {
       switch (backbone.end)
         {
           case BackboneEnd::range:
             {
               // The end of the range the branch reached (it runs down in Omega with eq. (5)).
-              const double last  = backbone.points.back().omega;
+              const double last  = reached;
               const bool   upper = std::abs(last - c.omega_max) <= std::abs(last - c.omega_min);
               return std::string("range: Continuation/") + (upper ? "Omega max = " : "Omega min = ") +
                      significant(upper ? c.omega_max : c.omega_min, 8);
@@ -47,12 +52,14 @@ namespace nsm
         }
     }
 
-    std::string coverage(const Backbone &backbone, const std::size_t main, const Scene::Continuation &c)
+    std::string coverage(const Backbone &backbone, const std::size_t main, const double direction,
+                         const Scene::Continuation &c)
     {
       std::ostringstream s;
       s.precision(6);
-      s << "backbone from Omega = " << backbone.points.front().omega << " to " << backbone.points.back().omega
-        << " (ended: " << ending(backbone, c) << "): " << main << " main points, "
+      const double reached = *backbone.omega_reached(direction);
+      s << "backbone from Omega = " << backbone.points.front().omega << " to " << reached
+        << " (ended: " << ending(backbone, reached, c) << "): " << main << " main points, "
         << backbone.points.size() - main << " points on " << backbone.tongues.size() << " tongues";
       return s.str();
     }
@@ -103,8 +110,9 @@ namespace nsm
   {
     if (backbone.points.empty())
       return {"backbone: no point"};
-    const std::vector<const BackbonePoint *> main = main_points(backbone);
-    std::vector<std::string>                 lines{coverage(backbone, main.size(), continuation)};
+    const double                             direction = branch_direction(contact);
+    const std::vector<const BackbonePoint *> main      = main_points(backbone, direction);
+    std::vector<std::string> lines{coverage(backbone, main.size(), direction, continuation)};
     if (!main.empty())
       lines.push_back(energies(main));
     for (std::string &line : exact_errors(main, bar, contact))

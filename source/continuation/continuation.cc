@@ -76,7 +76,8 @@ namespace nsm
 
     /// Segments joined by leaps over folds and tongues, from `segment` on,
     /// until the range, Max steps, a leap that finds no branch, or a stop
-    /// signal (the checkpoint is then kept).
+    /// signal (the checkpoint is then kept). At the range or a lost branch,
+    /// the gaps behind are filled if the scene asks (gap_filling.h).
     void trace(BranchContext &context, Backbone &backbone, unsigned int segment)
     {
       const std::unique_ptr<SegmentTracer> method = make_segment_tracer(context.scene.continuation.method);
@@ -120,7 +121,7 @@ namespace nsm
                                                     "resonance tongue above Energy max",
                                                   omega, context.resonances));
           if (!leap(context, backbone, segment + 1))
-            return;
+            return fill_gaps(context, backbone);
           context.first_fold.reset();
         }
     }
@@ -192,7 +193,6 @@ namespace nsm
     const auto   &p = backbone.points;
     BranchContext context(hb, scene, {});
     BackbonePoint point;
-    const auto    eligible = [&](const BackbonePoint &q) { return !main_only || q.branch == Branch::main; };
     const auto    labelled = [&]() -> BackbonePoint & {
       label_point(hb, scene, p, point);
       return point;
@@ -204,10 +204,16 @@ namespace nsm
       return context.solve(omega, interpolated_guess(a, b, omega), a.segment, point) &&
              stays_on_branch(a, point, scene.continuation) && stays_on_branch(b, point, scene.continuation);
     };
-    for (std::size_t i = 0; i + 1 < p.size(); ++i)
-      if (p[i].segment == p[i + 1].segment && (p[i].omega - omega) * (p[i + 1].omega - omega) <= 0 &&
-          eligible(p[i]) && eligible(p[i + 1]) && between(p[i], p[i + 1]))
-        return labelled();
+    // Pairs of main points first, then (unless main_only) the others: a
+    // filled gap's segment is stored after the tongue it fills (gap_filling.h).
+    const auto main_pair = [&](const std::size_t i) {
+      return p[i].branch == Branch::main && p[i + 1].branch == Branch::main;
+    };
+    for (const bool main_pairs : {true, false})
+      for (std::size_t i = 0; i + 1 < p.size(); ++i)
+        if (p[i].segment == p[i + 1].segment && (p[i].omega - omega) * (p[i + 1].omega - omega) <= 0 &&
+            main_pair(i) == main_pairs && (main_pairs || !main_only) && between(p[i], p[i + 1]))
+          return labelled();
     // Omega in the gap a leap left, or Newton failed between the points: as a
     // leap does, with a line search, from the nearest points below and above
     // and from the impulsive guess.

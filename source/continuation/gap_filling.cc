@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <utility>
 
@@ -30,9 +31,10 @@ namespace nsm
     }
 
     /// The gaps wider than `width` between main points, in the direction of
-    /// continuation; the last main point's distance to the range's end too.
+    /// continuation; the last main point's distance to the range's end too
+    /// if the branch reached it.
     std::vector<Gap> main_gaps(const BranchContext &context, const std::vector<BackbonePoint> &points,
-                               const double width)
+                               const double width, const bool reached_end)
     {
       std::vector<double> main;
       for (const BackbonePoint &p : points)
@@ -41,7 +43,8 @@ namespace nsm
       if (main.empty())
         return {};
       std::sort(main.begin(), main.end(), [&](double a, double b) { return context.beyond(b, a); });
-      main.push_back(context.far_end);
+      if (reached_end)
+        main.push_back(context.far_end);
       std::vector<Gap> gaps;
       for (std::size_t i = 1; i < main.size(); ++i)
         if (std::abs(main[i] - main[i - 1]) > width)
@@ -66,32 +69,51 @@ namespace nsm
       return inside;
     }
 
-    /// The first landing on the main branch inside the gap becomes the first
-    /// point of a new segment, traced until it folds or joins the gap's far side.
+    /// (1 + Tongue share) times the least energy at or beyond the gap's far
+    /// side: a point above it is a tongue point, whatever the filling adds.
+    double tongue_threshold(const BranchContext &context, const std::vector<BackbonePoint> &points,
+                            const double far_side)
+    {
+      double least = std::numeric_limits<double>::infinity();
+      for (const BackbonePoint &p : points)
+        if (!context.beyond(far_side, p.omega))
+          least = std::min(least, p.measures.energy);
+      return (1 + context.scene.continuation.tongue_share) * least;
+    }
+
+    /// The first solution inside the gap that the labels put on the main
+    /// branch, from the guesses in turn; false if none.
+    bool landing(BranchContext &context, const std::vector<BackbonePoint> &labelled, const Gap &gap,
+                 const unsigned int segment, BackbonePoint &point)
+    {
+      for (const BackbonePoint *q : guesses_in(context, gap))
+        {
+          std::vector<double> guess(context.hb.n_unknowns(), 0.0);
+          std::copy_n(q->x.begin(), std::min(q->x.size(), guess.size()), guess.begin());
+          if (!context.solve(q->omega, guess, segment, point, BranchContext::Newton::both))
+            continue;
+          label_point(context.hb, context.scene, labelled, point);
+          if (point.branch == Branch::main)
+            return true;
+        }
+      return false;
+    }
+
+    /// The landing becomes the first point of a new segment, traced until it
+    /// folds, climbs above the tongue threshold or reaches the gap's far side.
     bool fill(BranchContext &context, Backbone &backbone, const std::vector<BackbonePoint> &labelled, const Gap &gap)
     {
       unsigned int segment = 0;
       for (const BackbonePoint &p : backbone.points)
         segment = std::max(segment, p.segment + 1);
-      for (const BackbonePoint *q : guesses_in(context, gap))
-        {
-          std::vector<double> guess(context.hb.n_unknowns(), 0.0);
-          std::copy_n(q->x.begin(), std::min(q->x.size(), guess.size()), guess.begin());
-          BackbonePoint point;
-          if (!context.solve(q->omega, guess, segment, point, BranchContext::Newton::both))
-            continue;
-          label_point(context.hb, context.scene, labelled, point);
-          if (point.branch != Branch::main)
-            continue;
-          backbone.events.push_back(
-            event_message("filled a gap of the main branch from the branch with half the harmonics", q->omega));
-          backbone.points.push_back(std::move(point));
-          context.join_at = gap.to;
-          sequential_segment(context, backbone, segment);
-          context.join_at.reset();
-          return true;
-        }
-      return false;
+      BackbonePoint point;
+      if (!landing(context, labelled, gap, segment, point))
+        return false;
+      backbone.events.push_back(
+        event_message("filled a gap of the main branch from the branch with half the harmonics", point.omega));
+      backbone.points.push_back(std::move(point));
+      sequential_segment(context, backbone, segment, StepLimits{gap.to, tongue_threshold(context, labelled, gap.to)});
+      return true;
     }
   } // namespace
 
@@ -100,13 +122,18 @@ namespace nsm
     const double width = context.scene.continuation.fill_gaps_wider_than;
     if (width <= 0)
       return;
-    const PointStopsDeferred whole;
+    const PointStopsDeferred            whole;
     std::set<std::pair<double, double>> tried; // gaps with no landing
-    for (bool filled = true; filled && !context.full(backbone);)
+    for (bool filled = true; filled;)
       {
+        if (context.full(backbone))
+          return backbone.events.push_back(event_message(
+            "Continuation/Max steps = " + std::to_string(context.scene.continuation.max_steps) +
+              " points reached while filling the main branch's gaps",
+            backbone.points.back().omega));
         filled                                   = false;
         const std::vector<BackbonePoint> labelled = labelled_in_range(context, backbone);
-        for (const Gap &gap : main_gaps(context, labelled, width))
+        for (const Gap &gap : main_gaps(context, labelled, width, backbone.end == BackboneEnd::range))
           if (tried.insert({gap.from, gap.to}).second && fill(context, backbone, labelled, gap))
             {
               filled = true;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 namespace nsm
@@ -37,47 +38,60 @@ namespace nsm
         }
       return guess;
     }
+
+    /// sequential_segment, with or without the limits of a filling segment.
+    SegmentEnd steps(BranchContext &context, Backbone &backbone, const unsigned int segment, const bool hand_over,
+                     const std::optional<StepLimits> &limits)
+    {
+      const auto &c    = context.scene.continuation;
+      double step = std::min(c.initial_step, context.max_step());
+      if (context.resume_step)
+        step = *std::exchange(context.resume_step, std::nullopt);
+      const std::size_t first = last_segment_start(backbone);
+      while (!context.full(backbone))
+        {
+          const BackbonePoint &current = backbone.points.back();
+          if (current.omega == context.far_end)
+            return SegmentEnd::range;
+          const bool before = context.beyond(context.near_end, current.omega);
+          if (!before && hand_over)
+            return SegmentEnd::approach;
+          double omega = current.omega + context.direction * step;
+          if (before && context.beyond(omega, context.near_end))
+            omega = context.near_end;
+          if (context.beyond(omega, context.far_end))
+            omega = context.far_end;
+          if (limits && !context.beyond(limits->join_at, omega))
+            return SegmentEnd::joined;
+          BackbonePoint point;
+          if (context.solve(omega, secant_guess(backbone, first, omega), segment, point) &&
+              stays_on_branch(current, point, c))
+            {
+              if (point.measures.energy > c.energy_max || (limits && point.measures.energy > limits->tongue_above))
+                return SegmentEnd::tongue;
+              if (point.newton_iterations <= continuation_constants::easy_iterations)
+                step = std::min(continuation_constants::step_growth * step, context.max_step());
+              backbone.points.push_back(std::move(point));
+              continue;
+            }
+          step /= continuation_constants::step_shrink;
+          if (step < c.min_step)
+            return SegmentEnd::fold;
+        }
+      context.next_step = step;
+      return SegmentEnd::max_steps;
+    }
   } // namespace
 
   SegmentEnd sequential_segment(BranchContext &context, Backbone &backbone, const unsigned int segment,
                                 const bool hand_over)
   {
-    const auto       &c     = context.scene.continuation;
-    double step = std::min(c.initial_step, context.max_step());
-    if (context.resume_step)
-      step = *std::exchange(context.resume_step, std::nullopt);
-    const std::size_t first = last_segment_start(backbone);
-    while (!context.full(backbone))
-      {
-        const BackbonePoint &current = backbone.points.back();
-        if (current.omega == context.far_end)
-          return SegmentEnd::range;
-        const bool before = context.beyond(context.near_end, current.omega);
-        if (!before && hand_over)
-          return SegmentEnd::approach;
-        double omega = current.omega + context.direction * step;
-        if (before && context.beyond(omega, context.near_end))
-          omega = context.near_end;
-        if (context.beyond(omega, context.far_end))
-          omega = context.far_end;
-        if (context.join_at && !context.beyond(*context.join_at, omega))
-          return SegmentEnd::joined;
-        BackbonePoint point;
-        if (context.solve(omega, secant_guess(backbone, first, omega), segment, point) &&
-            stays_on_branch(current, point, c))
-          {
-            if (point.measures.energy > c.energy_max)
-              return SegmentEnd::tongue;
-            if (point.newton_iterations <= continuation_constants::easy_iterations)
-              step = std::min(continuation_constants::step_growth * step, context.max_step());
-            backbone.points.push_back(std::move(point));
-            continue;
-          }
-        step /= continuation_constants::step_shrink;
-        if (step < c.min_step)
-          return SegmentEnd::fold;
-      }
-    context.next_step = step;
-    return SegmentEnd::max_steps;
+    return steps(context, backbone, segment, hand_over, std::nullopt);
+  }
+
+  SegmentEnd sequential_segment(BranchContext &context, Backbone &backbone, const unsigned int segment,
+                                const StepLimits &limits)
+  {
+    return steps(context, backbone, segment, false, limits);
   }
 } // namespace nsm

@@ -117,10 +117,11 @@ namespace nsm
     prm.declare_entry("Fill gaps wider than",
                       text(d.fill_gaps_wider_than),
                       Patterns::Double(0, 1),
-                      "Once the range's end is reached, every gap between main points wider "
-                      "than this (in Omega) is searched from the main points inside it of the "
-                      "branch traced with half the harmonics; a main solution found there starts "
-                      "a segment of sequential steps up to the gap's far side. 0: no filling.");
+                      "Once the continuation ends (at the range's end or where the branch is "
+                      "lost), every gap between main points wider than this (in Omega) is "
+                      "searched from the points inside it of the branch traced with half the "
+                      "harmonics, its main points first; a main solution found there starts a "
+                      "segment of sequential steps up to the gap's far side. 0: no filling.");
     prm.leave_subsection();
   }
 

@@ -101,7 +101,7 @@ int main(int argc, char **argv)
   nsm::use_one_thread(); // as nsm-bar: the same results
   if (argc < 2)
     {
-      std::fprintf(stderr, "usage: study_coverage M [width]\n");
+      std::fprintf(stderr, "usage: study_coverage M [width [fill]]\n");
       return 2;
     }
   const unsigned int harmonics = static_cast<unsigned int>(std::atoi(argv[1]));

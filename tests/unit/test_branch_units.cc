@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <regex>
 #include <sstream>
@@ -142,6 +143,32 @@ TEST(SequentialSteps, UniformSegmentEndsExactlyAtOmegaMaxOnOneBranch)
       // The branch hardens: the energy rises with Omega.
       EXPECT_GT(p[i].measures.energy, p[i - 1].measures.energy) << p[i].omega;
     }
+}
+
+TEST(SequentialSteps, AFillingSegmentEndsBeforeItsFarSideAndBelowItsTongueThreshold)
+{
+  // The uniform branch of the test above, with the limits of a gap being
+  // filled (gap_filling.h): the far side at 1.58, then an energy bound.
+  auto scene = testing_helpers::hb_scene("1", 10);
+  scene.continuation.omega_max  = 1.6;
+  scene.continuation.energy_max = 1e-5;
+  Tracing t(scene);
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(nsm::sequential_segment(t.context, t.backbone, 0, nsm::StepLimits{1.58, inf}), nsm::SegmentEnd::joined);
+  const auto &p = t.backbone.points;
+  ASSERT_GT(p.size(), 5u);
+  EXPECT_LT(p.back().omega, 1.58);
+  EXPECT_GT(p.back().omega, 1.58 - t.context.max_step() * (1 + 1e-12)); // the next step would reach it
+
+  // The branch hardens: with that last point's energy as the threshold, the
+  // segment ends (tongue) on the step that climbs above it, and keeps no point above.
+  const double threshold = p.back().measures.energy;
+  Tracing      again(scene);
+  EXPECT_EQ(nsm::sequential_segment(again.context, again.backbone, 0, nsm::StepLimits{inf, threshold}),
+            nsm::SegmentEnd::tongue);
+  ASSERT_GT(again.backbone.points.size(), 1u);
+  for (const auto &q : again.backbone.points)
+    EXPECT_LE(q.measures.energy, threshold) << q.omega;
 }
 
 TEST(ArclengthSteps, SeedSegmentTurnsAFoldAndStopsHighOnTheTongue)

@@ -2,7 +2,7 @@
 // overview): the model and the scene, the Newton solvers, the direction and
 // ends of the Omega range, and when a converged solve becomes a point. The
 // stages are separate units: grazing_start, sequential_steps,
-// arclength_steps and leap.
+// arclength_steps, leap and gap_filling.
 #pragma once
 
 #include <nsm/continuation/backbone.h>
@@ -25,7 +25,7 @@ namespace nsm
     max_steps, ///< Max steps points in all
     refused,   ///< arclength reached a point that is not a contact motion
     jump,      ///< an arclength step left the branch (shortened and retried)
-    joined     ///< sequential steps reached BranchContext::join_at (gap_filling.h)
+    joined     ///< a segment filling a gap reached its far side (gap_filling.h)
   };
 
   /// "what at Omega = ..." for the run summary, with the nearest internal
@@ -92,9 +92,10 @@ namespace nsm
     NewtonCost newton_cost() const;
 
     /// The same branch traced with half the harmonics (computed once, on
-    /// first use; null below 2 harmonics): where a leap finds no landing, or
-    /// in a gap of the main branch (gap_filling.h), its main points are
-    /// guesses that lie near solutions.
+    /// first use, never with its gaps filled; null below 2 harmonics): where
+    /// a leap finds no landing, its main points, and in a gap of the main
+    /// branch (gap_filling.h) all its points there, are guesses that lie
+    /// near solutions.
     const Backbone *fewer_harmonics();
 
     HarmonicBalance                     &hb;
@@ -108,9 +109,6 @@ namespace nsm
     /// (it stopped at Max steps with a stop signal), and where a resumed
     /// segment starts (checkpoint.h).
     std::optional<double>                next_step, resume_step;
-    /// Where sequential steps end (`joined`) before they would pass it: the
-    /// far side of a gap being filled (gap_filling.h).
-    std::optional<double>                join_at;
 
   private:
     NewtonSolver newton_;

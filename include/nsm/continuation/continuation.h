@@ -2,8 +2,8 @@
 // Omega (the paper's) and pseudo-arclength (LOCA), with the internal
 // resonances W = w_j / k that fold the branch. compute_backbone joins the
 // stages of branch_context.h (grazing_start, sequential_steps,
-// arclength_steps, leap) into segments, then labels the points
-// (main_branch.h).
+// arclength_steps, leap) into segments, fills the main branch's gaps if the
+// scene asks (gap_filling.h), then labels the points (main_branch.h).
 #pragma once
 
 #include <nsm/continuation/backbone.h>
@@ -34,7 +34,8 @@ namespace nsm
 
   /// The solution at exactly `omega` on the computed branch: Newton from the
   /// interpolation of two backbone points of one segment that bracket it
-  /// (each such pair in turn), both labelled main if `main_only`. Otherwise
+  /// (each such pair in turn, pairs of main points first; only those if
+  /// `main_only`). Otherwise
   /// (omega in the gap a leap left), unless `main_only`, Newton with a line
   /// search, as a leap, from the nearest points below and above and from the
   /// impulsive guess. The point is labelled main or tongue against the

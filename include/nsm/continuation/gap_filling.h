@@ -8,14 +8,16 @@
 namespace nsm
 {
   /// With `Fill gaps wider than` > 0, once the continuation has reached the
-  /// end of its range: every gap between main points wider than that (the
-  /// labels of the points traced so far, in the range) is searched from the
-  /// main points inside it of the branch traced with half the harmonics,
-  /// nearest the gap's start first, each at its own Omega with its higher
-  /// harmonics zero (Newton with a line search, as a leap). A solution the
-  /// labels put on the main branch starts a new segment of sequential steps,
-  /// which ends where it folds or joins the branch at the gap's far side;
-  /// what is left of the gap is searched again. A gap with no such landing
-  /// stays. Stop signals wait until the filling ends.
+  /// end of its range or lost the branch (not at Max steps or a stop): every
+  /// gap between main points wider than that (the labels of the points
+  /// traced so far, in the range; up to the range's end only if the branch
+  /// reached it) is searched from the points inside it of the branch traced
+  /// with half the harmonics, its main points first, each group nearest the
+  /// gap's start first, each at its own Omega with its higher harmonics zero
+  /// (Newton with a line search, as a leap). A solution the labels put on
+  /// the main branch starts a new segment of sequential steps, which ends
+  /// where it folds or before it passes the gap's far side; what is left of
+  /// the gap is searched again. A gap with no such landing stays. Stop
+  /// signals wait until the filling ends.
   void fill_gaps(BranchContext &context, Backbone &backbone);
 } // namespace nsm

@@ -16,11 +16,23 @@ namespace nsm
   /// solve of at most 4 iterations, up to the context's max_step(), and is
   /// quartered on failure or on a jump to another branch, down to Min step
   /// (a fold). Steps stop exactly at the start of the range (coming from
-  /// before it) and at its end, and end (`joined`) before they would pass
-  /// the context's `join_at`. With `hand_over` it ends (`approach`) once
+  /// before it) and at its end. With `hand_over` it ends (`approach`) once
   /// the range is reached: another method traces the range.
   SegmentEnd sequential_segment(BranchContext &context, Backbone &backbone, unsigned int segment,
                                 bool hand_over = false);
+
+  /// Where a segment that fills a gap (gap_filling.h) ends: before a step
+  /// would reach or pass `join_at`, the gap's far side (`joined`), and at a
+  /// point above `tongue_above`, not kept (`tongue`).
+  struct StepLimits
+  {
+    double join_at;
+    double tongue_above;
+  };
+
+  /// sequential_segment within those limits.
+  SegmentEnd sequential_segment(BranchContext &context, Backbone &backbone, unsigned int segment,
+                                const StepLimits &limits);
 
   /// The paper's method: sequential_segment.
   class SequentialSteps : public SegmentTracer
