@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 namespace nsm
@@ -79,6 +80,24 @@ namespace nsm
       return s.str();
     }
 
+    /// The widest gap between consecutive main points (in Omega order), and
+    /// the entry that searches such gaps.
+    std::string widest_gap(const std::vector<const BackbonePoint *> &main, const Scene::Continuation &c)
+    {
+      std::size_t widest = 1;
+      for (std::size_t i = 2; i < main.size(); ++i)
+        if (std::abs(main[i]->omega - main[i - 1]->omega) > std::abs(main[widest]->omega - main[widest - 1]->omega))
+          widest = i;
+      std::ostringstream s;
+      s.precision(4);
+      s << "widest gap between main points: " << std::abs(main[widest]->omega - main[widest - 1]->omega)
+        << std::setprecision(6) << " from Omega = " << main[widest - 1]->omega << " to " << main[widest]->omega
+        << (c.fill_gaps_wider_than > 0 ? " (left by Continuation/Fill gaps wider than = " +
+                                           significant(c.fill_gaps_wider_than, 6) + ")" :
+                                         " (Continuation/Fill gaps wider than searches such gaps)");
+      return s.str();
+    }
+
     /// The main points' energy error against the uniform bar's exact mode,
     /// if the bar is uniform and the force sign physical.
     std::vector<std::string> exact_errors(const std::vector<const BackbonePoint *> &main, const BarModel &bar,
@@ -115,6 +134,8 @@ namespace nsm
     std::vector<std::string> lines{coverage(backbone, main.size(), direction, continuation)};
     if (!main.empty())
       lines.push_back(energies(main));
+    if (main.size() > 1)
+      lines.push_back(widest_gap(main, continuation));
     for (std::string &line : exact_errors(main, bar, contact))
       lines.push_back(std::move(line));
     return lines;
