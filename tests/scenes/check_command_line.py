@@ -96,6 +96,13 @@ def main():
     expected = f"median {100 * errors[len(errors) // 2]:.3g} %"
     check(uniform.returncode == 0 and line and expected in line[0] and f"of {len(errors)}" in line[0],
           f"Result block: {line}, expected {expected!r} of {len(errors)}")
+    # ... and the widest gap between its main points, recomputed from backbone.csv.
+    with open("uniform/backbone.csv", newline="") as f:
+        main = sorted(float(r["Omega"]) for r in csv.DictReader(f) if r["branch"] == "main")
+    widest = max(b - a for a, b in zip(main, main[1:]))
+    line = [x for x in uniform.stdout.splitlines() if "widest gap between main points" in x]
+    check(line and f"points: {widest:.4g} from" in line[0] and "Continuation/Fill gaps wider than" in line[0],
+          f"Result block: {line}, expected the widest main gap {widest:.4g}")
     check(uniform.stdout.startswith("nsm-bar: scene uniform.prm\nResult\n  backbone from Omega = "),
           f"the summary does not open with the Result block: {uniform.stdout[:200]!r}")
 
