@@ -97,7 +97,7 @@ namespace nsm
       bool run()
       {
         if (from_guesses(false) || (first_ > 0 && from_guesses(true)) || from_lowest_behind() ||
-            (!tally_.left_energy_range() && from_fewer_harmonics()))
+            (!tally_.left_energy_range() && (from_fewer_harmonics(false) || from_fewer_harmonics(true))))
           return true;
         record_loss();
         return false;
@@ -190,9 +190,9 @@ namespace nsm
         });
       }
 
-      /// The main points of the branch with half the harmonics within reach
-      /// beyond the front, nearest first.
-      std::vector<const BackbonePoint *> fewer_harmonics_near_front()
+      /// The main points of the branch with half the harmonics beyond the
+      /// front, within reach or (`beyond_reach`) further on, nearest first.
+      std::vector<const BackbonePoint *> fewer_harmonics_near_front(const bool beyond_reach)
       {
         std::vector<const BackbonePoint *> near;
         const Backbone *fewer = c_.leap_from_fewer_harmonics ? context_.fewer_harmonics() : nullptr;
@@ -200,7 +200,7 @@ namespace nsm
           return near;
         for (const BackbonePoint &q : fewer->points)
           if (q.branch == Branch::main && context_.beyond(q.omega, front_.omega) &&
-              std::abs(q.omega - front_.omega) <= reach_)
+              (std::abs(q.omega - front_.omega) <= reach_) != beyond_reach)
             near.push_back(&q);
         std::sort(near.begin(), near.end(), [&](const BackbonePoint *a, const BackbonePoint *b) {
           return std::abs(a->omega - front_.omega) < std::abs(b->omega - front_.omega);
@@ -209,13 +209,15 @@ namespace nsm
       }
 
       /// Each of those points at its own Omega, its higher harmonics zero.
-      bool from_fewer_harmonics()
+      bool from_fewer_harmonics(const bool beyond_reach)
       {
-        for (const BackbonePoint *q : fewer_harmonics_near_front())
+        for (const BackbonePoint *q : fewer_harmonics_near_front(beyond_reach))
           {
             std::vector<double> guess(context_.hb.n_unknowns(), 0.0);
             std::copy(q->x.begin(), q->x.end(), guess.begin());
-            if (lands(q->omega, guess, "leapt to a new segment from the branch with half the harmonics"))
+            if (lands(q->omega, guess,
+                      beyond_reach ? "leapt beyond Search reach to a new segment from the branch with half the harmonics" :
+                                     "leapt to a new segment from the branch with half the harmonics"))
               return true;
           }
         return false;

@@ -100,6 +100,8 @@ MUTATIONS = [
      "if (q.branch == Branch::main && context.beyond(q.omega, gap.from) && context.beyond(gap.to, q.omega))"),
     ("gap filling that keeps a tongue landing", "source/continuation/gap_filling.cc",
      "if (point.branch == Branch::main)", "if (true)"),
+    ("leap without the branch with half the harmonics beyond Search reach", "source/continuation/leap.cc",
+     "(from_fewer_harmonics(false) || from_fewer_harmonics(true))", "from_fewer_harmonics(false)"),
     ("leap without its last resort", "source/continuation/leap.cc",
      "if (from_guesses(false) || (first_ > 0 && from_guesses(true)) ||", "if (from_guesses(false) ||"),
     ("leap from the segment's first fold even behind its start", "source/continuation/leap.cc",

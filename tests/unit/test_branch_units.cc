@@ -357,6 +357,49 @@ TEST(Leap, ALostBranchGoesOnFromTheBranchWithHalfTheHarmonics)
               quantile(from40, 0.5), quantile(from40, 0.9), from40.back(), from40.size());
 }
 
+// With a short Search reach (0.005 of Omega) the seed bar at M = 80 meets a
+// fold beyond which nothing within reach lands, not even the M = 40 branch's
+// main points: the branch is lost there without the M = 40 branch, and goes
+// on with it from a main point beyond the reach.
+TEST(Leap, BeyondSearchReachTheBranchWithHalfTheHarmonicsCarriesALostBranchOn)
+{
+  const auto short_reach = [](const bool fewer) {
+    nsm::Scene scene                   = seed_at(80, fewer);
+    scene.continuation.search_reach   = 0.005;
+    scene.continuation.grazing_offset = 1e-6;
+    return scene;
+  };
+  HbModel             model(short_reach(true));
+  const nsm::Backbone carried = model.backbone();
+  EXPECT_EQ(carried.end, nsm::BackboneEnd::range);
+  EXPECT_EQ(*carried.omega_reached(1), 2.2);
+  std::vector<double> beyond;
+  for (const std::string &event : carried.events)
+    {
+      std::smatch m;
+      if (std::regex_search(event, m, std::regex("leapt beyond Search reach .* at Omega = ([0-9.]+)")))
+        beyond.push_back(std::stod(m[1]));
+    }
+  ASSERT_FALSE(beyond.empty());
+  for (const double omega : beyond)
+    {
+      // The fold it leapt from lies more than the reach behind the landing.
+      double fold = 0;
+      for (const double f : carried.folds)
+        if (f < omega)
+          fold = std::max(fold, f);
+      EXPECT_GT(omega - fold, 0.005 * fold) << omega;
+      const auto landing = std::min_element(carried.points.begin(), carried.points.end(), [&](auto &a, auto &b) {
+        return std::abs(a.omega - omega) < std::abs(b.omega - omega);
+      });
+      EXPECT_EQ(landing->branch, nsm::Branch::main) << omega;
+    }
+  // Without the M = 40 branch the run is lost before the first such landing.
+  const nsm::Backbone lost = HbModel(short_reach(false)).backbone();
+  EXPECT_EQ(lost.end, nsm::BackboneEnd::lost);
+  EXPECT_LT(*lost.omega_reached(1), beyond.front());
+}
+
 // The uniform bar's first nonsmooth mode has the energy g0^2 / (2 (T - 3)^2),
 // which crosses 1e-3 at Omega = 2.0789 (T = 3.0224). Run to 2.08 with that
 // Energy max, the branch is not lost: the leap beyond the last fold lands

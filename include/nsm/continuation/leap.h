@@ -20,7 +20,9 @@ namespace nsm
   /// the segment as the only guess, and then (Leap from fewer harmonics) the
   /// main points within reach of the branch traced with half the harmonics,
   /// nearest first, at their own W: near dense resonances nothing else lies
-  /// in Newton's basin (the seed bar at M = 160). A success
+  /// in Newton's basin (the seed bar at M = 160); and, where none lands, its
+  /// main points beyond the reach, nearest first, rather than lose the
+  /// branch (the seed bar at M = 320). A success
   /// appends the landing as the first point of `segment`; a failure records
   /// how the backbone ended (Backbone::end: lost, or energy_max where the only
   /// landings lay above Energy max) and what the Newton solves ended in.
