@@ -112,7 +112,8 @@ namespace nsm
                       Patterns::Bool(),
                       "Where a leap finds no landing from its own guesses, it tries the main "
                       "points within reach of the same branch traced once with half the "
-                      "harmonics, their higher harmonics zero. Near dense internal resonances "
+                      "harmonics, their higher harmonics zero, then its main points beyond "
+                      "reach rather than lose the branch. Near dense internal resonances "
                       "(the seed bar at M = 160) Newton converges from nothing else.");
     prm.declare_entry("Fill gaps wider than",
                       text(d.fill_gaps_wider_than),
