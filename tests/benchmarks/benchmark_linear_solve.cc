@@ -7,21 +7,16 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <random>
 #include <vector>
+
+#include "random_system.h"
 
 int main()
 {
   std::printf("| n | us per solve: min | median | max | GFlop/s at the median |\n|---|---|---|---|---|\n");
   for (const int n : {41, 81, 161, 321})
     {
-      std::mt19937                           engine(1);
-      std::uniform_real_distribution<double> uniform(-1, 1);
-      std::vector<double>                    a(n * n), b(n);
-      for (double &v : a)
-        v = uniform(engine);
-      for (double &v : b)
-        v = uniform(engine);
+      const auto [a, b] = testing_helpers::random_system(n, 1);
       const int           solves = 100000000 / (n * n * n) + 1;
       std::vector<double> times;
       for (int run = 0; run < 5; ++run)

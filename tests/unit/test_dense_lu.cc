@@ -5,9 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
-#include <utility>
 #include <vector>
+
+#include "random_system.h"
 
 namespace
 {
@@ -20,18 +20,6 @@ namespace
         b[i] += a[i + j * n] * x[j];
     return b;
   }
-  /// A random n x n matrix (column-major) and vector, entries in [-1, 1].
-  std::pair<std::vector<double>, std::vector<double>> random_system(const int n, const unsigned int seed)
-  {
-    std::mt19937                           engine(seed);
-    std::uniform_real_distribution<double> uniform(-1, 1);
-    std::vector<double>                    a(n * n), x(n);
-    for (double &v : a)
-      v = uniform(engine);
-    for (double &v : x)
-      v = uniform(engine);
-    return {a, x};
-  }
 } // namespace
 
 TEST(DenseLu, SolvesARandomSystemOfTheJacobiansSize)
@@ -41,7 +29,7 @@ TEST(DenseLu, SolvesARandomSystemOfTheJacobiansSize)
   // ~ 1e2 to 1e3, so 1e-11 leaves a factor 10 and still fails a wrong
   // interchange or multiplier by orders of magnitude.
   const int n     = 41;
-  const auto [a, x] = random_system(n, 7);
+  const auto [a, x] = testing_helpers::random_system(n, 7);
   std::vector<double> b = times(a, x), lu = a;
   ASSERT_TRUE(nsm::dense_solve(n, lu.data(), b.data()));
   for (int i = 0; i < n; ++i)
@@ -57,7 +45,7 @@ TEST(DenseLu, IsBackwardStableAtTheJacobiansSizesForHighHarmonics)
   // orders of magnitude.
   for (const int n : {7, 9, 161, 321})
     {
-      const auto [a, x]           = random_system(n, n);
+      const auto [a, x]           = testing_helpers::random_system(n, n);
       const std::vector<double> b = times(a, x);
       std::vector<double>       solution = b, lu = a;
       ASSERT_TRUE(nsm::dense_solve(n, lu.data(), solution.data()));
