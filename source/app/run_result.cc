@@ -1,5 +1,6 @@
 #include <nsm/app/run_result.h>
 #include <nsm/base/text.h>
+#include <nsm/continuation/main_branch.h>
 #include <nsm/model/exact_references.h>
 
 #include <algorithm>
@@ -80,18 +81,18 @@ namespace nsm
       return s.str();
     }
 
-    /// The widest gap between consecutive main points (in Omega order), and
-    /// the entry that searches such gaps.
-    std::string widest_gap(const std::vector<const BackbonePoint *> &main, const Scene::Continuation &c)
+    /// The widest gap between consecutive main points, and the entry that
+    /// searches such gaps.
+    std::string widest_gap(const Backbone &backbone, const double direction, const Scene::Continuation &c)
     {
-      std::size_t widest = 1;
-      for (std::size_t i = 2; i < main.size(); ++i)
-        if (std::abs(main[i]->omega - main[i - 1]->omega) > std::abs(main[widest]->omega - main[widest - 1]->omega))
-          widest = i;
+      const std::vector<std::pair<double, double>> gaps = main_gaps(backbone.points, direction);
+      const auto widest = std::max_element(gaps.begin(), gaps.end(), [](const auto &a, const auto &b) {
+        return std::abs(a.second - a.first) < std::abs(b.second - b.first);
+      });
       std::ostringstream s;
       s.precision(4);
-      s << "widest gap between main points: " << std::abs(main[widest]->omega - main[widest - 1]->omega)
-        << std::setprecision(6) << " from Omega = " << main[widest - 1]->omega << " to " << main[widest]->omega
+      s << "widest gap between main points: " << std::abs(widest->second - widest->first) << std::setprecision(6)
+        << " from Omega = " << widest->first << " to " << widest->second
         << (c.fill_gaps_wider_than > 0 ? " (left by Continuation/Fill gaps wider than = " +
                                            significant(c.fill_gaps_wider_than, 6) + ")" :
                                          " (Continuation/Fill gaps wider than searches such gaps)");
@@ -135,7 +136,7 @@ namespace nsm
     if (!main.empty())
       lines.push_back(energies(main));
     if (main.size() > 1)
-      lines.push_back(widest_gap(main, continuation));
+      lines.push_back(widest_gap(backbone, direction, continuation));
     for (std::string &line : exact_errors(main, bar, contact))
       lines.push_back(std::move(line));
     return lines;

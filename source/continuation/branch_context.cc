@@ -169,4 +169,11 @@ namespace nsm
       }
     return fewer_harmonics_.get();
   }
+
+  std::vector<double> BranchContext::guess_from_fewer_harmonics(const BackbonePoint &fewer) const
+  {
+    std::vector<double> guess(hb.n_unknowns(), 0.0);
+    std::copy_n(fewer.x.begin(), std::min(fewer.x.size(), guess.size()), guess.begin());
+    return guess;
+  }
 } // namespace nsm

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <set>
 #include <utility>
 
@@ -13,11 +12,8 @@ namespace nsm
 {
   namespace
   {
-    /// From `from` to `to` in the direction of continuation.
-    struct Gap
-    {
-      double from, to;
-    };
+    /// From `first` to `second` in the direction of continuation.
+    using Gap = std::pair<double, double>;
 
     /// The points in the range, labelled as they would be written.
     std::vector<BackbonePoint> labelled_in_range(BranchContext &context, const Backbone &backbone)
@@ -33,22 +29,14 @@ namespace nsm
     /// The gaps wider than `width` between main points, in the direction of
     /// continuation; the last main point's distance to the range's end too
     /// if the branch reached it.
-    std::vector<Gap> main_gaps(const BranchContext &context, const std::vector<BackbonePoint> &points,
+    std::vector<Gap> wide_gaps(const BranchContext &context, const std::vector<BackbonePoint> &points,
                                const double width, const bool reached_end)
     {
-      std::vector<double> main;
-      for (const BackbonePoint &p : points)
-        if (p.branch == Branch::main)
-          main.push_back(p.omega);
-      if (main.empty())
-        return {};
-      std::sort(main.begin(), main.end(), [&](double a, double b) { return context.beyond(b, a); });
-      if (reached_end)
-        main.push_back(context.far_end);
-      std::vector<Gap> gaps;
-      for (std::size_t i = 1; i < main.size(); ++i)
-        if (std::abs(main[i] - main[i - 1]) > width)
-          gaps.push_back({main[i - 1], main[i]});
+      std::vector<Gap> gaps = main_gaps(points, context.direction,
+                                        reached_end ? std::optional<double>(context.far_end) : std::nullopt);
+      gaps.erase(std::remove_if(gaps.begin(), gaps.end(),
+                                [&](const Gap &g) { return !(std::abs(g.second - g.first) > width); }),
+                 gaps.end());
       return gaps;
     }
 
@@ -59,7 +47,7 @@ namespace nsm
       std::vector<const BackbonePoint *> inside;
       if (const Backbone *fewer = context.fewer_harmonics())
         for (const BackbonePoint &q : fewer->points)
-          if (context.beyond(q.omega, gap.from) && context.beyond(gap.to, q.omega))
+          if (context.beyond(q.omega, gap.first) && context.beyond(gap.second, q.omega))
             inside.push_back(&q);
       std::sort(inside.begin(), inside.end(), [&](const BackbonePoint *a, const BackbonePoint *b) {
         if (a->branch != b->branch)
@@ -69,16 +57,13 @@ namespace nsm
       return inside;
     }
 
-    /// (1 + Tongue share) times the least energy at or beyond the gap's far
-    /// side: a point above it is a tongue point, whatever the filling adds.
+    /// (1 + Tongue share) times the envelope at the gap's far side (the
+    /// labels' rule, main_branch.h): a point above it is a tongue point,
+    /// whatever the filling adds.
     double tongue_threshold(const BranchContext &context, const std::vector<BackbonePoint> &points,
                             const double far_side)
     {
-      double least = std::numeric_limits<double>::infinity();
-      for (const BackbonePoint &p : points)
-        if (!context.beyond(far_side, p.omega))
-          least = std::min(least, p.measures.energy);
-      return (1 + context.scene.continuation.tongue_share) * least;
+      return (1 + context.scene.continuation.tongue_share) * envelope_at(points, far_side, context.direction);
     }
 
     /// The first solution inside the gap that the labels put on the main
@@ -88,9 +73,8 @@ namespace nsm
     {
       for (const BackbonePoint *q : guesses_in(context, gap))
         {
-          std::vector<double> guess(context.hb.n_unknowns(), 0.0);
-          std::copy_n(q->x.begin(), std::min(q->x.size(), guess.size()), guess.begin());
-          if (!context.solve(q->omega, guess, segment, point, BranchContext::Newton::both))
+          if (!context.solve(q->omega, context.guess_from_fewer_harmonics(*q), segment, point,
+                             BranchContext::Newton::both))
             continue;
           label_point(context.hb, context.scene, labelled, point);
           if (point.branch == Branch::main)
@@ -112,7 +96,7 @@ namespace nsm
       backbone.events.push_back(
         event_message("filled a gap of the main branch from the branch with half the harmonics", point.omega));
       backbone.points.push_back(std::move(point));
-      sequential_segment(context, backbone, segment, StepLimits{gap.to, tongue_threshold(context, labelled, gap.to)});
+      sequential_segment(context, backbone, segment, StepLimits{gap.second, tongue_threshold(context, labelled, gap.second)});
       return true;
     }
   } // namespace
@@ -123,7 +107,7 @@ namespace nsm
     if (width <= 0)
       return;
     const PointStopsDeferred            whole;
-    std::set<std::pair<double, double>> tried; // gaps with no landing
+    std::set<Gap>                       tried; // gaps with no landing
     for (bool filled = true; filled;)
       {
         if (context.full(backbone))
@@ -133,8 +117,8 @@ namespace nsm
             backbone.points.back().omega));
         filled                                   = false;
         const std::vector<BackbonePoint> labelled = labelled_in_range(context, backbone);
-        for (const Gap &gap : main_gaps(context, labelled, width, backbone.end == BackboneEnd::range))
-          if (tried.insert({gap.from, gap.to}).second && fill(context, backbone, labelled, gap))
+        for (const Gap &gap : wide_gaps(context, labelled, width, backbone.end == BackboneEnd::range))
+          if (tried.insert(gap).second && fill(context, backbone, labelled, gap))
             {
               filled = true;
               break;

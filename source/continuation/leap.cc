@@ -213,9 +213,7 @@ namespace nsm
       {
         for (const BackbonePoint *q : fewer_harmonics_near_front(beyond_reach))
           {
-            std::vector<double> guess(context_.hb.n_unknowns(), 0.0);
-            std::copy(q->x.begin(), q->x.end(), guess.begin());
-            if (lands(q->omega, guess,
+            if (lands(q->omega, context_.guess_from_fewer_harmonics(*q),
                       beyond_reach ? "leapt beyond Search reach to a new segment from the branch with half the harmonics" :
                                      "leapt to a new segment from the branch with half the harmonics"))
               return true;

@@ -174,17 +174,39 @@ namespace nsm
                    const std::vector<BackbonePoint> &points,
                    BackbonePoint                    &point)
   {
-    const double direction = branch_direction(scene.contact);
-    double       least     = point.measures.energy;
-    for (const BackbonePoint &q : points)
-      if (direction * (q.omega - point.omega) >= 0)
-        least = std::min(least, q.measures.energy);
+    const double least =
+      std::min(point.measures.energy, envelope_at(points, point.omega, branch_direction(scene.contact)));
     mark(point,
          exceeds_envelope(point.measures.energy, least, scene.continuation.tongue_share) ?
            tongue_resonance(hb, point) :
            InternalResonance{0, 0, 0},
          scene);
     hb.set_omega(point.omega);
+  }
+
+  double envelope_at(const std::vector<BackbonePoint> &points, const double omega, const double direction)
+  {
+    double least = std::numeric_limits<double>::infinity();
+    for (const BackbonePoint &q : points)
+      if (direction * (q.omega - omega) >= 0)
+        least = std::min(least, q.measures.energy);
+    return least;
+  }
+
+  std::vector<std::pair<double, double>> main_gaps(const std::vector<BackbonePoint> &points, const double direction,
+                                                   const std::optional<double> end)
+  {
+    std::vector<double> main;
+    for (const BackbonePoint &p : points)
+      if (p.branch == Branch::main)
+        main.push_back(p.omega);
+    std::sort(main.begin(), main.end(), [&](double a, double b) { return direction * a < direction * b; });
+    if (!main.empty() && end)
+      main.push_back(*end);
+    std::vector<std::pair<double, double>> gaps;
+    for (std::size_t i = 1; i < main.size(); ++i)
+      gaps.emplace_back(main[i - 1], main[i]);
+    return gaps;
   }
 
   std::vector<Tongue> collect_tongues(const std::vector<BackbonePoint> &points)

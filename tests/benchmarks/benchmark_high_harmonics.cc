@@ -6,6 +6,7 @@
 //   benchmark_high_harmonics [sequential|arclength] [fill=WIDTH] M...
 // (fill=WIDTH: Continuation/Fill gaps wider than, 0 by default)
 #include <nsm/base/threads.h>
+#include <nsm/continuation/main_branch.h>
 
 #include <algorithm>
 #include <chrono>
@@ -31,16 +32,9 @@ namespace
     const auto              &hb = model.hb.cost();
     const auto              &n  = b.newton_cost;
 
-    std::vector<double> main;
-    for (const nsm::BackbonePoint &p : b.points)
-      if (p.branch == nsm::Branch::main)
-        main.push_back(p.omega);
-    std::sort(main.begin(), main.end());
-    std::vector<std::pair<double, double>> gaps;
-    for (std::size_t i = 1; i < main.size(); ++i)
-      gaps.emplace_back(main[i] - main[i - 1], main[i - 1]);
-    if (!main.empty())
-      gaps.emplace_back(2.2 - main.back(), main.back());
+    std::vector<std::pair<double, double>> gaps; // (width, from), widest first
+    for (const auto &[from, to] : nsm::main_gaps(b.points, 1, 2.2))
+      gaps.emplace_back(to - from, from);
     std::sort(gaps.rbegin(), gaps.rend());
 
     std::printf("| %u | %s | %.2f | %zu | %u | %u | %.6f | %lu (%.1f it) %.2f s | %lu (%.1f it) %.2f s | %.0f %% "

@@ -25,10 +25,7 @@ namespace
 {
   constexpr double omega_end = 2.2;
 
-  struct Gap
-  {
-    double from, to;
-  };
+  using Gap = std::pair<double, double>; // (from, to)
 
   struct Tally
   {
@@ -44,47 +41,27 @@ namespace
     return scene;
   }
 
-  std::vector<Gap> main_gaps(const nsm::Backbone &b, const double width)
+  std::vector<Gap> wide_gaps(const nsm::Backbone &b, const double width)
   {
-    std::vector<double> main;
-    for (const nsm::BackbonePoint &p : b.points)
-      if (p.branch == nsm::Branch::main)
-        main.push_back(p.omega);
-    std::sort(main.begin(), main.end());
-    if (main.empty())
-      return {};
-    main.push_back(omega_end);
     std::vector<Gap> gaps;
-    for (std::size_t i = 1; i < main.size(); ++i)
-      if (main[i] - main[i - 1] > width)
-        gaps.push_back({main[i - 1], main[i]});
+    for (const Gap &g : nsm::main_gaps(b.points, 1, omega_end))
+      if (g.second - g.first > width)
+        gaps.push_back(g);
     return gaps;
-  }
-
-  /// The least energy of the M branch at or beyond omega (the envelope).
-  double envelope(const nsm::Backbone &b, const double omega)
-  {
-    double least = 1e300;
-    for (const nsm::BackbonePoint &p : b.points)
-      if (p.omega >= omega)
-        least = std::min(least, p.measures.energy);
-    return least;
   }
 
   /// Newton at M from the point q of another branch, at q's Omega.
   void search_from(testing_helpers::HbModel &model, const nsm::Backbone &b, const nsm::BackbonePoint &q,
                    Tally &tally, std::vector<double> &found)
   {
-    nsm::BranchContext  context(model.hb, model.scene, {});
-    std::vector<double> guess(model.hb.n_unknowns(), 0.0);
-    std::copy_n(q.x.begin(), std::min(q.x.size(), guess.size()), guess.begin());
+    nsm::BranchContext context(model.hb, model.scene, {});
     nsm::BackbonePoint point;
     ++tally.guesses;
-    if (!context.solve(q.omega, guess, 0, point, nsm::BranchContext::Newton::both))
+    if (!context.solve(q.omega, context.guess_from_fewer_harmonics(q), 0, point, nsm::BranchContext::Newton::both))
       return;
     ++tally.converged;
     nsm::label_point(model.hb, model.scene, b.points, point);
-    const double ratio = point.measures.energy / envelope(b, point.omega);
+    const double ratio = point.measures.energy / nsm::envelope_at(b.points, point.omega, 1);
     tally.lowest_ratio = tally.converged == 1 ? ratio : std::min(tally.lowest_ratio, ratio);
     if (point.branch == nsm::Branch::main)
       ++tally.main, found.push_back(point.omega);
@@ -92,7 +69,7 @@ namespace
 
   bool inside(const std::vector<Gap> &gaps, const double omega)
   {
-    return std::any_of(gaps.begin(), gaps.end(), [&](const Gap &g) { return g.from < omega && omega < g.to; });
+    return std::any_of(gaps.begin(), gaps.end(), [&](const Gap &g) { return g.first < omega && omega < g.second; });
   }
 } // namespace
 
@@ -113,7 +90,7 @@ int main(int argc, char **argv)
   scene.continuation.fill_gaps_wider_than = fill;
   testing_helpers::HbModel model(scene);
   const nsm::Backbone      b    = model.backbone();
-  const std::vector<Gap>   gaps = main_gaps(b, width);
+  const std::vector<Gap>   gaps = wide_gaps(b, width);
 
   // The neighbouring branches. At 2 M the default Max iterations lose the
   // seed branch at M = 320 (doc/accuracy-and-cost.md); 20 carry it to 2.2.
@@ -135,7 +112,7 @@ int main(int argc, char **argv)
       unsigned int        counts[2][2] = {{0, 0}, {0, 0}}, main_from[2] = {0, 0};
       for (int k = 0; k < 2; ++k)
         for (const nsm::BackbonePoint &q : (k == 0 ? b_half : b_twice).points)
-          if (g.from < q.omega && q.omega < g.to)
+          if (g.first < q.omega && q.omega < g.second)
             {
               ++counts[k][0];
               counts[k][1] += q.branch == nsm::Branch::main;
@@ -144,7 +121,7 @@ int main(int argc, char **argv)
               main_from[k] += tally.main - before;
             }
       missed += tally.main;
-      std::printf("| %.4f | %.4f | %.4f | %u (%u) | %u (%u) | %u | %u (%u from M/2)", g.from, g.to, g.to - g.from,
+      std::printf("| %.4f | %.4f | %.4f | %u (%u) | %u (%u) | %u | %u (%u from M/2)", g.first, g.second, g.second - g.first,
                   counts[0][0], counts[0][1], counts[1][0], counts[1][1], tally.converged, tally.main,
                   main_from[0]);
       for (std::size_t i = 0; i < std::min<std::size_t>(found.size(), 6); ++i)

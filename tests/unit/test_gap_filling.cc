@@ -96,12 +96,9 @@ TEST(GapFilling, FillsTheMainBranchWhereNewtonFindsItAndKeepsTheTracedPoints)
     for (const nsm::BackbonePoint &q : fewer.points)
       if (g.first < q.omega && q.omega < g.second)
         {
-          nsm::BranchContext  context(filled_model.hb, filled_model.scene, {});
-          std::vector<double> guess(filled_model.hb.n_unknowns(), 0.0);
-          std::copy(q.x.begin(), q.x.end(), guess.begin());
           nsm::BackbonePoint point;
           ++tried;
-          if (!context.solve(q.omega, guess, 0, point, nsm::BranchContext::Newton::both))
+          if (!run.solve(q.omega, run.guess_from_fewer_harmonics(q), 0, point, nsm::BranchContext::Newton::both))
             continue;
           ++converged;
           nsm::label_point(filled_model.hb, filled_model.scene, filled.points, point);

@@ -98,6 +98,11 @@ namespace nsm
     /// near solutions.
     const Backbone *fewer_harmonics();
 
+    /// A point of that branch as a guess at this M: its unknowns (the same
+    /// quantities at both M), the higher harmonics zero (a point with more
+    /// harmonics than M loses those above M).
+    std::vector<double> guess_from_fewer_harmonics(const BackbonePoint &fewer) const;
+
     HarmonicBalance                     &hb;
     const Scene                         &scene;
     const std::vector<InternalResonance> resonances;

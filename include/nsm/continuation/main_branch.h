@@ -11,6 +11,10 @@
 
 #include <nsm/continuation/backbone.h>
 
+#include <optional>
+#include <utility>
+#include <vector>
+
 namespace nsm
 {
   /// How far harmonic k stands above the envelope of its neighbours (the
@@ -62,6 +66,15 @@ namespace nsm
                    const Scene                      &scene,
                    const std::vector<BackbonePoint> &points,
                    BackbonePoint                    &point);
+
+  /// The envelope at omega: the least energy of `points` at omega or beyond
+  /// it in `direction` (infinity if none).
+  double envelope_at(const std::vector<BackbonePoint> &points, double omega, double direction);
+
+  /// The intervals (from, to) between consecutive main points of `points` in
+  /// `direction`, and from the last one to `end` if given.
+  std::vector<std::pair<double, double>> main_gaps(const std::vector<BackbonePoint> &points, double direction,
+                                                   std::optional<double> end = std::nullopt);
 
   /// The tongues of a labelled backbone: runs of tongue points of one
   /// resonance, with the Omega of the main points at their feet.
