@@ -15,7 +15,7 @@ namespace nsm
     // The lowest modes alone (near_modes.h): the whole spectrum of the
     // paper's 4000-cell mesh costs more than the rest of its run.
     const BandedPencil        free_pencil(d, EndCondition::clamped_free);
-    const int                 count  = std::min<int>(mode + 1, free_pencil.n);
+    const int                 count  = std::min<int>(mode + 1, free_pencil.finite);
     const std::vector<double> lowest = lowest_eigenvalues(free_pencil, count);
     // A bound between mode j and the next (or above the last mode).
     const double    upper = count > int(mode) ? (lowest[mode - 1] + lowest[mode]) / 2 : 2 * lowest[mode - 1];

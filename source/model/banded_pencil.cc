@@ -8,7 +8,12 @@ namespace nsm
   BandedPencil::BandedPencil(const Discretisation &d, const EndCondition ends)
     : dofs(d.free_dofs(ends == EndCondition::clamped_clamped))
   {
-    n = dofs.size();
+    n      = dofs.size();
+    finite = n;
+    // A row without mass (the contact DoF with Contact mass = redistributed)
+    // has an infinite eigenvalue: M is semidefinite.
+    for (const unsigned int dof : dofs)
+      finite -= d.mass().diag_element(dof) == 0;
     std::vector<int> row_of(d.n_dofs(), -1);
     for (int i = 0; i < n; ++i)
       row_of[dofs[i]] = i;

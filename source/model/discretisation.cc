@@ -1,4 +1,5 @@
 #include <nsm/model/discretisation.h>
+#include <nsm/model/mass_redistribution.h>
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_renumbering.h>
@@ -22,6 +23,7 @@ namespace nsm
     , quadrature_points_(params.quadrature_points != 0 ?
                            params.quadrature_points :
                            params.degree + 2)
+    , contact_mass_(params.contact_mass)
     , fe_(params.degree)
     , dof_handler_(triangulation_)
   {
@@ -33,6 +35,7 @@ namespace nsm
                                  const unsigned int    degree)
     : bar_(other.bar_)
     , quadrature_points_(other.quadrature_points_ + degree - other.fe_.degree)
+    , contact_mass_(other.contact_mass_)
     , fe_(degree)
     , dof_handler_(triangulation_)
   {
@@ -137,6 +140,8 @@ namespace nsm
         mass_.set(j, clamped_dof_, 0.0);
       }
     stiffness_.set(clamped_dof_, clamped_dof_, k_diagonal);
+    if (contact_mass_ == ContactMass::redistributed)
+      redistribute_contact_mass(mass_, contact_dof_);
   }
 
   void Discretisation::refine(const dealii::Vector<float> &indicators,

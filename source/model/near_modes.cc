@@ -138,6 +138,9 @@ namespace nsm
 
   std::vector<double> lowest_eigenvalues(const BandedPencil &p, const int count)
   {
+    if (count > p.finite)
+      throw NumericalError("asked for " + std::to_string(count) + " eigenvalues of a pencil with " +
+                           std::to_string(p.finite) + " finite ones");
     double upper = 1;
     while (count_eigenvalues_below(p, upper) < count)
       upper *= 16;

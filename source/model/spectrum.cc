@@ -166,7 +166,10 @@ namespace nsm
           int    exponent = 0;
           for (std::size_t k = 0; k < mu.size(); ++k)
             {
-              const double pole = lambda[k < j ? k : k + 1];
+              // Without inertia at the contact DoF the last pole is infinite
+              // and its factor 1.
+              const std::size_t i    = k < j ? k : k + 1;
+              const double      pole = i < lambda.size() ? lambda[i] : std::numeric_limits<double>::infinity();
               product *= (1 - lambda[j] / mu[k]) / (1 - lambda[j] / pole);
               int e;
               product = std::frexp(product, &e); // no overflow over thousands of factors
@@ -184,16 +187,16 @@ namespace nsm
                              const bool            with_contact_residues)
   {
     const BandedPencil pencil(discretisation, ends);
-    if (count == 0 || count > static_cast<unsigned int>(pencil.n))
-      count = pencil.n;
+    if (count == 0 || count > static_cast<unsigned int>(pencil.finite))
+      count = pencil.finite;
     ModalData data;
     data.eigenvalues = lowest_by_cost(pencil, count);
     if (with_contact_residues)
       {
         // Residues need every pole and zero, whatever `count`.
         const std::vector<double> lambda =
-          count == static_cast<unsigned int>(pencil.n) ? data.eigenvalues :
-                                                         lowest_by_cost(pencil, pencil.n);
+          count == static_cast<unsigned int>(pencil.finite) ? data.eigenvalues :
+                                                              lowest_by_cost(pencil, pencil.finite);
         const BandedPencil clamped(discretisation, EndCondition::clamped_clamped);
         data.contact_residues = contact_residues(lambda,
                                                  lowest_by_cost(clamped, clamped.n),

@@ -275,12 +275,20 @@ namespace nsm
               "] (spectrum.csv pairs each clamped-free frequency with a clamped-clamped one, and the "
               "clamped-clamped mesh has Cells x Degree - 1 modes)",
             std::to_string(output.spectrum_modes));
+    // Without inertia at the contact DoF the clamped-free problem loses a mode.
+    const bool         redistributed = discretisation.contact_mass == ContactMass::redistributed;
+    const unsigned int free_modes    = redistributed ? modes - 1 : modes;
     require((!output.backbone && !output.fields()) ||
-              discretisation.refinement == Refinement::adaptive || continuation.mode <= modes,
+              discretisation.refinement == Refinement::adaptive || continuation.mode <= free_modes,
             "Continuation/Mode",
-            "an integer in [1, Cells x Degree] = [1, " + std::to_string(modes) +
-              "] (the modes of the mesh)",
+            "an integer in [1, " + std::string(redistributed ? "Cells x Degree - 1" : "Cells x Degree") + "] = [1, " +
+              std::to_string(free_modes) + "] (the modes of the mesh)",
             std::to_string(continuation.mode));
+    require(!redistributed || receptance.method == ReceptanceMethod::direct || receptance.modes == 0,
+            "Receptance/Modes",
+            "0 (every mode) when Discretisation/Contact mass = redistributed: a truncated basis needs a "
+            "mass matrix with inertia at every DoF",
+            std::to_string(receptance.modes));
   }
 
   Scene Scene::from_file(const std::string &path)

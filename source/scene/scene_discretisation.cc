@@ -17,6 +17,8 @@ namespace nsm
     const Options<Refinement> refinements = {{"none", Refinement::none},
                                              {"graded", Refinement::graded},
                                              {"adaptive", Refinement::adaptive}};
+    const Options<ContactMass> contact_masses = {{"consistent", ContactMass::consistent},
+                                                 {"redistributed", ContactMass::redistributed}};
 
     /// Smallest cell of a graded mesh relative to L (make_mesh's sizes).
     double graded_smallest_cell(const Scene::Discretisation &d, const unsigned int layers)
@@ -85,6 +87,15 @@ namespace nsm
                       name_of(d.refinement, refinements),
                       selection(refinements),
                       "Mesh refinement towards the contact end x = L.");
+    prm.declare_entry("Contact mass",
+                      name_of(d.contact_mass, contact_masses),
+                      selection(contact_masses),
+                      "consistent: the consistent mass matrix; redistributed: the contact DoF's "
+                      "mass moved to the DoFs it couples, so that it has no inertia. That is the "
+                      "model of Output/Verify in time and Refine in time: harmonic balance then "
+                      "approaches their periodic orbits as Harmonics grows, and its error against "
+                      "them is truncation alone. The clamped-free problem has one mode fewer; a "
+                      "modal receptance needs every mode (Receptance/Modes = 0).");
     prm.enter_subsection("Graded");
     prm.declare_entry("Ratio",
                       text(d.graded_ratio),
@@ -128,6 +139,7 @@ namespace nsm
             std::to_string(quadrature_points));
     roundoff_limit = prm.get_double("Round-off limit");
     refinement     = selected(prm.get("Refinement"), refinements);
+    contact_mass   = selected(prm.get("Contact mass"), contact_masses);
     prm.enter_subsection("Graded");
     graded_ratio  = prm.get_double("Ratio");
     graded_layers = get_unsigned(prm, "Layers");

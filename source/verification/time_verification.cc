@@ -1,5 +1,6 @@
 #include <nsm/base/interruption.h>
 #include <nsm/base/progress.h>
+#include <nsm/model/mass_redistribution.h>
 #include <nsm/verification/time_verification.h>
 
 #include <algorithm>
@@ -9,28 +10,6 @@ namespace nsm
 {
   namespace
   {
-    /// M without inertia at the contact DoF: its row and column are removed
-    /// and the total mass 1^T M 1 they carried goes to the diagonal of the
-    /// DoFs they coupled, in proportion to the coupling.
-    void redistribute(dealii::SparseMatrix<double> &mass, const unsigned int contact)
-    {
-      double removed = 0, coupling = 0;
-      for (auto e = mass.begin(contact); e != mass.end(contact); ++e)
-        {
-          removed += (e->column() == contact ? 1 : 2) * e->value();
-          if (e->column() != contact)
-            coupling += std::abs(e->value());
-        }
-      for (auto e = mass.begin(contact); e != mass.end(contact); ++e)
-        if (e->column() != contact)
-          mass.add(e->column(), e->column(), removed * std::abs(e->value()) / coupling);
-      for (auto e = mass.begin(contact); e != mass.end(contact); ++e)
-        {
-          mass.set(e->column(), contact, 0.0);
-          e->value() = 0;
-        }
-    }
-
     dealii::SparseMatrix<double> copy_of(const dealii::SparseMatrix<double> &matrix)
     {
       dealii::SparseMatrix<double> copy(matrix.get_sparsity_pattern());
@@ -49,7 +28,7 @@ namespace nsm
   dealii::SparseMatrix<double> redistributed_mass(const Discretisation &d)
   {
     dealii::SparseMatrix<double> mass = copy_of(d.mass());
-    redistribute(mass, d.contact_dof());
+    redistribute_contact_mass(mass, d.contact_dof());
     return mass;
   }
 

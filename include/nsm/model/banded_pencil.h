@@ -22,6 +22,8 @@ namespace nsm
     BandedPencil(const Discretisation &discretisation, EndCondition ends);
 
     int                       n         = 0;
+    /// Finite eigenvalues: n less the rows without mass.
+    int                       finite    = 0;
     int                       bandwidth = 0;
     std::vector<double>       k;
     std::vector<double>       m;

@@ -28,6 +28,13 @@ namespace nsm
     adaptive
   };
 
+  /// Where the mass of the contact DoF goes.
+  enum class ContactMass
+  {
+    consistent,   ///< the consistent mass matrix as assembled
+    redistributed ///< moved to the DoFs it couples: no inertia at the contact DoF
+  };
+
   enum class ReceptanceMethod
   {
     direct,
@@ -96,6 +103,7 @@ namespace nsm
       unsigned int quadrature_points  = 0; ///< 0: degree + 2
       double       roundoff_limit     = 1e-7;
       Refinement   refinement         = Refinement::none;
+      ContactMass  contact_mass       = ContactMass::consistent;
       double       graded_ratio       = 0.8;
       unsigned int graded_layers      = 0;
       unsigned int adaptive_steps     = 10;
