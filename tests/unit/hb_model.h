@@ -2,6 +2,7 @@
 #pragma once
 
 #include <nsm/model/bar_model.h>
+#include <nsm/continuation/branch_context.h>
 #include <nsm/continuation/continuation.h>
 #include <nsm/model/discretisation.h>
 #include <nsm/harmonic_balance/harmonic_balance.h>
@@ -9,6 +10,7 @@
 #include <nsm/model/spectrum.h>
 
 #include <memory>
+#include <optional>
 #include <utility>
 
 #include "scene_helpers.h"
@@ -72,4 +74,17 @@ namespace testing_helpers
     nsm::HarmonicBalance                hb;
     std::vector<nsm::InternalResonance> resonances;
   };
+
+  /// The solution of `model` at the Omega of `fewer`, a point with fewer
+  /// harmonics: Newton (with a line search if full steps fail) from it, its
+  /// higher harmonics zero. Following one solution from M to 2 M and on.
+  inline std::optional<nsm::BackbonePoint> with_more_harmonics(HbModel &model, const nsm::BackbonePoint &fewer)
+  {
+    nsm::BranchContext context(model.hb, model.scene, {});
+    nsm::BackbonePoint point;
+    if (!context.solve(fewer.omega, context.guess_from_fewer_harmonics(fewer), 0, point,
+                       nsm::BranchContext::Newton::both))
+      return std::nullopt;
+    return point;
+  }
 } // namespace testing_helpers

@@ -1,0 +1,138 @@
+// Study: harmonic balance's truncation error alone. On one FE model (the seed
+// bar, FE_Q(10) x cells, the contact DoF's mass redistributed, so that it is
+// the model of the periodic orbits in time), HB at M harmonics should approach
+// that model's periodic orbit as M grows. At `count` Omega evenly spaced
+// between grazing and 2.2: the HB point on the main branch at exactly Omega
+// with the smallest M (solve_on_branch, main points only), then the same
+// solution followed in M: Newton at each next M from the last, its higher
+// harmonics zero. From each, the orbit shot; HB's energy error against the
+// orbit shot from the largest M's point.
+//   study_truncation [cells [count [integration [mass [M...]]]]]
+//   (defaults 10, 10, exact, redistributed, 20 40 80 160; integration: exact
+//   or sampled; mass: redistributed or consistent, the latter HB's model
+//   differing from the orbits')
+#include <nsm/base/csv.h>
+#include <nsm/base/threads.h>
+#include <nsm/verification/fields.h>
+#include <nsm/verification/orbit_refinement.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hb_model.h"
+
+namespace
+{
+  constexpr double omega_end = 2.2;
+
+  struct Row
+  {
+    bool                       on_main = false; ///< found (at the smallest M: and labelled main)
+    double                     energy  = 0;
+    std::optional<nsm::PeriodicOrbit> orbit;
+  };
+
+  nsm::Scene truncation_scene(const unsigned int cells, const unsigned int harmonics, const nsm::Integration rule,
+                              const nsm::ContactMass mass)
+  {
+    nsm::Scene scene = testing_helpers::seed_scene(nsm::ForceSign::physical, 1.5, omega_end);
+    scene.discretisation.cells        = cells;
+    scene.discretisation.contact_mass = mass;
+    scene.receptance.method           = nsm::ReceptanceMethod::direct;
+    scene.harmonic_balance.harmonics  = harmonics;
+    scene.harmonic_balance.integration = rule;
+    scene.output.stability_margin     = 1e-4;
+    return scene;
+  }
+
+  double seconds_since(const std::chrono::steady_clock::time_point start)
+  {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+} // namespace
+
+int main(int argc, char **argv)
+{
+  nsm::use_one_thread();
+  const unsigned int cells = argc > 1 ? std::atoi(argv[1]) : 10;
+  const unsigned int count = argc > 2 ? std::atoi(argv[2]) : 10;
+  const nsm::Integration rule =
+    argc > 3 && std::string(argv[3]) == "sampled" ? nsm::Integration::sampled : nsm::Integration::exact;
+  const nsm::ContactMass mass =
+    argc > 4 && std::string(argv[4]) == "consistent" ? nsm::ContactMass::consistent : nsm::ContactMass::redistributed;
+  std::vector<unsigned int> ms;
+  for (int a = 5; a < argc; ++a)
+    ms.push_back(std::atoi(argv[a]));
+  if (ms.empty())
+    ms = {20, 40, 80, 160};
+
+  std::vector<double>                 omegas;
+  std::vector<std::vector<Row>>       rows(ms.size(), std::vector<Row>(count));
+  std::vector<double>                 seconds(ms.size());
+  std::vector<std::optional<nsm::BackbonePoint>> last(count);
+  for (std::size_t k = 0; k < ms.size(); ++k)
+    {
+      testing_helpers::HbModel model(truncation_scene(cells, ms[k], rule, mass));
+      const auto               start = std::chrono::steady_clock::now();
+      if (k == 0)
+        {
+          const nsm::Backbone backbone = model.backbone();
+          const double        grazing  = std::sqrt(model.receptance.poles().front());
+          for (unsigned int i = 0; i < count; ++i)
+            {
+              omegas.push_back(grazing + (omega_end - grazing) * (i + 0.5) / count);
+              try
+                {
+                  last[i] = nsm::solve_on_branch(model.hb, model.scene, backbone, omegas[i], true);
+                }
+              catch (const nsm::NumericalError &)
+                {}
+            }
+        }
+      else
+        for (unsigned int i = 0; i < count; ++i)
+          if (last[i])
+            last[i] = testing_helpers::with_more_harmonics(model, *last[i]);
+      seconds[k] = seconds_since(start);
+      const nsm::ContactLaw law = model.hb.law();
+      for (unsigned int i = 0; i < count; ++i)
+        if (last[i])
+          {
+            Row &row   = rows[k][i];
+            row.on_main = k > 0 || last[i]->branch == nsm::Branch::main;
+            row.energy  = last[i]->measures.energy;
+            const nsm::PeriodicField field(model.hb, model.discretisation, *last[i]);
+            row.orbit = nsm::refine_point(field, model.discretisation, law, model.scene.output, {});
+          }
+      std::fprintf(stderr, "M = %u: %.2f s\n", ms[k], seconds[k]);
+    }
+
+  std::printf("omega,M,hb_found,hb_energy,orbit_found,orbit_energy,isolation,floquet_max,"
+              "error_against_own_orbit,error_against_reference\n");
+  for (unsigned int i = 0; i < count; ++i)
+    {
+      // The reference: the orbit shot from the largest M whose point converged.
+      std::optional<double> reference;
+      for (std::size_t k = ms.size(); k-- > 0 && !reference;)
+        if (rows[k][i].orbit && rows[k][i].orbit->converged)
+          reference = rows[k][i].orbit->energy;
+      for (std::size_t k = 0; k < ms.size(); ++k)
+        {
+          const Row &row   = rows[k][i];
+          const bool found = row.orbit && row.orbit->converged;
+          std::printf("%.6f,%u,%d,%.10e,%d,%.10e,%.3e,%.6f,%.3e,%.3e\n", omegas[i], ms[k], row.on_main, row.energy,
+                      found, found ? row.orbit->energy : 0.0, found ? row.orbit->isolation : 0.0,
+                      found ? row.orbit->floquet_max : 0.0, found ? row.energy / row.orbit->energy - 1 : NAN,
+                      reference && row.energy > 0 ? row.energy / *reference - 1 : NAN);
+        }
+    }
+  for (std::size_t k = 0; k < ms.size(); ++k)
+    std::printf("# M = %u: HB solves %.3f s (%s)\n", ms[k], seconds[k],
+                k == 0 ? "the backbone, then one solve per Omega" : "one Newton solve per Omega");
+  return 0;
+}
