@@ -18,6 +18,7 @@
 #include <nsm/output/result_tables.h>
 #include <nsm/verification/orbit_refinement.h>
 #include <nsm/verification/time_verification.h>
+#include <nsm/verification/refinement_checkpoint.h>
 #include <nsm/verification/verification_checkpoint.h>
 
 #include <deal.II/base/multithread_info.h>
@@ -203,7 +204,7 @@ namespace nsm
         });
       }
 
-      /// Writes the continuation's checkpoint and the points verified so far
+      /// Writes the continuation's checkpoint and the points verified and refined so far
       /// (a stop signal ended the run).
       void write_checkpoints(const std::string &directory)
       {
@@ -215,6 +216,11 @@ namespace nsm
           report_.files.push_back(
             write_atomically(directory + "/" + verification_checkpoint_file, [&](std::ostream &out) {
               write_verification_checkpoint(out, backbone_, verifications_, scene_.output);
+            }));
+        if (std::any_of(orbits_.begin(), orbits_.end(), [](const auto &o) { return o.has_value(); }))
+          report_.files.push_back(
+            write_atomically(directory + "/" + refinement_checkpoint_file, [&](std::ostream &out) {
+              write_refinement_checkpoint(out, backbone_, orbits_, scene_.output);
             }));
       }
 
@@ -252,8 +258,20 @@ namespace nsm
       {
         timed("refinement in time", [&] {
           Progress progress("refinement in time", scene_.output.progress_every);
-          orbits_ = refine_backbone(*hb_, *discretisation_, backbone_, scene_.output, progress);
+          std::vector<std::optional<PeriodicOrbit>> known;
+          if (resume_)
+            {
+              known = read_refinement_checkpoint(scene_.output.directory + "/" + refinement_checkpoint_file,
+                                                 backbone_, scene_.output, discretisation_->n_dofs());
+              const auto kept = std::count_if(known.begin(), known.end(), [](const auto &o) { return o.has_value(); });
+              report_.notes.push_back("resumed refinement in time: " + std::to_string(kept) + " points from " +
+                                      refinement_checkpoint_file + " (kept only with the same Refine every)");
+            }
+          orbits_ = refine_backbone(*hb_, *discretisation_, backbone_, scene_.output, progress, std::move(known));
           report_.result.push_back(refinement_summary(backbone_, orbits_, scene_.output));
+          if (const int signal = point_stop_signal(); signal != 0)
+            report_.result.back() += std::string(" (stopped by ") + stop_signal_name(signal) +
+                                     " before the other points: --resume shoots them)";
         });
       }
 

@@ -33,20 +33,28 @@ namespace nsm
                                                             const Discretisation &discretisation,
                                                             const Backbone       &backbone,
                                                             const Scene::Output  &output,
-                                                            Progress             &progress)
+                                                            Progress             &progress,
+                                                            std::vector<std::optional<PeriodicOrbit>> known)
   {
-    std::vector<std::optional<PeriodicOrbit>> orbits(backbone.points.size());
-    dealii::Vector<double>                    last;
-    unsigned int                              main = 0;
+    std::vector<std::optional<PeriodicOrbit>> orbits = std::move(known);
+    orbits.resize(backbone.points.size());
+    dealii::Vector<double> last;
+    unsigned int           main = 0;
     // A stop asked for leaves the remaining points unrefined (empty cells).
     for (std::size_t i = 0; i < orbits.size() && point_stop_signal() == 0; ++i)
       if (backbone.points[i].branch == Branch::main && main++ % output.refine_every == 0)
         {
-          const PeriodicField field(hb, discretisation, backbone.points[i]);
-          orbits[i] = refine_point(field, discretisation, hb.law(), output, last);
+          const bool kept = orbits[i].has_value();
+          if (!kept)
+            {
+              const PeriodicField field(hb, discretisation, backbone.points[i]);
+              orbits[i] = refine_point(field, discretisation, hb.law(), output, last);
+            }
           if (orbits[i]->converged)
             last = orbits[i]->displacement;
-          progress.update([&] { return "point " + std::to_string(i + 1) + " of " + std::to_string(orbits.size()); });
+          if (!kept)
+            progress.update(
+              [&] { return "point " + std::to_string(i + 1) + " of " + std::to_string(orbits.size()); });
         }
     return orbits;
   }
@@ -78,7 +86,8 @@ namespace nsm
       << shot - errors.size() << " not found, left empty)";
     if (!errors.empty())
       s << "; HB energy error against the orbit: median " << errors[errors.size() / 2] << ", max " << errors.back()
-        << ", within 1 %: " << within << " of " << errors.size() << "; stable (|multiplier| <= 1 + "
+        << ", within 1 %: " << within << " of " << errors.size() << " (" << std::lround(100.0 * within / shot)
+        << " % of the main points shot); stable (|multiplier| <= 1 + "
         << output.stability_margin << "): " << stable << " of " << errors.size();
     return s.str();
   }

@@ -78,6 +78,8 @@ MUTATIONS = [
     ("residues without inertia at the contact DoF drop the unpaired zero", "source/model/spectrum.cc",
      "product *= (1 - lambda[j] / mu[k]) / (1 - lambda[j] / pole);",
      "product *= i < lambda.size() ? (1 - lambda[j] / mu[k]) / (1 - lambda[j] / pole) : 1.0;"),
+    ("a resumed refinement shoots its kept points again", "source/verification/orbit_refinement.cc",
+     "const bool kept = orbits[i].has_value();", "const bool kept = false;"),
     ("exact flow's wall moved in the switch test alone", "source/verification/modal_flow.cc",
      "r.constant = -law_.gap();", "r.constant = -1.01 * law_.gap();"),
     ("exact flow's tangent loses a factor omega", "source/verification/modal_flow.cc",

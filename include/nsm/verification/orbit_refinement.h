@@ -29,11 +29,14 @@ namespace nsm
 
   /// The orbits of every Refine every-th main point (empty for the others),
   /// each tried from its own HB point and then from the last orbit found.
+  /// `known` (one slot per point, or empty): orbits of a stopped run, kept
+  /// instead of shot again.
   std::vector<std::optional<PeriodicOrbit>> refine_backbone(HarmonicBalance      &hb,
                                                             const Discretisation &discretisation,
                                                             const Backbone       &backbone,
                                                             const Scene::Output  &output,
-                                                            Progress             &progress);
+                                                            Progress             &progress,
+                                                            std::vector<std::optional<PeriodicOrbit>> known = {});
 
   /// HB's energy error against the orbit, E_HB / E_orbit - 1.
   double hb_energy_error(const BackbonePoint &point, const PeriodicOrbit &orbit);

@@ -1,0 +1,86 @@
+#include <nsm/base/checkpoint_reader.h>
+#include <nsm/verification/refinement_checkpoint.h>
+
+#include <limits>
+#include <sstream>
+
+namespace nsm
+{
+  namespace
+  {
+    constexpr const char *format_line = "nsm-bar refinement checkpoint 1";
+
+    /// The measures a found orbit's line holds, in order (its multipliers
+    /// are not written: only floquet_max reaches the output).
+    std::vector<double *> measures(PeriodicOrbit &o)
+    {
+      return {&o.residual, &o.energy, &o.contact_fraction, &o.periodicity, &o.max_contact_force, &o.isolation,
+              &o.floquet_max};
+    }
+  } // namespace
+
+  void write_refinement_checkpoint(std::ostream &out, const Backbone &backbone,
+                                   const std::vector<std::optional<PeriodicOrbit>> &orbits,
+                                   const Scene::Output &output)
+  {
+    out << format_line << "\nsettings " << output.refine_every << '\n';
+    for (std::size_t i = 0; i < orbits.size(); ++i)
+      if (orbits[i])
+        {
+          PeriodicOrbit o = *orbits[i];
+          out << "point " << i << ' ' << exact(backbone.points[i].omega) << ' ' << o.converged << ' '
+              << o.newton_steps << ' ' << o.switches;
+          for (const double *value : measures(o))
+            out << ' ' << exact(*value);
+          out << ' ' << o.displacement.size();
+          for (const double u : o.displacement)
+            out << ' ' << exact(u);
+          out << '\n';
+        }
+    out << "end\n";
+  }
+
+  std::vector<std::optional<PeriodicOrbit>> read_refinement_checkpoint(const std::string   &path,
+                                                                       const Backbone      &backbone,
+                                                                       const Scene::Output &output,
+                                                                       const unsigned int   dofs)
+  {
+    std::vector<std::optional<PeriodicOrbit>> known(backbone.points.size());
+    CheckpointReader                          reader(path);
+    if (!reader.opened())
+      return known;
+    if (reader.text_line() != format_line)
+      reader.damaged("'" + std::string(format_line) + "' expected");
+    std::istringstream    settings = reader.next("settings ");
+    constexpr std::size_t any      = std::numeric_limits<unsigned int>::max();
+    if (reader.count(settings, any) != output.refine_every)
+      return known;
+    for (std::string line = reader.text_line(); line != "end"; line = reader.text_line())
+      {
+        const std::string key = "point ";
+        if (line.compare(0, key.size(), key) != 0)
+          reader.damaged("'point' or 'end' expected");
+        std::istringstream row(line.substr(key.size()));
+        const std::size_t  i = reader.count(row, known.size());
+        if (i == known.size() || reader.number(row) != backbone.points[i].omega ||
+            backbone.points[i].branch != Branch::main)
+          reader.damaged("a main point of the resumed backbone expected");
+        PeriodicOrbit o;
+        o.converged    = reader.count(row, 1) == 1;
+        o.newton_steps = reader.count(row, any);
+        o.switches     = reader.count(row, any);
+        for (double *value : measures(o))
+          *value = reader.number(row);
+        const std::size_t n = reader.count(row, dofs);
+        if (n != 0 && n != dofs)
+          reader.damaged("a displacement of " + std::to_string(dofs) + " values expected");
+        o.displacement.reinit(n);
+        for (std::size_t j = 0; j < n; ++j)
+          o.displacement[j] = reader.number(row);
+        // floquet_max is 0 where no monodromy was computed (not found).
+        o.stable = o.floquet_max > 0 && o.floquet_max <= 1 + output.stability_margin;
+        known[i] = std::move(o);
+      }
+    return known;
+  }
+} // namespace nsm

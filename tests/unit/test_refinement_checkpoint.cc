@@ -1,0 +1,115 @@
+// refinement.resume: the orbits a stopped run found come back exactly, and a
+// resumed refinement ends with the orbits of one that was never stopped.
+#include <nsm/base/errors.h>
+#include <nsm/base/progress.h>
+#include <nsm/verification/orbit_refinement.h>
+#include <nsm/verification/refinement_checkpoint.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "hb_model.h"
+
+namespace
+{
+  using Orbits = std::vector<std::optional<nsm::PeriodicOrbit>>;
+
+  void expect_same(const std::optional<nsm::PeriodicOrbit> &a, const std::optional<nsm::PeriodicOrbit> &b,
+                   const std::size_t i)
+  {
+    ASSERT_EQ(a.has_value(), b.has_value()) << "point " << i;
+    if (!a)
+      return;
+    EXPECT_EQ(a->converged, b->converged) << "point " << i;
+    EXPECT_EQ(a->energy, b->energy) << "point " << i;
+    EXPECT_EQ(a->contact_fraction, b->contact_fraction) << "point " << i;
+    EXPECT_EQ(a->floquet_max, b->floquet_max) << "point " << i;
+    EXPECT_EQ(a->isolation, b->isolation) << "point " << i;
+    EXPECT_EQ(a->stable, b->stable) << "point " << i;
+    ASSERT_EQ(a->displacement.size(), b->displacement.size()) << "point " << i;
+    for (unsigned int j = 0; j < a->displacement.size(); ++j)
+      EXPECT_EQ(a->displacement[j], b->displacement[j]) << "point " << i << ", DoF " << j;
+  }
+
+  std::string write_file(const std::string &path, const std::string &text)
+  {
+    std::ofstream(path) << text;
+    return path;
+  }
+} // namespace
+
+TEST(RefinementCheckpoint, AResumedRefinementEndsWithTheOrbitsOfAWholeOne)
+{
+  nsm::Scene scene = testing_helpers::seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
+  scene.discretisation.cells        = 2;
+  scene.discretisation.contact_mass = nsm::ContactMass::redistributed;
+  scene.receptance.method           = nsm::ReceptanceMethod::direct;
+  scene.harmonic_balance.harmonics  = 20;
+  scene.output.refine_every         = 10;
+  testing_helpers::HbModel model(scene);
+  const nsm::Backbone      backbone = model.backbone();
+  nsm::Progress            quiet("refinement in time", 0);
+  const Orbits whole = nsm::refine_backbone(model.hb, model.discretisation, backbone, scene.output, quiet);
+
+  // A run stopped after the first half of the points it shoots.
+  Orbits      stopped = whole;
+  std::size_t shot = 0, found = 0;
+  for (const auto &o : whole)
+    shot += o.has_value();
+  for (std::size_t i = 0, n = 0; i < stopped.size(); ++i)
+    if (stopped[i] && ++n > shot / 2)
+      stopped[i].reset();
+    else if (stopped[i])
+      found += stopped[i]->converged;
+  ASSERT_GE(shot, 6u);
+  ASSERT_GE(found, 1u) << "no orbit found before the stop: the displacement is not checked";
+
+  std::ostringstream text;
+  nsm::write_refinement_checkpoint(text, backbone, stopped, scene.output);
+  const std::string path  = write_file("refinement_checkpoint_test.resume", text.str());
+  const Orbits      known = nsm::read_refinement_checkpoint(path, backbone, scene.output, model.discretisation.n_dofs());
+  for (std::size_t i = 0; i < known.size(); ++i)
+    expect_same(known[i], stopped[i], i);
+
+  const Orbits resumed = nsm::refine_backbone(model.hb, model.discretisation, backbone, scene.output, quiet, known);
+  for (std::size_t i = 0; i < resumed.size(); ++i)
+    expect_same(resumed[i], whole[i], i);
+
+  // A kept orbit is taken as it is, not shot again: a marked one stays marked.
+  Orbits marked = known;
+  for (auto &o : marked)
+    if (o)
+      {
+        o->energy = -1;
+        break;
+      }
+  const Orbits again = nsm::refine_backbone(model.hb, model.discretisation, backbone, scene.output, quiet, marked);
+  for (std::size_t i = 0; i < again.size(); ++i)
+    if (marked[i] && marked[i]->energy == -1)
+      EXPECT_EQ(again[i]->energy, -1) << "point " << i << " was shot again";
+
+  // Another Refine every selects other points: nothing is kept.
+  nsm::Scene::Output other = scene.output;
+  other.refine_every       = 5;
+  for (const auto &o : nsm::read_refinement_checkpoint(path, backbone, other, model.discretisation.n_dofs()))
+    EXPECT_FALSE(o.has_value());
+
+  // A checkpoint cut short, or one of another mesh, is refused naming --resume.
+  write_file(path, text.str().substr(0, text.str().size() * 2 / 3));
+  try
+    {
+      nsm::read_refinement_checkpoint(path, backbone, scene.output, model.discretisation.n_dofs());
+      ADD_FAILURE() << "a damaged checkpoint was read";
+    }
+  catch (const nsm::InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("--resume"), std::string::npos) << e.what();
+    }
+  write_file(path, text.str());
+  EXPECT_THROW(nsm::read_refinement_checkpoint(path, backbone, scene.output, model.discretisation.n_dofs() + 1),
+               nsm::InputError);
+  std::remove(path.c_str());
+}
