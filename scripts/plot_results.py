@@ -168,6 +168,31 @@ def backbone_plot(directory):
     save(figure, os.path.join(directory, "backbone.png"))
 
 
+def orbit_error_plot(directory):
+    """orbits.png: the harmonic balance's energy error against the periodic
+    orbit in time of each refined point, |error| on a log scale, with 1 %."""
+    points = read(os.path.join(directory, "backbone.csv"))
+    stable = points.get("stable", [])
+    found = [(w, err, s) for w, err, s in zip(points["Omega"], points.get("hb_energy_error", []), stable)
+             if s in ("true", "false")]
+    if not found:
+        return
+    figure, axes = plt.subplots(figsize=(8, 4))
+    for sign, marker, label in ((1, "^", "HB above the orbit"), (-1, "v", "HB below the orbit")):
+        side = [(w, abs(err)) for w, err, _ in found if err * sign > 0 or (sign > 0 and err == 0)]
+        if side:
+            axes.semilogy([w for w, _ in side], [max(e, 1e-12) for _, e in side], marker, markersize=4,
+                          color="C0" if sign > 0 else "C3", label=label)
+    axes.axhline(0.01, color="black", linestyle="--", linewidth=1, label="1 %")
+    axes.set_xlabel("$\\Omega$ (the scene's units: rad/s if its inputs are SI)")
+    axes.set_ylabel("|HB energy / orbit energy - 1|")
+    within = sum(abs(err) <= 0.01 for _, err, _ in found)
+    axes.set_title(f"Harmonic balance against the orbit in time: {len(found)} orbits found, "
+                   f"{within} within 1 %, {stable.count('true')} stable", fontsize=10)
+    axes.legend(loc="best", fontsize=7, framealpha=0.9)
+    save(figure, os.path.join(directory, "orbits.png"))
+
+
 def field_plots(directory, gap):
     omegas = {}
     if os.path.exists(os.path.join(directory, "fields.csv")):
@@ -306,6 +331,7 @@ def main():
     arguments = parser.parse_args()
     if os.path.exists(os.path.join(arguments.directory, "backbone.csv")):
         backbone_plot(arguments.directory)
+        orbit_error_plot(arguments.directory)
     field_plots(arguments.directory, arguments.gap)
     if os.path.exists(os.path.join(arguments.directory, "study.csv")):
         study_plot(arguments.directory)
