@@ -30,6 +30,12 @@ namespace nsm
     return line;
   }
 
+  void CheckpointReader::expect(const std::string &line)
+  {
+    if (text_line() != line)
+      damaged("'" + line + "' expected");
+  }
+
   std::istringstream CheckpointReader::next(const std::string &key)
   {
     const std::string line = text_line();

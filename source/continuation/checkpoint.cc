@@ -75,8 +75,7 @@ namespace nsm
       throw InputError("command line: --resume needs the interrupted run's " + std::string(checkpoint_file) +
                        " in Output/Directory, and '" + printable(path) +
                        "' cannot be read: run the scene without --resume");
-    if (reader.text_line() != format_line)
-      reader.damaged("'" + std::string(format_line) + "' expected");
+    reader.expect(format_line);
     check_entries(reader, scene.computation_entries);
     ContinuationCheckpoint c;
     const std::size_t      max_points = scene.continuation.max_steps + 1;

@@ -1,4 +1,5 @@
 #include <nsm/base/checkpoint_reader.h>
+#include <nsm/verification/point_checkpoint.h>
 #include <nsm/verification/refinement_checkpoint.h>
 
 #include <limits>
@@ -47,40 +48,31 @@ namespace nsm
   {
     std::vector<std::optional<PeriodicOrbit>> known(backbone.points.size());
     CheckpointReader                          reader(path);
-    if (!reader.opened())
+    std::istringstream                        settings;
+    if (!start_point_checkpoint(reader, format_line, settings))
       return known;
-    if (reader.text_line() != format_line)
-      reader.damaged("'" + std::string(format_line) + "' expected");
-    std::istringstream    settings = reader.next("settings ");
-    constexpr std::size_t any      = std::numeric_limits<unsigned int>::max();
+    constexpr std::size_t any = std::numeric_limits<unsigned int>::max();
     if (reader.count(settings, any) != output.refine_every)
       return known;
-    for (std::string line = reader.text_line(); line != "end"; line = reader.text_line())
-      {
-        const std::string key = "point ";
-        if (line.compare(0, key.size(), key) != 0)
-          reader.damaged("'point' or 'end' expected");
-        std::istringstream row(line.substr(key.size()));
-        const std::size_t  i = reader.count(row, known.size());
-        if (i == known.size() || reader.number(row) != backbone.points[i].omega ||
-            backbone.points[i].branch != Branch::main)
-          reader.damaged("a main point of the resumed backbone expected");
-        PeriodicOrbit o;
-        o.converged    = reader.count(row, 1) == 1;
-        o.newton_steps = reader.count(row, any);
-        o.switches     = reader.count(row, any);
-        for (double *value : measures(o))
-          *value = reader.number(row);
-        const std::size_t n = reader.count(row, dofs);
-        if (n != 0 && n != dofs)
-          reader.damaged("a displacement of " + std::to_string(dofs) + " values expected");
-        o.displacement.reinit(n);
-        for (std::size_t j = 0; j < n; ++j)
-          o.displacement[j] = reader.number(row);
-        // floquet_max is 0 where no monodromy was computed (not found).
-        o.stable = o.floquet_max > 0 && o.floquet_max <= 1 + output.stability_margin;
-        known[i] = std::move(o);
-      }
+    read_point_lines(reader, backbone, [&](const std::size_t i, std::istringstream &row) {
+      if (backbone.points[i].branch != Branch::main)
+        reader.damaged("a main point of the resumed backbone expected");
+      PeriodicOrbit o;
+      o.converged    = reader.count(row, 1) == 1;
+      o.newton_steps = reader.count(row, any);
+      o.switches     = reader.count(row, any);
+      for (double *value : measures(o))
+        *value = reader.number(row);
+      const std::size_t n = reader.count(row, dofs);
+      if (n != 0 && n != dofs)
+        reader.damaged("a displacement of " + std::to_string(dofs) + " values expected");
+      o.displacement.reinit(n);
+      for (std::size_t j = 0; j < n; ++j)
+        o.displacement[j] = reader.number(row);
+      // floquet_max is 0 where no monodromy was computed (not found).
+      o.stable = o.floquet_max > 0 && o.floquet_max <= 1 + output.stability_margin;
+      known[i] = std::move(o);
+    });
     return known;
   }
 } // namespace nsm

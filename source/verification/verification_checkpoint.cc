@@ -1,4 +1,5 @@
 #include <nsm/base/checkpoint_reader.h>
+#include <nsm/verification/point_checkpoint.h>
 #include <nsm/verification/verification_checkpoint.h>
 
 #include <limits>
@@ -41,30 +42,20 @@ namespace nsm
   {
     std::vector<std::optional<PointVerification>> known(backbone.points.size());
     CheckpointReader                              reader(path);
-    if (!reader.opened())
+    std::istringstream                            settings;
+    if (!start_point_checkpoint(reader, format_line, settings))
       return known;
-    if (reader.text_line() != format_line)
-      reader.damaged("'" + std::string(format_line) + "' expected");
-    std::istringstream settings = reader.next("settings ");
     constexpr std::size_t any = std::numeric_limits<unsigned int>::max();
     const std::size_t     steps = reader.count(settings, any), periods = reader.count(settings, any);
     if (steps != output.verify_steps || periods != output.verify_periods)
       return known;
-    for (std::string line = reader.text_line(); line != "end"; line = reader.text_line())
-      {
-        const std::string key = "point ";
-        if (line.compare(0, key.size(), key) != 0)
-          reader.damaged("'point' or 'end' expected");
-        std::istringstream row(line.substr(key.size()));
-        const std::size_t  i = reader.count(row, known.size());
-        if (i == known.size() || reader.number(row) != backbone.points[i].omega)
-          reader.damaged("a point of the resumed backbone expected");
-        PointVerification v{};
-        for (double *value : fields(v))
-          *value = reader.number(row);
-        v.verified = v.time.periodicity_defect <= output.verify_tolerance;
-        known[i]   = v;
-      }
+    read_point_lines(reader, backbone, [&](const std::size_t i, std::istringstream &row) {
+      PointVerification v{};
+      for (double *value : fields(v))
+        *value = reader.number(row);
+      v.verified = v.time.periodicity_defect <= output.verify_tolerance;
+      known[i]   = v;
+    });
     return known;
   }
 } // namespace nsm

@@ -43,6 +43,19 @@ namespace testing_helpers
     return scene;
   }
 
+  /// The seed bar (to Omega 2.2) on FE_Q(10) x `cells` with the periodic
+  /// orbits' model (Contact mass = redistributed), the direct receptance and
+  /// M harmonics: harmonic balance and shooting on one model.
+  inline nsm::Scene orbit_model_scene(unsigned int cells, unsigned int harmonics)
+  {
+    nsm::Scene scene                  = seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
+    scene.discretisation.cells        = cells;
+    scene.discretisation.contact_mass = nsm::ContactMass::redistributed;
+    scene.receptance.method           = nsm::ReceptanceMethod::direct;
+    scene.harmonic_balance.harmonics  = harmonics;
+    return scene;
+  }
+
   struct HbModel
   {
     explicit HbModel(const nsm::Scene &s)

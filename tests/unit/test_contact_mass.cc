@@ -140,11 +140,7 @@ TEST(ContactMass, HarmonicBalanceApproachesThePeriodicOrbitOfItsOwnModel)
   // is within 0.1 % at 160, and M = 20 is truncated (off by more than 1e-4),
   // so the reference is not the HB point itself. With a consistent mass HB
   // solves another model: the error stalls at 0.3 % to 11 % (measured).
-  nsm::Scene scene                   = testing_helpers::seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
-  scene.discretisation.cells         = 2;
-  scene.discretisation.contact_mass  = nsm::ContactMass::redistributed;
-  scene.receptance.method            = nsm::ReceptanceMethod::direct;
-  scene.harmonic_balance.harmonics   = 20;
+  nsm::Scene scene = testing_helpers::orbit_model_scene(2, 20);
   testing_helpers::HbModel  first(scene);
   const nsm::Backbone       backbone = first.backbone();
   // The main points nearest these Omega.

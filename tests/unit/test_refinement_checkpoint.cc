@@ -43,12 +43,8 @@ namespace
 
 TEST(RefinementCheckpoint, AResumedRefinementEndsWithTheOrbitsOfAWholeOne)
 {
-  nsm::Scene scene = testing_helpers::seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
-  scene.discretisation.cells        = 2;
-  scene.discretisation.contact_mass = nsm::ContactMass::redistributed;
-  scene.receptance.method           = nsm::ReceptanceMethod::direct;
-  scene.harmonic_balance.harmonics  = 20;
-  scene.output.refine_every         = 10;
+  nsm::Scene scene          = testing_helpers::orbit_model_scene(2, 20);
+  scene.output.refine_every = 10;
   testing_helpers::HbModel model(scene);
   const nsm::Backbone      backbone = model.backbone();
   nsm::Progress            quiet("refinement in time", 0);
@@ -89,7 +85,9 @@ TEST(RefinementCheckpoint, AResumedRefinementEndsWithTheOrbitsOfAWholeOne)
   const Orbits again = nsm::refine_backbone(model.hb, model.discretisation, backbone, scene.output, quiet, marked);
   for (std::size_t i = 0; i < again.size(); ++i)
     if (marked[i] && marked[i]->energy == -1)
-      EXPECT_EQ(again[i]->energy, -1) << "point " << i << " was shot again";
+      {
+        EXPECT_EQ(again[i]->energy, -1) << "point " << i << " was shot again";
+      }
 
   // Another Refine every selects other points: nothing is kept.
   nsm::Scene::Output other = scene.output;

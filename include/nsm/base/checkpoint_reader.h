@@ -26,6 +26,9 @@ namespace nsm
     /// The next line whole.
     std::string text_line();
 
+    /// The next line, which must be `line` (a format line).
+    void expect(const std::string &line);
+
     /// The next line, which must start with `key`: the rest of it.
     std::istringstream next(const std::string &key);
 
