@@ -8,8 +8,9 @@ point (counted along backbone.csv) has its orbit cells filled or empty
 (shooting gave up); no other row has any. Where filled:
 hb_energy_error = energy / orbit_energy - 1, stable = floquet_max <= 1 +
 Stability margin, 0 < orbit_contact_fraction < 1 and isolation > 0. The
-summary counts the same points shot and orbits found, and the same median
-|hb_energy_error|. Standard library only.
+summary counts the same points shot and orbits found, the same median
+|hb_energy_error| and the same orbits within 1 % with their share of the
+points shot; the plots include orbits.png. Standard library only.
 """
 import csv
 import os
@@ -22,7 +23,7 @@ from failures import report  # noqa: E402
 from small_scene import small_seed_scene  # noqa: E402
 
 SCENE = small_seed_scene({"Directory": "refined", "Backbone": "true", "Refine in time": "true",
-                          "Refine every": 5, "Stability margin": 1e-4})
+                          "Refine every": 5, "Stability margin": 1e-4, "Plots": "true"})
 COLUMNS = ["orbit_energy", "hb_energy_error", "orbit_contact_fraction", "floquet_max", "stable", "isolation"]
 
 
@@ -64,6 +65,12 @@ def main():
         failures.append(f"summary {line} does not say {expected!r}")
     elif errors and f"median {errors[len(errors) // 2]:.3g}," not in line[0]:
         failures.append(f"summary {line[0]!r} lacks the median {errors[len(errors) // 2]:.3g}")
+    within = sum(e <= 0.01 for e in errors)
+    share = f"within 1 %: {within} of {len(errors)} ({int(100 * within / max(shot, 1) + 0.5)} % of the main points shot)"
+    if errors and line and share not in line[0]:
+        failures.append(f"summary {line[0]!r} does not say {share!r}")
+    if not os.path.exists("refined/orbits.png"):
+        failures.append("no orbits.png beside backbone.png")
     if not errors:
         failures.append("no orbit found: the scene no longer exercises the columns")
     return report(failures, f"{shot} points shot, {len(errors)} orbits found")
