@@ -19,6 +19,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 TEXT_COLUMNS = ("branch", "verified", "stable")
+# The energy error the run summary counts as close: summary_energy_error in
+# source/verification/orbit_refinement.cc, which the summary line prints.
+CLOSE_ENERGY_ERROR = 0.01
 
 
 def read(path):
@@ -183,12 +186,13 @@ def orbit_error_plot(directory):
         if side:
             axes.semilogy([w for w, _ in side], [max(e, 1e-12) for _, e in side], marker, markersize=4,
                           color="C0" if sign > 0 else "C3", label=label)
-    axes.axhline(0.01, color="black", linestyle="--", linewidth=1, label="1 %")
+    axes.axhline(CLOSE_ENERGY_ERROR, color="black", linestyle="--", linewidth=1,
+                 label=f"{100 * CLOSE_ENERGY_ERROR:g} %")
     axes.set_xlabel("$\\Omega$ (the scene's units: rad/s if its inputs are SI)")
     axes.set_ylabel("|HB energy / orbit energy - 1|")
-    within = sum(abs(err) <= 0.01 for _, err, _ in found)
+    within = sum(abs(err) <= CLOSE_ENERGY_ERROR for _, err, _ in found)
     axes.set_title(f"Harmonic balance against the orbit in time: {len(found)} orbits found, "
-                   f"{within} within 1 %, {stable.count('true')} stable", fontsize=10)
+                   f"{within} within {100 * CLOSE_ENERGY_ERROR:g} %, {stable.count('true')} stable", fontsize=10)
     axes.legend(loc="best", fontsize=7, framealpha=0.9)
     save(figure, os.path.join(directory, "orbits.png"))
 

@@ -14,7 +14,13 @@ namespace nsm
   {
     // The lowest modes alone (near_modes.h): the whole spectrum of the
     // paper's 4000-cell mesh costs more than the rest of its run.
-    const BandedPencil        free_pencil(d, EndCondition::clamped_free);
+    const BandedPencil free_pencil(d, EndCondition::clamped_free);
+    // An adaptive mesh is known only now: Mode is checked against it here.
+    if (mode > unsigned(free_pencil.finite))
+      throw InputError("parameter 'Continuation/Mode' = " + std::to_string(mode) +
+                       " is out of range: allowed an integer in [1, " + std::to_string(free_pencil.finite) +
+                       "] (the modes of the mesh, refined" +
+                       (free_pencil.finite < free_pencil.n ? ", without inertia at the contact DoF)" : ")"));
     const int                 count  = std::min<int>(mode + 1, free_pencil.finite);
     const std::vector<double> lowest = lowest_eigenvalues(free_pencil, count);
     // A bound between mode j and the next (or above the last mode).

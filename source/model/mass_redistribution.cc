@@ -1,3 +1,4 @@
+#include <nsm/base/errors.h>
 #include <nsm/model/mass_redistribution.h>
 
 #include <cmath>
@@ -13,8 +14,11 @@ namespace nsm
         if (e->column() != contact)
           coupling += std::abs(e->value());
       }
+    if (removed == 0)
+      return; // already without inertia
     if (coupling == 0)
-      return;
+      throw InputError("parameter 'Discretisation/Contact mass' = redistributed is out of range: allowed only "
+                       "with a DoF beside the contact DoF (Cells x Degree >= 2)");
     for (auto e = mass.begin(contact); e != mass.end(contact); ++e)
       if (e->column() != contact)
         mass.add(e->column(), e->column(), removed * std::abs(e->value()) / coupling);

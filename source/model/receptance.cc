@@ -31,18 +31,24 @@ namespace nsm
   {
     if (method_ == ReceptanceMethod::modal)
       {
-        const bool full_basis = params.modes == 0 || params.modes >= unsigned(pencil_.n);
+        const bool full_basis = params.modes == 0 || params.modes >= unsigned(pencil_.finite);
         // The split needs a band (omega_max^2 > 0: a band of 1e-308 is
         // none) with modes beyond it.
         if (full_basis && omega_max * omega_max > 0 &&
-            count_eigenvalues_below(pencil_, far_ratio * omega_max * omega_max) < pencil_.n)
+            count_eigenvalues_below(pencil_, far_ratio * omega_max * omega_max) < pencil_.finite)
           split_far_modes(omega_max);
         else
           {
             modal_ = compute_spectrum(discretisation, EndCondition::clamped_free, params.modes,
                                       /*with_contact_residues=*/true);
-            if (!full_basis)
+            // Without inertia at the contact DoF even every finite mode
+            // leaves out gamma's limit at infinite frequency: a constant,
+            // whose slope in w^2 is zero (round-off, scaled by w^2, would
+            // grow without bound).
+            if (!full_basis || pencil_.finite < pencil_.n)
               truncated_basis_remainder();
+            if (full_basis && pencil_.finite < pencil_.n)
+              remainder_.resize(1);
           }
       }
     // The poles counted for the phase angle are those of the gamma evaluated:
@@ -59,8 +65,9 @@ namespace nsm
 
   void Receptance::truncated_basis_remainder()
   {
-    // The modes left out respond quasi-statically; their gamma(0) and
-    // gamma'(0) come from one direct solve at w = 0.
+    // The modes left out (beyond a truncated basis, or the infinite one of a
+    // contact DoF without inertia) respond quasi-statically; their gamma(0)
+    // and gamma'(0) come from one direct solve at w = 0.
     const ReceptanceValue exact = direct_value(0.0);
     remainder_                  = {exact.gamma, exact.dgamma_domega2};
     for (unsigned int j = 0; j < modal_.eigenvalues.size(); ++j)

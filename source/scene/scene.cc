@@ -286,9 +286,13 @@ namespace nsm
             std::to_string(continuation.mode));
     require(!redistributed || receptance.method == ReceptanceMethod::direct || receptance.modes == 0,
             "Receptance/Modes",
-            "0 (every mode) when Discretisation/Contact mass = redistributed: a truncated basis needs a "
-            "mass matrix with inertia at every DoF",
+            "0 (every mode) or Receptance/Method = direct when Discretisation/Contact mass = redistributed: a "
+            "truncated basis needs a mass matrix with inertia at every DoF",
             std::to_string(receptance.modes));
+    require(!redistributed || modes >= 2, "Discretisation/Contact mass",
+            "consistent when Cells x Degree = 1 (redistributed moves the contact DoF's mass to the DoFs beside it, "
+            "and there are none)",
+            "redistributed");
   }
 
   Scene Scene::from_file(const std::string &path)

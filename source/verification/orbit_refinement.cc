@@ -14,9 +14,9 @@ namespace nsm
     /// Newton reaches 1e-12 to 1e-13 where it converges; 1e-10 leaves room
     /// for the round-off of larger meshes.
     constexpr double orbit_tolerance = 1e-10;
-    /// The share of the main points within which the summary counts HB's
-    /// energy error (1 %).
-    constexpr double summary_error_share = 0.01;
+    /// The relative energy error up to which the summary counts HB against
+    /// the orbit as close (1 %, the figure users quote for a backbone).
+    constexpr double summary_energy_error = 0.01;
   } // namespace
 
   PeriodicOrbit refine_point(const PeriodicField &field, const Discretisation &discretisation, const ContactLaw &law,
@@ -79,14 +79,14 @@ namespace nsm
           stable += orbits[i]->stable;
         }
     std::sort(errors.begin(), errors.end());
-    const auto within = std::count_if(errors.begin(), errors.end(), [](double e) { return e <= summary_error_share; });
+    const auto within = std::count_if(errors.begin(), errors.end(), [](double e) { return e <= summary_energy_error; });
     std::ostringstream s;
     s.precision(3);
     s << "refinement in time: " << shot << " main points shot, " << errors.size() << " orbits found ("
       << shot - errors.size() << " not found, left empty)";
     if (!errors.empty())
       s << "; HB energy error against the orbit: median " << errors[errors.size() / 2] << ", max " << errors.back()
-        << ", within 1 %: " << within << " of " << errors.size() << " (" << std::lround(100.0 * within / shot)
+        << ", within " << 100 * summary_energy_error << " %: " << within << " of " << errors.size() << " (" << std::lround(100.0 * within / shot)
         << " % of the main points shot); stable (|multiplier| <= 1 + "
         << output.stability_margin << "): " << stable << " of " << errors.size();
     return s.str();

@@ -63,8 +63,9 @@ namespace nsm
       o.switches     = reader.count(row, any);
       for (double *value : measures(o))
         *value = reader.number(row);
+      // Every shot orbit, found or not, holds its last displacement.
       const std::size_t n = reader.count(row, dofs);
-      if (n != 0 && n != dofs)
+      if (n != dofs)
         reader.damaged("a displacement of " + std::to_string(dofs) + " values expected");
       o.displacement.reinit(n);
       for (std::size_t j = 0; j < n; ++j)

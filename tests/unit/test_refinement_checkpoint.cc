@@ -95,6 +95,22 @@ TEST(RefinementCheckpoint, AResumedRefinementEndsWithTheOrbitsOfAWholeOne)
   for (const auto &o : nsm::read_refinement_checkpoint(path, backbone, other, model.discretisation.n_dofs()))
     EXPECT_FALSE(o.has_value());
 
+  // Stability margin is applied anew: with a margin of 10 every orbit found
+  // is stable (their largest |multiplier| is below 11), with the run's none.
+  other                  = scene.output;
+  other.stability_margin = 10;
+  std::size_t stable = 0, stable_before = 0;
+  for (const auto &o : nsm::read_refinement_checkpoint(path, backbone, other, model.discretisation.n_dofs()))
+    if (o)
+      {
+        EXPECT_EQ(o->stable, o->converged);
+        stable += o->stable;
+      }
+  for (const auto &o : known)
+    stable_before += o && o->stable;
+  EXPECT_EQ(stable, found);
+  EXPECT_LT(stable_before, found);
+
   // A checkpoint cut short, or one of another mesh, is refused naming --resume.
   write_file(path, text.str().substr(0, text.str().size() * 2 / 3));
   try

@@ -50,6 +50,8 @@ namespace
       {"grading_extreme", "subsection Discretisation\n set Cells = 100\n subsection Graded\n  set Ratio = 0.5\n  set Layers = 80\n end\nend\n", "Graded/Layers", "at most 22 with Ratio = 0.5 and Cells = 100"},
       {"fraction_zero", "subsection Discretisation\n subsection Adaptive\n  set Refine fraction = 0\n end\nend\n", "Adaptive/Refine fraction", "a number in [1e-06, 1]"},
       {"method_unknown", "subsection Receptance\n set Method = iterative\nend\n", "Receptance/Method", "one of direct, modal"},
+      {"contact_mass_alone", "subsection Discretisation\n set Degree = 1\n set Cells = 1\n set Contact mass = redistributed\nend\n", "Discretisation/Contact mass", "consistent when Cells x Degree = 1"},
+      {"contact_mass_truncated_basis", "subsection Discretisation\n set Contact mass = redistributed\nend\nsubsection Receptance\n set Method = modal\n set Modes = 5\nend\n", "Receptance/Modes", "0 (every mode) or Receptance/Method = direct"},
       {"frequency_negative", "subsection Output\n set Receptance frequencies = 1, -2\nend\n", "Output/Receptance frequencies", "frequencies in [0, 1e+100]"},
       {"frequency_text", "subsection Output\n set Receptance frequencies = 1, two\nend\n", "Output/Receptance frequencies", "finite number"},
       {"frequency_range", "subsection Output\n set Receptance frequencies = 3:1:10\nend\n", "Output/Receptance frequencies", "a < b"},
