@@ -212,16 +212,39 @@ namespace nsm
           report_.files.push_back(write_atomically(directory + "/" + checkpoint_file, [&](std::ostream &out) {
             write_checkpoint(out, *backbone_.checkpoint, scene_.computation_entries);
           }));
-        if (std::any_of(verifications_.begin(), verifications_.end(), [](const auto &v) { return v.has_value(); }))
+        if (present(verifications_) > 0)
           report_.files.push_back(
             write_atomically(directory + "/" + verification_checkpoint_file, [&](std::ostream &out) {
               write_verification_checkpoint(out, backbone_, verifications_, scene_.output);
             }));
-        if (std::any_of(orbits_.begin(), orbits_.end(), [](const auto &o) { return o.has_value(); }))
+        if (present(orbits_) > 0)
           report_.files.push_back(
             write_atomically(directory + "/" + refinement_checkpoint_file, [&](std::ostream &out) {
               write_refinement_checkpoint(out, backbone_, orbits_, scene_.output);
             }));
+      }
+
+      /// The points a stage holds (computed, or kept from a checkpoint).
+      template <typename T>
+      static std::size_t present(const std::vector<std::optional<T>> &points)
+      {
+        return std::count_if(points.begin(), points.end(), [](const auto &p) { return p.has_value(); });
+      }
+
+      /// "resumed STAGE: N points from FILE (kept only with the same SETTINGS)".
+      void note_resumed(const std::string &stage, const std::size_t kept, const std::string &file,
+                        const std::string &settings)
+      {
+        report_.notes.push_back("resumed " + stage + ": " + std::to_string(kept) + " points from " + file +
+                                " (kept only with the same " + settings + ")");
+      }
+
+      /// After a per-point stage's summary line: where a stop signal ended it.
+      void note_stop(const std::string &verb)
+      {
+        if (const int signal = point_stop_signal(); signal != 0)
+          report_.result.back() += std::string(" (stopped by ") + stop_signal_name(signal) +
+                                   " before the other points: --resume " + verb + " them)";
       }
 
       void verify_in_time()
@@ -233,15 +256,12 @@ namespace nsm
             {
               known = read_verification_checkpoint(scene_.output.directory + "/" + verification_checkpoint_file,
                                                    backbone_, scene_.output);
-              const auto kept = std::count_if(known.begin(), known.end(), [](const auto &v) { return v.has_value(); });
-              report_.notes.push_back("resumed verification in time: " + std::to_string(kept) + " points from " +
-                                      verification_checkpoint_file + " (kept only with the same Verify steps and periods)");
+              note_resumed("verification in time", present(known), verification_checkpoint_file,
+                           "Verify steps and periods");
             }
           verifications_ = verify_backbone(*hb_, *discretisation_, backbone_, scene_.output, progress, known);
           report_.result.push_back(verification_summary(verifications_, scene_));
-          if (const int signal = point_stop_signal(); signal != 0)
-            report_.result.back() += std::string(" (stopped by ") + stop_signal_name(signal) +
-                                     " before the other points: --resume verifies them)";
+          note_stop("verifies");
         });
       }
 
@@ -263,15 +283,11 @@ namespace nsm
             {
               known = read_refinement_checkpoint(scene_.output.directory + "/" + refinement_checkpoint_file,
                                                  backbone_, scene_.output, discretisation_->n_dofs());
-              const auto kept = std::count_if(known.begin(), known.end(), [](const auto &o) { return o.has_value(); });
-              report_.notes.push_back("resumed refinement in time: " + std::to_string(kept) + " points from " +
-                                      refinement_checkpoint_file + " (kept only with the same Refine every)");
+              note_resumed("refinement in time", present(known), refinement_checkpoint_file, "Refine every");
             }
           orbits_ = refine_backbone(*hb_, *discretisation_, backbone_, scene_.output, progress, std::move(known));
           report_.result.push_back(refinement_summary(backbone_, orbits_, scene_.output));
-          if (const int signal = point_stop_signal(); signal != 0)
-            report_.result.back() += std::string(" (stopped by ") + stop_signal_name(signal) +
-                                     " before the other points: --resume shoots them)";
+          note_stop("shoots");
         });
       }
 

@@ -37,8 +37,6 @@ namespace nsm
     const dealii::DoFHandler<1>        &dof_handler() const { return dof_handler_; }
     const dealii::FE_Q<1>              &fe() const { return fe_; }
     const BarModel                     &bar() const { return bar_; }
-    /// Whether M has inertia at the contact DoF (Discretisation/Contact mass).
-    ContactMass                         contact_mass() const { return contact_mass_; }
 
     unsigned int n_dofs() const { return dof_handler_.n_dofs(); }
     unsigned int n_cells() const;
