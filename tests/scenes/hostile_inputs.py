@@ -478,7 +478,6 @@ def run_row(executable, row):
         before = listing(".")
         preexec = row.get("preexec", hostile_round_two.limits(sigxfsz=signal.SIG_DFL))
         timeout = row.get("timeout", 600)
-        start = time.time()
         # A session of its own: a timeout kills the run and whatever it started.
         process = subprocess.Popen([executable, row["scene_file"]], stdout=subprocess.PIPE,
                                    stderr=subprocess.PIPE, preexec_fn=preexec, start_new_session=True,
@@ -490,7 +489,6 @@ def run_row(executable, row):
             os.killpg(process.pid, signal.SIGKILL)
             stdout, stderr = process.communicate()
             timed_out = True
-        seconds = time.time() - start
         row["stdout"], row["stderr"] = stdout.decode(errors="replace"), stderr.decode(errors="replace")
         lines = row["stderr"].strip().splitlines()
         reasons = []
@@ -509,8 +507,11 @@ def run_row(executable, row):
             expect(not missing, f"{missing} not in: {first}")
             if row.get("words_any"):
                 expect(any(w in first for w in row["words_any"]), f"none of {row['words_any']} in: {first}")
-        if "max_seconds" in row:
-            expect(seconds <= row["max_seconds"], f"took {seconds:.2f} s, more than {row['max_seconds']} s")
+        if row.get("before_work"):
+            # Refused before any work: standard output holds at most the
+            # program's first line (which scene or study it reads), no stage.
+            work = [l for l in row["stdout"].splitlines() if not l.startswith("nsm-bar: ")]
+            expect(not work, f"work was done before the refusal: {work[:3]}")
         allowed = set(row.get("leaves", set()))
         left = {p for p in listing(".") - before if p.split(os.sep)[0] not in allowed}
         expect(not left, f"files left behind: {sorted(left)[:6]}")

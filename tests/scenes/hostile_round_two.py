@@ -10,7 +10,8 @@ Rows may use, besides hostile_inputs.py's keys:
              failure (default 60)
   code       an int, or a tuple of allowed exit codes
   words_any  at least one of these words must be in the one-line message
-  max_seconds  the run must end within this time (a refusal before any work)
+  before_work  the run is refused before any work: its standard output has no
+             line beyond the program's first (no stage, no run summary)
 Every run (setups' runs too) has RLIMIT_AS <= 2 GiB (MEMORY_CAP), except under
 AddressSanitizer, which reserves more; a row's preexec may lower it.
 """
@@ -448,7 +449,7 @@ def new_rows(executable):
         # Every include doubles: 2^20 includes of small files. Refused by a
         # limit on the files included in all.
         dict(name="include_fan_out", scene=None, setup=include_fan_out(20), code=2,
-             words=["includes more than"], max_seconds=10),
+             words=["includes more than"], before_work=True),
         # ---- 2. deep nesting ----------------------------------------------------
         # Element names need not start with a letter.
         dict(name="xml_nested_underscore", scene=None, setup=deep_xml_underscore, code=2,
@@ -475,29 +476,29 @@ def new_rows(executable):
         dict(name="study_link_png", scene=STUDY, code=2, words=["Output/Directory"],
              setup=earlier_study_with_link(executable, "study.png"), check=victim_intact),
         # ---- 4. special files in a study's directory ------------------------------
-        # Refused at once, before any work: max_seconds (a refusal takes about 0.2 s
-        # here) and special_intact (the special file, and the inode of every other
-        # file of out, unchanged: the old binary rewrites study.scene first).
+        # Refused at once, before any work: before_work and special_intact (the
+        # special file, and the inode of every other file of out, unchanged:
+        # the old binary rewrites study.scene first).
         # old: hangs opening the FIFO (killed after 20 s).
-        dict(name="study_csv_fifo", scene=STUDY_QUIET, code=2, timeout=20, max_seconds=1.0,
+        dict(name="study_csv_fifo", scene=STUDY_QUIET, code=2, timeout=20, before_work=True,
              words_any=["Output/Directory", "study.csv"], check=special_intact("study.csv", "fifo"),
              setup=earlier_study_with_special(executable, "study.csv", os.mkfifo)),
         # old: reads /dev/zero until std::getline's bad_alloc (under the 2 GiB
         # cap; the istream swallows it), takes the file as empty, recomputes the
         # row, replaces the link with a regular study.csv: exit 0, 1.1 to 1.9 s.
-        dict(name="study_csv_dev_zero", scene=STUDY_QUIET, code=2, timeout=30, max_seconds=1.0,
+        dict(name="study_csv_dev_zero", scene=STUDY_QUIET, code=2, timeout=30, before_work=True,
              words_any=["Output/Directory", "study.csv"],
              check=special_intact("study.csv", "dev_zero"),
              setup=earlier_study_with_special(executable, "study.csv", to_dev_zero)),
         # old: the same reading, then exit 2 "reference.csv has no column
         # energy_cells_14" (names the file), 1.1 to 1.9 s, study.scene rewritten:
-        # fails only by max_seconds and special_intact.
+        # fails only by before_work and special_intact.
         dict(name="reference_csv_dev_zero", scene=STUDY_REFERENCE, code=2, timeout=30,
-             max_seconds=1.0, words_any=["Output/Directory", "reference.csv"],
+             before_work=True, words_any=["Output/Directory", "reference.csv"],
              check=special_intact("reference.csv", "dev_zero"),
              setup=earlier_study_with_special(executable, "reference.csv", to_dev_zero)),
         # old: computes the row, then exit 5 "cannot write out/study.csv whole".
-        dict(name="study_csv_directory", scene=STUDY_QUIET, code=2, max_seconds=1.0,
+        dict(name="study_csv_directory", scene=STUDY_QUIET, code=2, before_work=True,
              words_any=["Output/Directory", "study.csv"],
              check=special_intact("study.csv", "directory"),
              setup=earlier_study_with_special(executable, "study.csv", os.mkdir)),
@@ -665,14 +666,14 @@ def new_rows(executable):
                                                               Receptance_frequencies="4.9e-324"),
              code=0, leaves={"out"}, check=receptance_at("4.9e-324")),
         # ---- 14. memory ------------------------------------------------------------
-        # 1e6 cells of FE_Q(20), 2e7 DoFs: refused before any work, within seconds
+        # 1e6 cells of FE_Q(20), 2e7 DoFs: refused before any work
         # (RLIMIT_AS 2 GiB keeps the old binary from hurting the machine).
         # old: exit 4 "nsm-bar: error: std::bad_alloc", 1.9 s (both rows).
         dict(name="memory_spectrum_1e6_q20", scene=big + spectrum_scene("out", 2), code=2,
-             words=["memory", "Discretisation/Cells", "Discretisation/Degree"], max_seconds=5,
+             words=["memory", "Discretisation/Cells", "Discretisation/Degree"], before_work=True,
              preexec=limits(address_space=MEMORY_CAP)),
         dict(name="memory_backbone_1e6_q20", scene=big + output(Directory="out", Backbone="true"),
-             code=2, words=["memory", "Discretisation/Cells", "Discretisation/Degree"], max_seconds=5,
+             code=2, words=["memory", "Discretisation/Cells", "Discretisation/Degree"], before_work=True,
              preexec=limits(address_space=MEMORY_CAP)),
         # bad_alloc inside a run: 200000 linear cells need about 90 MB beyond
         # what the program needs to start; the limit leaves it 40 MB. The run
