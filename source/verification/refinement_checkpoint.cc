@@ -12,11 +12,13 @@ namespace nsm
     constexpr const char *format_line = "nsm-bar refinement checkpoint 1";
 
     /// The measures a found orbit's line holds, in order (its multipliers
-    /// are not written: only floquet_max reaches the output).
-    std::vector<double *> measures(PeriodicOrbit &o)
+    /// are not written: only floquet_max reaches the output). O:
+    /// PeriodicOrbit, const or not.
+    template <typename O>
+    auto measures(O &o)
     {
-      return {&o.residual, &o.energy, &o.contact_fraction, &o.periodicity, &o.max_contact_force, &o.isolation,
-              &o.floquet_max};
+      return std::vector{&o.residual,          &o.energy,    &o.contact_fraction, &o.periodicity,
+                         &o.max_contact_force, &o.isolation, &o.floquet_max};
     }
   } // namespace
 
@@ -25,20 +27,14 @@ namespace nsm
                                    const Scene::Output &output)
   {
     out << format_line << "\nsettings " << output.refine_every << '\n';
-    for (std::size_t i = 0; i < orbits.size(); ++i)
-      if (orbits[i])
-        {
-          PeriodicOrbit o = *orbits[i];
-          out << "point " << i << ' ' << exact(backbone.points[i].omega) << ' ' << o.converged << ' '
-              << o.newton_steps << ' ' << o.switches;
-          for (const double *value : measures(o))
-            out << ' ' << exact(*value);
-          out << ' ' << o.displacement.size();
-          for (const double u : o.displacement)
-            out << ' ' << exact(u);
-          out << '\n';
-        }
-    out << "end\n";
+    write_point_lines(out, backbone, orbits, [&](const PeriodicOrbit &o) {
+      out << ' ' << o.converged << ' ' << o.newton_steps << ' ' << o.switches;
+      for (const double *value : measures(o))
+        out << ' ' << exact(*value);
+      out << ' ' << o.displacement.size();
+      for (const double u : o.displacement)
+        out << ' ' << exact(u);
+    });
   }
 
   std::vector<std::optional<PeriodicOrbit>> read_refinement_checkpoint(const std::string   &path,

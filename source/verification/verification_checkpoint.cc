@@ -11,11 +11,12 @@ namespace nsm
   {
     constexpr const char *format_line = "nsm-bar verification checkpoint 1";
 
-    /// The results a line holds, in order.
-    std::vector<double *> fields(PointVerification &v)
+    /// The results a line holds, in order (V: PointVerification, const or not).
+    template <typename V>
+    auto fields(V &v)
     {
-      return {&v.time.periodicity_defect, &v.time.periodicity_defect_end, &v.time.energy_drift, &v.time.impulse,
-              &v.time.contact_fraction, &v.impulse_ratio};
+      return std::vector{&v.time.periodicity_defect, &v.time.periodicity_defect_end, &v.time.energy_drift,
+                         &v.time.impulse, &v.time.contact_fraction, &v.impulse_ratio};
     }
   } // namespace
 
@@ -24,16 +25,10 @@ namespace nsm
                                      const Scene::Output &output)
   {
     out << format_line << "\nsettings " << output.verify_steps << ' ' << output.verify_periods << '\n';
-    for (std::size_t i = 0; i < verifications.size(); ++i)
-      if (verifications[i])
-        {
-          PointVerification v = *verifications[i];
-          out << "point " << i << ' ' << exact(backbone.points[i].omega);
-          for (const double *value : fields(v))
-            out << ' ' << exact(*value);
-          out << '\n';
-        }
-    out << "end\n";
+    write_point_lines(out, backbone, verifications, [&](const PointVerification &v) {
+      for (const double *value : fields(v))
+        out << ' ' << exact(*value);
+    });
   }
 
   std::vector<std::optional<PointVerification>> read_verification_checkpoint(const std::string   &path,

@@ -5,11 +5,30 @@
 #include <nsm/base/checkpoint_reader.h>
 #include <nsm/continuation/backbone.h>
 
+#include <optional>
+#include <ostream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace nsm
 {
+  /// Writes the point lines and "end": for each point held, "point INDEX
+  /// OMEGA" (exact) and what write(point) adds to the line.
+  template <typename T, typename Write>
+  void write_point_lines(std::ostream &out, const Backbone &backbone, const std::vector<std::optional<T>> &points,
+                         Write &&write)
+  {
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (points[i])
+        {
+          out << "point " << i << ' ' << exact(backbone.points[i].omega);
+          write(*points[i]);
+          out << '\n';
+        }
+    out << "end\n";
+  }
+
   /// Starts reading a point checkpoint: false if there is no file; else the
   /// format line checked, and the numbers of its "settings" line in
   /// `settings`.
