@@ -13,7 +13,7 @@ namespace nsm
     /// The rank-1 update of the trailing columns, a[k+1:, j] -= a[k+1:, k] a[k, j]:
     /// axpys on contiguous columns, built for AVX2 and FMA where the processor
     /// has them (GCC function multiversioning) and for plain x86-64 elsewhere.
-    __attribute__((target_clones("arch=x86-64-v3", "default"))) void
+    __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void
     eliminate(const int n, const int k, double *a)
     {
       const double *__restrict multipliers = a + std::size_t(k) * n;
@@ -79,18 +79,41 @@ namespace nsm
     /// entries is loaded and stored n / block times instead of n times.
     constexpr int block = 8;
 
-    /// Four doubles in a vector register (two on plain x86-64), unaligned.
-    typedef double quad __attribute__((vector_size(32), aligned(8)));
+    /// Eight doubles, unaligned: one AVX-512 register, two AVX2 or four SSE2
+    /// ones, as the function's clone allows.
+    typedef double oct __attribute__((vector_size(64), aligned(8)));
 
-    /// A22 -= L21 U12 for a whole block of pivots: two columns of A22 and
-    /// eight of its rows at a time held in registers through the block's
-    /// `block` multiply-adds, each L21 load serving both columns.
+    /// A22 -= L21 U12 for `blocks` times eight rows from row i of columns c0
+    /// and c1, held in registers through the block's `block` multiply-adds,
+    /// each L21 load serving both columns.
+    template <int blocks>
+    __attribute__((always_inline)) inline void update_rows(const int n, const int i, const double *l, const double *u0,
+                                                          const double *u1, double *c0, double *c1, const bool pair)
+    {
+      oct a0[blocks], a1[blocks];
+      for (int b = 0; b < blocks; ++b)
+        a0[b] = *reinterpret_cast<const oct *>(c0 + i + 8 * b), a1[b] = *reinterpret_cast<const oct *>(c1 + i + 8 * b);
+      for (int p = 0; p < block; ++p)
+        for (int b = 0; b < blocks; ++b)
+          {
+            const oct lp = *reinterpret_cast<const oct *>(l + std::size_t(p) * n + i + 8 * b);
+            a0[b] -= lp * u0[p], a1[b] -= lp * u1[p];
+          }
+      for (int b = 0; b < blocks; ++b)
+        {
+          *reinterpret_cast<oct *>(c0 + i + 8 * b) = a0[b];
+          if (pair)
+            *reinterpret_cast<oct *>(c1 + i + 8 * b) = a1[b];
+        }
+    }
+
+    /// A22 -= L21 U12 for a whole block of pivots: two columns of A22 at a
+    /// time, sixteen rows (then eight) per register pass.
     __attribute__((always_inline)) inline void update_trailing_block(const int n, const int k0, double *a)
     {
       const int     first = k0 + block;
       const double *l     = a + std::size_t(k0) * n;
-      int           j     = first;
-      for (; j < n; j += 2)
+      for (int j = first; j < n; j += 2)
         {
           const bool pair = j + 1 < n;
           double    *c0 = a + std::size_t(j) * n, *c1 = pair ? c0 + n : c0;
@@ -98,21 +121,10 @@ namespace nsm
           for (int p = 0; p < block; ++p)
             u0[p] = c0[k0 + p], u1[p] = pair ? c1[k0 + p] : 0.0;
           int i = first;
+          for (; i + 16 <= n; i += 16)
+            update_rows<2>(n, i, l, u0, u1, c0, c1, pair);
           for (; i + 8 <= n; i += 8)
-            {
-              quad a00 = *reinterpret_cast<const quad *>(c0 + i), a01 = *reinterpret_cast<const quad *>(c0 + i + 4);
-              quad a10 = *reinterpret_cast<const quad *>(c1 + i), a11 = *reinterpret_cast<const quad *>(c1 + i + 4);
-              for (int p = 0; p < block; ++p)
-                {
-                  const double *lp = l + std::size_t(p) * n + i;
-                  const quad    l0 = *reinterpret_cast<const quad *>(lp), l1 = *reinterpret_cast<const quad *>(lp + 4);
-                  a00 -= l0 * u0[p], a01 -= l1 * u0[p];
-                  a10 -= l0 * u1[p], a11 -= l1 * u1[p];
-                }
-              *reinterpret_cast<quad *>(c0 + i) = a00, *reinterpret_cast<quad *>(c0 + i + 4) = a01;
-              if (pair)
-                *reinterpret_cast<quad *>(c1 + i) = a10, *reinterpret_cast<quad *>(c1 + i + 4) = a11;
-            }
+            update_rows<1>(n, i, l, u0, u1, c0, c1, pair);
           for (; i < n; ++i)
             for (int p = 0; p < block; ++p)
               {
@@ -125,9 +137,9 @@ namespace nsm
     }
 
     /// The trailing update A22 -= L21 U12 of the block of `width` pivots from
-    /// column k0, built for AVX2 and FMA where the processor has them (GCC
-    /// function multiversioning).
-    __attribute__((target_clones("arch=x86-64-v3", "default"))) void
+    /// column k0, built for AVX-512, for AVX2 and FMA where the processor has
+    /// them (GCC function multiversioning).
+    __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void
     update_trailing(const int n, const int k0, const int width, double *a)
     {
       if (width == block)
@@ -148,7 +160,7 @@ namespace nsm
 
     /// LU with partial pivoting of the panel of columns k0..k0+width-1 (rows
     /// k0..), whole rows swapped; then U12, the panel's rows right of it.
-    __attribute__((target_clones("arch=x86-64-v3", "default"))) bool factor_panel(const int n, const int k0, const int width, double *a, int *pivots)
+    __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) bool factor_panel(const int n, const int k0, const int width, double *a, int *pivots)
     {
       auto at = [a, n](const int i, const int j) -> double & { return a[i + std::size_t(j) * n]; };
       for (int k = k0; k < k0 + width; ++k)

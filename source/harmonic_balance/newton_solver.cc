@@ -4,6 +4,8 @@
 
 #include <NOX_LAPACK_Group.H>
 
+#include <vector>
+
 namespace nsm
 {
   namespace
@@ -32,9 +34,12 @@ namespace nsm
         if (isNewton() || !isF() || !isJacobian())
           return NOX::LAPACK::Group::computeNewton(params);
         const auto                 start = std::chrono::steady_clock::now();
-        NOX::LAPACK::Matrix<double> lu    = jacSolver.getMatrix();
-        newtonVector                      = fVector;
-        isValidNewton = dense_solve(lu.numRows(), &lu(0, 0), &newtonVector(0));
+        // J is factored in a copy (the group keeps J), held from step to step.
+        const NOX::LAPACK::Matrix<double> &jacobian = jacSolver.getMatrix();
+        const int                          n        = jacobian.numRows();
+        lu_.assign(&jacobian(0, 0), &jacobian(0, 0) + std::size_t(n) * n);
+        newtonVector  = fVector;
+        isValidNewton = dense_solve(n, lu_.data(), &newtonVector(0));
         newtonVector.scale(-1.0);
         hb_.record_linear_solve(seconds_since(start));
         return isValidNewton ? NOX::Abstract::Group::Ok : NOX::Abstract::Group::Failed;
@@ -42,6 +47,7 @@ namespace nsm
 
     private:
       const HarmonicBalance &hb_;
+      std::vector<double>    lu_;
     };
   } // namespace
 

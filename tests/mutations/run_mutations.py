@@ -49,7 +49,7 @@ MUTATIONS = [
     ("the series' chains rotated by one angle too few", "source/harmonic_balance/trigonometric_series.cc",
      "const double step_c = c[lanes - 1] * c1 - s[lanes - 1] * s1;", "const double step_c = c[lanes - 1];"),
     ("the blocked LU's second column skips a row group's update", "source/base/dense_lu.cc",
-     "a10 -= l0 * u1[p], a11 -= l1 * u1[p];", "a10 -= l0 * u1[p];"),
+     "a0[b] -= lp * u0[p], a1[b] -= lp * u1[p];", "a0[b] -= lp * u0[p]; if (b == 0) a1[b] -= lp * u1[p];"),
     ("the energy's spread from its cosines at half weight", "source/harmonic_balance/solution_measures.cc",
      "coefficients[2 * m - 1] = es[m], coefficients[2 * m] = ec[m];",
      "coefficients[2 * m - 1] = es[m], coefficients[2 * m] = 0.5 * ec[m];"),

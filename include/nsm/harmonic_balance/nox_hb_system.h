@@ -9,6 +9,7 @@
 #include <LOCA_LAPACK.H>
 #include <NOX.H>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -49,10 +50,8 @@ namespace nsm
     {
       hb_.set_omega(omega_);
       hb_.evaluate(to_std(x), nullptr, &scratch_, nullptr);
-      const unsigned int n = x.length();
-      for (unsigned int j = 0; j < n; ++j)
-        for (unsigned int i = 0; i < n; ++i)
-          jacobian(i, j) = scratch_[i + j * n];
+      // Both column-major and contiguous: one block copy.
+      std::copy(scratch_.begin(), scratch_.end(), &jacobian(0, 0));
       return all_finite(scratch_);
     }
 
