@@ -230,7 +230,7 @@ namespace nsm
           event_message(above ? "branch goes on only above Energy max after the fold" : "branch lost after the fold",
                         front_.omega) +
           tally_.text(least_ / c_.leap_energy_ratio, c_.leap_energy_ratio * front_.measures.energy, c_.energy_max,
-                      context_.scene.harmonic_balance.max_iterations));
+                      context_.scene.harmonic_balance.iterations()));
       }
 
       BranchContext                &context_;

@@ -168,7 +168,7 @@ namespace nsm
       stepper.set("Max Value", c.omega_max);
       stepper.set("Min Value", c.omega_min);
       stepper.set("Max Steps", static_cast<int>(c.max_steps));
-      stepper.set("Max Nonlinear Iterations", static_cast<int>(scene.harmonic_balance.max_iterations));
+      stepper.set("Max Nonlinear Iterations", static_cast<int>(scene.harmonic_balance.iterations()));
       stepper.set("Compute Eigenvalues", false);
       params->sublist("LOCA").sublist("Predictor").set("Method", "Tangent");
       // Unscaled arclength: a step of length ds changes Omega by at most ds,

@@ -58,7 +58,7 @@ namespace nsm
       , group(Teuchos::rcp(new TimedNewtonGroup(interface, hb)))
       , status(newton_status(params))
       , list(Teuchos::rcp(new Teuchos::ParameterList))
-      , max_iterations(params.max_iterations)
+      , max_iterations(params.iterations())
     {
       set_newton_parameters(*list, params);
       solver = NOX::Solver::buildSolver(group, status, list);

@@ -15,7 +15,7 @@ namespace nsm
     // Unscaled 2-norm: the same norm the points are accepted and written with.
     combo->addStatusTest(Teuchos::rcp(
       new NOX::StatusTest::NormF(params.tolerance * tightening, NOX::StatusTest::NormF::Unscaled)));
-    combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::MaxIters(params.max_iterations)));
+    combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::MaxIters(params.iterations())));
     using namespace harmonic_balance_constants;
     combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::Stagnation(stagnation_steps, stagnation_ratio)));
     combo->addStatusTest(Teuchos::rcp(new NOX::StatusTest::Divergence(divergence_limit)));

@@ -175,7 +175,11 @@ namespace nsm
                       Patterns::Double(1e-15, 1e-6),
                       "Newton tolerance on the scaled residual norm; a looser one would write "
                       "points that solve nothing.");
-    prm.declare_entry("Max iterations", text(d.max_iterations), Patterns::Integer(1, 1000), "Newton iterations per solve.");
+    prm.declare_entry("Max iterations",
+                      text(d.max_iterations),
+                      Patterns::Integer(0, 1000),
+                      "Newton iterations per solve; 0 = max(12, M / 16): converging solves take more "
+                      "iterations as M grows.");
     prm.declare_entry("Line search",
                       d.line_search,
                       Patterns::Selection("Full Step|Backtrack|Polynomial"),
@@ -199,6 +203,16 @@ namespace nsm
     max_iterations = get_unsigned(prm, "Max iterations");
     line_search    = prm.get("Line search");
     prm.leave_subsection();
+  }
+
+  unsigned int Scene::HarmonicBalance::iterations() const
+  {
+    // The iterations the converged solves of the seed bar take (FE_Q(10),
+    // sequential, to 2.2): at most 12 at M = 80 and 160 (a few at the limit), up
+    // to 20 at M = 320, where 12 lose the branch at 2.1530 and 20 carry it to
+    // 2.2 (doc/accuracy-and-cost.md, "M = 320"). So 12 up to M = 207, then M / 16.
+    constexpr unsigned int least = 12, harmonics_per_iteration = 16;
+    return max_iterations != 0 ? max_iterations : std::max(least, harmonics / harmonics_per_iteration);
   }
 
   void Scene::Resources::declare(ParameterHandler &prm)

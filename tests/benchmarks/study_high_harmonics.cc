@@ -67,7 +67,7 @@ namespace
     testing_helpers::HbModel    model(seed(to));
     nsm::Scene::HarmonicBalance leap = model.scene.harmonic_balance;
     leap.line_search                 = "Polynomial";
-    leap.max_iterations *= 2;
+    leap.max_iterations = leap.iterations() * 2;
     nsm::NewtonSolver   newton(model.hb, model.scene.harmonic_balance), leap_newton(model.hb, leap);
     unsigned int        tried = 0, plain = 0, either = 0;
     std::vector<double> moved;

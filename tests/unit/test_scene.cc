@@ -256,3 +256,18 @@ TEST(Scene, ExecutableRejectsMissingFile)
     std::system((std::string(NSM_BAR_EXECUTABLE) + " no_such_scene.prm > missing.log 2>&1").c_str());
   EXPECT_EQ(WEXITSTATUS(status), 2);
 }
+
+TEST(Scene, AutomaticNewtonIterationsGrowWithTheHarmonicsBeyond207)
+{
+  // Max iterations = 0: 12 up to M = 207, then M / 16 (20 at M = 320, which
+  // carries the seed bar's branch to 2.2 where 12 lose it); a set value wins.
+  nsm::Scene::HarmonicBalance hb;
+  EXPECT_EQ(hb.max_iterations, 0u);
+  for (const auto [m, expected] : {std::pair{1u, 12u}, {160u, 12u}, {207u, 12u}, {208u, 13u}, {320u, 20u}, {1000u, 62u}})
+    {
+      hb.harmonics = m;
+      EXPECT_EQ(hb.iterations(), expected) << m;
+    }
+  hb.max_iterations = 7;
+  EXPECT_EQ(hb.iterations(), 7u);
+}

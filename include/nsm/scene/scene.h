@@ -135,11 +135,14 @@ namespace nsm
       HarmonicBasis basis          = HarmonicBasis::cosine;
       Integration   integration    = Integration::exact;
       double        tolerance      = 1e-10;
-      unsigned int  max_iterations = 12;
+      unsigned int  max_iterations = 0; ///< 0: chosen from the harmonics (iterations())
       std::string   line_search    = "Full Step";
 
       static void declare(dealii::ParameterHandler &prm);
       void        parse(dealii::ParameterHandler &prm);
+      /// Newton iterations per solve: Max iterations, or where it is 0,
+      /// max(12, M / 16).
+      unsigned int iterations() const;
     } harmonic_balance;
 
     struct Continuation
