@@ -6,7 +6,7 @@ separated by ';' (a CMake list), for the link line (CMakeLists.txt).
 
 The dynamic loader resolves every symbol a library uses by searching the
 loaded libraries in load order, and the first libraries loaded are the
-program's own DT_NEEDED entries, in link order. deal.II brings about 180
+program's own DT_NEEDED entries, in link order. deal.II brings about 200
 libraries, most of which (gmsh, OpenCASCADE, PETSc) resolve thousands of their
 own symbols at start-up: loaded late, each such lookup first walks past a
 hundred others. Listing the libraries in the order of how many lookups end in

@@ -11,8 +11,9 @@ namespace nsm
   namespace
   {
     /// The rank-1 update of the trailing columns, a[k+1:, j] -= a[k+1:, k] a[k, j]:
-    /// axpys on contiguous columns, built for AVX2 and FMA where the processor
-    /// has them (GCC function multiversioning) and for plain x86-64 elsewhere.
+    /// axpys on contiguous columns, built for AVX-512, for AVX2 and FMA where
+    /// the processor has them (GCC function multiversioning) and for plain
+    /// x86-64 elsewhere.
     __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void
     eliminate(const int n, const int k, double *a)
     {
