@@ -33,9 +33,13 @@ def read(path):
 
 
 def save(figure, path):
-    figure.savefig(path, dpi=130, bbox_inches="tight")
+    """Writes PATH.partial and renames it into place: a plot stopped half-way
+    (a kill, a full disk) never leaves a truncated PATH behind."""
+    partial = path + ".partial"
+    figure.savefig(partial, dpi=130, bbox_inches="tight", format=os.path.splitext(path)[1][1:])
     plt.close(figure)
-    print("wrote " + path)
+    os.replace(partial, path)
+    print("wrote " + path, flush=True)
 
 
 def grazing_scale(directory):

@@ -10,10 +10,15 @@
 #include <nsm/base/text.h>
 #include <nsm/study/study.h>
 
+#include <nsm/base/errors.h>
+
+#include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <algorithm>
 #include <csignal>
+#include <initializer_list>
 #include <cstdlib>
 #include <iostream>
 #include <new>
@@ -33,6 +38,29 @@ namespace
     return false;
   }
 
+  /// The value of the first of these environment variables that is set, as
+  /// a whole number; -1 if none is.
+  long launcher_number(const std::initializer_list<const char *> variables)
+  {
+    for (const char *variable : variables)
+      if (const char *value = std::getenv(variable))
+        return std::strtol(value, nullptr, 10);
+    return -1;
+  }
+
+  /// This process's rank and the number of ranks as the MPI launcher set
+  /// them (known before MPI_Init, which a scene does not call): 0 and 1
+  /// without a launcher.
+  long launcher_rank() { return std::max(0L, launcher_number({"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})); }
+  long launcher_size() { return std::max(1L, launcher_number({"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})); }
+
+  /// A one-line message on stderr, its text printable: a control character
+  /// or a byte that is not UTF-8 from the user's input is escaped.
+  void print_error(const std::string &kind, const std::string &what)
+  {
+    std::cerr << "nsm-bar: " << kind << nsm::printable(what) << '\n';
+  }
+
   /// The command line's overrides, for the summary's first line.
   std::string overrides_note()
   {
@@ -40,6 +68,16 @@ namespace
     for (const nsm::ParameterOverride &o : nsm::parameter_overrides())
       note += (note.empty() ? " with " : ", ") + o.path + " = " + nsm::printable(o.value);
     return note;
+  }
+
+  /// 0, or 5 with its line on stderr if the plots were not drawn (the other
+  /// files are written).
+  int plot_failure_code(const nsm::RunReport &report)
+  {
+    if (report.plot_failure.empty())
+      return 0;
+    print_error("output error: ", "the plots were not drawn, every other file is written: " + report.plot_failure);
+    return 5;
   }
 
   /// Runs the scene (a study over the MPI ranks, if any); returns the exit
@@ -52,6 +90,12 @@ namespace
         const nsm::StudyScene file = nsm::StudyScene::from_file(path);
         if (!file.study.enabled())
           {
+            // A scene is one run into one directory: several ranks would
+            // run it several times into the same folder.
+            if (launcher_size() > 1)
+              throw nsm::InputError("command line: a scene runs on one process, and mpirun started " +
+                                    std::to_string(launcher_size()) +
+                                    ": run it without mpirun (a study spreads its rows over the ranks)");
             std::cout << "nsm-bar: scene " << path << overrides_note() << '\n';
             // SIGINT or SIGTERM stops the continuation at its next point,
             // and the run writes what it has (interruption.h).
@@ -67,10 +111,12 @@ namespace
                           << '\n';
                 return nsm::stop_exit_code(report.stopped_by);
               }
-            if (report.failure.empty())
-              return 0;
-            std::cerr << "nsm-bar: numerical failure: " << report.failure << '\n';
-            return 3;
+            if (!report.failure.empty())
+              {
+                print_error("numerical failure: ", report.failure);
+                return 3;
+              }
+            return plot_failure_code(report);
           }
         if (resume)
           throw nsm::InputError("command line: --resume is for a scene; a study resumes by itself (its rows "
@@ -91,7 +137,7 @@ namespace
             nsm::print_report(report, std::cout);
           }
         if (report.stopped_by == 0)
-          return 0;
+          return root ? plot_failure_code(report) : 0;
         if (root)
           std::cerr << "nsm-bar: stopped by " << nsm::stop_signal_name(report.stopped_by)
                     << "; study.csv holds the rows done, a rerun computes the others\n";
@@ -99,17 +145,19 @@ namespace
       }
     catch (const nsm::InputError &e)
       {
-        std::cerr << "nsm-bar: input error: " << e.what() << '\n';
+        // Bad input is the same on every rank: rank 0 says it.
+        if (launcher_rank() == 0)
+          print_error("input error: ", e.what());
         return 2;
       }
     catch (const nsm::OutputError &e)
       {
-        std::cerr << "nsm-bar: output error: " << e.what() << '\n';
+        print_error("output error: ", e.what());
         return 5;
       }
     catch (const nsm::NumericalError &e)
       {
-        std::cerr << "nsm-bar: numerical failure: " << e.what() << '\n';
+        print_error("numerical failure: ", e.what());
         return 3;
       }
     catch (const std::bad_alloc &)
@@ -118,14 +166,19 @@ namespace
                      "reduce Discretisation/Cells or Degree, Harmonic balance/Harmonics, or the outputs\n";
         return 5;
       }
+    catch (const dealii::ExceptionBase &e)
+      {
+        print_error("error: ", nsm::one_line_message(e));
+        return 4;
+      }
     catch (const std::exception &e)
       {
-        std::cerr << "nsm-bar: error: " << e.what() << '\n';
+        print_error("error: ", e.what());
         return 4;
       }
     catch (const char *message) // NOX throws these
       {
-        std::cerr << "nsm-bar: numerical failure: " << message << '\n';
+        print_error("numerical failure: ", message);
         return 3;
       }
     catch (...)
@@ -225,7 +278,8 @@ int main(int argc, char **argv)
     }
   catch (const nsm::InputError &e)
     {
-      std::cerr << "nsm-bar: input error: " << e.what() << '\n';
+      if (launcher_rank() == 0)
+        print_error("input error: ", e.what());
       return 2;
     }
   nsm::set_parameter_overrides(line.overrides);

@@ -12,6 +12,7 @@
 #include <nsm/app/pipeline.h>
 #include <nsm/app/run_result.h>
 #include <nsm/output/plots.h>
+#include <nsm/base/checkpoint_reader.h>
 #include <nsm/base/interruption.h>
 #include <nsm/base/progress.h>
 #include <nsm/model/receptance.h>
@@ -209,17 +210,17 @@ namespace nsm
       void write_checkpoints(const std::string &directory)
       {
         if ((report_.resumable = backbone_.checkpoint != nullptr))
-          report_.files.push_back(write_atomically(directory + "/" + checkpoint_file, [&](std::ostream &out) {
-            write_checkpoint(out, *backbone_.checkpoint, scene_.computation_entries);
+          report_.files.push_back(write_checksummed(directory + "/" + checkpoint_file, [&](std::ostream &out) {
+            write_checkpoint(out, *backbone_.checkpoint, scene_.computation_entries, *hb_);
           }));
         if (present(verifications_) > 0)
           report_.files.push_back(
-            write_atomically(directory + "/" + verification_checkpoint_file, [&](std::ostream &out) {
+            write_checksummed(directory + "/" + verification_checkpoint_file, [&](std::ostream &out) {
               write_verification_checkpoint(out, backbone_, verifications_, scene_.output);
             }));
         if (present(orbits_) > 0)
           report_.files.push_back(
-            write_atomically(directory + "/" + refinement_checkpoint_file, [&](std::ostream &out) {
+            write_checksummed(directory + "/" + refinement_checkpoint_file, [&](std::ostream &out) {
               write_refinement_checkpoint(out, backbone_, orbits_, scene_.output);
             }));
       }
@@ -375,12 +376,18 @@ namespace nsm
         });
       }
 
-      void plots(const std::string &directory)
+      /// Draws the plots; returns the signal that ended them, 0 if none. A
+      /// failure of the plotting environment is noted (report_.plot_failure):
+      /// the files computed are kept either way.
+      int plots(const std::string &directory)
       {
-        timed("plots", [&] {
-          for (std::string &f : make_plots(scene_.contact, directory))
-            report_.files.push_back(std::move(f));
-        });
+        PlotResult plots;
+        timed("plots", [&] { plots = make_plots(scene_.contact, directory); });
+        for (std::string &f : plots.files)
+          report_.files.push_back(std::move(f));
+        if (!plots.failure.empty() && plots.stopped_by == 0)
+          report_.plot_failure = plots.failure;
+        return plots.stopped_by;
       }
 
     private:
@@ -541,28 +548,32 @@ namespace nsm
     if (scene.output.backbone)
       run.backbone_tables();
     stage(needs_fields, "fields", [&] { run.fields(); });
+    run.write(output.staging());
+    // The plots are an output like the others, drawn also after a stop: a
+    // stop while they are drawn ends them and keeps the rest; so does a
+    // failure of the plotting environment (said in the summary, exit 5).
+    if (scene.output.plots && run.plots(output.staging()) != 0)
+      skipped.push_back("plots");
     std::vector<std::string> manifest_notes;
+    const auto               note = [&](const std::string &text) {
+      report.notes.insert(report.notes.begin(), text);
+      manifest_notes.push_back(text);
+    };
     if ((report.stopped_by = point_stop_signal()) != 0)
       {
-        std::string note = std::string("interrupted by ") + stop_signal_name(report.stopped_by) +
+        std::string text = std::string("interrupted by ") + stop_signal_name(report.stopped_by) +
                            ": the output holds what was computed before";
         for (const std::string &s : skipped)
-          note += (&s == &skipped.front() ? "; left out: " : ", ") + s;
-        report.notes.insert(report.notes.begin(), note);
-        manifest_notes.push_back(note);
+          text += (&s == &skipped.front() ? "; left out: " : ", ") + s;
+        note(text);
+        run.write_checkpoints(output.staging());
       }
     // A request the run could not meet (a field out of reach) is said in the
     // summary and the manifest too, not on stderr alone.
     if (!report.failure.empty())
-      {
-        report.notes.insert(report.notes.begin(), "not written: " + report.failure);
-        manifest_notes.push_back("not written: " + report.failure);
-      }
-    run.write(output.staging());
-    if (report.stopped_by != 0)
-      run.write_checkpoints(output.staging());
-    if (scene.output.plots)
-      run.plots(output.staging());
+      note("not written: " + report.failure);
+    if (!report.plot_failure.empty())
+      note("plots not drawn: " + report.plot_failure);
     report.files = output.commit(report.files, manifest_notes);
     return report;
   }

@@ -1,10 +1,13 @@
 #include <nsm/base/checkpoint_reader.h>
+#include <nsm/base/csv.h>
 #include <nsm/base/errors.h>
 #include <nsm/base/text.h>
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <ios>
 
 namespace nsm
@@ -16,18 +19,67 @@ namespace nsm
     return s.str();
   }
 
+  namespace
+  {
+    constexpr const char *checksum_key = "checksum ";
+
+    std::string checksum_line(const std::string &text)
+    {
+      char line[48];
+      std::snprintf(line, sizeof line, "%s%016llx\n", checksum_key,
+                    static_cast<unsigned long long>(fnv1a(text.data(), text.size())));
+      return line;
+    }
+  } // namespace
+
+  std::uint64_t fnv1a(const void *bytes, const std::size_t size, std::uint64_t hash)
+  {
+    const auto *byte = static_cast<const unsigned char *>(bytes);
+    for (std::size_t i = 0; i < size; ++i)
+      hash = (hash ^ byte[i]) * 1099511628211ull;
+    return hash;
+  }
+
+  std::string write_checksummed(const std::string &path, const std::function<void(std::ostream &)> &write)
+  {
+    std::ostringstream text;
+    write(text);
+    return write_atomically(path, [&](std::ostream &out) { out << text.str() << checksum_line(text.str()); });
+  }
+
   CheckpointReader::CheckpointReader(const std::string &path)
     : path_(path)
-    , in_(path)
-  {}
+  {
+    std::ifstream file(path);
+    if (!(opened_ = static_cast<bool>(file)))
+      return;
+    std::ostringstream whole;
+    whole << file.rdbuf();
+    const std::string text = whole.str();
+    // The checksum line is the last; the text before it is what was hashed.
+    const std::size_t last = text.size() < 2 ? std::string::npos : text.rfind('\n', text.size() - 2);
+    const std::size_t body = last == std::string::npos ? 0 : last + 1;
+    intact_ = text.compare(body, std::string::npos, checksum_line(text.substr(0, body))) == 0;
+    in_.str(text.substr(0, body));
+  }
 
   std::string CheckpointReader::text_line()
   {
+    if (!intact_)
+      throw InputError("command line: --resume: '" + printable(path_) +
+                       "' is not a checkpoint nsm-bar wrote whole (its checksum does not match its text: the file "
+                       "was damaged or edited): run the scene without --resume");
     std::string line;
     if (!std::getline(in_, line))
       damaged("it ends early");
     ++number_;
     return line;
+  }
+
+  std::string CheckpointReader::text_read()
+  {
+    const std::streamoff read = in_.tellg();
+    return in_.str().substr(0, read < 0 ? in_.str().size() : static_cast<std::size_t>(read));
   }
 
   void CheckpointReader::expect(const std::string &line)

@@ -4,32 +4,39 @@
 #include <nsm/continuation/checkpoint.h>
 #include <nsm/harmonic_balance/harmonic_balance.h>
 
+#include <algorithm>
 #include <sstream>
 
 namespace nsm
 {
   namespace
   {
-    constexpr const char *format_line = "nsm-bar continuation checkpoint 1";
+    constexpr const char *format_line = "nsm-bar continuation checkpoint 2";
 
     /// The interrupted run's entries must be the scene's: the first that
     /// differs is named with both values.
+    /// The interrupted run's entries must be the scene's: every one that
+    /// differs is named, with both values.
     void check_entries(CheckpointReader &reader, const std::vector<std::string> &entries)
     {
-      std::istringstream header = reader.next("entries ");
-      const std::size_t  n      = reader.count(header, entries.size() + 1000);
-      for (std::size_t i = 0; i < n; ++i)
+      std::istringstream       header = reader.next("entries ");
+      const std::size_t        n      = reader.count(header, entries.size() + 1000);
+      std::vector<std::string> differences;
+      for (std::size_t i = 0; i < std::max(n, entries.size()); ++i)
         {
-          const std::string line = reader.text_line();
-          if (i >= entries.size() || line != entries[i])
-            throw InputError("command line: --resume: the scene has '" +
-                             printable(i < entries.size() ? entries[i] : std::string("no more entries")) +
-                             "', the interrupted run had '" + printable(line) +
-                             "'; a resumed run must share every entry outside Output (run without --resume)");
+          const std::string had = i < n ? reader.text_line() : std::string("no such entry");
+          const std::string has = i < entries.size() ? entries[i] : std::string("no such entry");
+          if (had != has)
+            differences.push_back("the scene has '" + printable(has) + "', the interrupted run had '" +
+                                  printable(had) + "'");
         }
-      if (n != entries.size())
-        throw InputError("command line: --resume: the scene has '" + printable(entries[n]) +
-                         "', which the interrupted run did not have (run without --resume)");
+      if (differences.empty())
+        return;
+      std::string message = "command line: --resume: ";
+      for (const std::string &d : differences)
+        message += (&d == &differences.front() ? "" : "; ") + d;
+      throw InputError(message + "; a resumed run must share every entry that shapes its model and its "
+                                 "continuation (run without --resume)");
     }
 
     BackboneEnd end_named(CheckpointReader &reader, const std::string &name)
@@ -42,9 +49,31 @@ namespace nsm
     }
   } // namespace
 
-  void write_checkpoint(std::ostream &out, const ContinuationCheckpoint &c,
-                        const std::vector<std::string> &computation_entries)
+  std::uint64_t model_fingerprint(HarmonicBalance &hb, const std::vector<BackbonePoint> &points,
+                                  const std::string &text)
   {
+    std::uint64_t       hash = fnv1a(text.data(), text.size());
+    std::vector<double> residual;
+    const auto          add = [&](const double *values, const std::size_t n) {
+      hash = fnv1a(values, n * sizeof(double), hash);
+    };
+    for (const BackbonePoint &p : points)
+      {
+        hb.set_omega(p.omega);
+        hb.evaluate(p.x, &residual, nullptr, nullptr);
+        const double numbers[] = {static_cast<double>(p.segment), p.omega, p.residual,
+                                  static_cast<double>(p.newton_iterations)};
+        add(numbers, 4);
+        add(p.x.data(), p.x.size());
+        add(residual.data(), residual.size());
+      }
+    return hash;
+  }
+
+  void write_checkpoint(std::ostream &file, const ContinuationCheckpoint &c,
+                        const std::vector<std::string> &computation_entries, HarmonicBalance &hb)
+  {
+    std::ostringstream out;
     out << format_line << "\nentries " << computation_entries.size() << '\n';
     for (const std::string &entry : computation_entries)
       out << entry << '\n';
@@ -65,7 +94,8 @@ namespace nsm
           out << ' ' << exact(v);
         out << '\n';
       }
-    out << "end\n";
+    file << out.str() << "model " << std::hex << model_fingerprint(hb, c.points, out.str()) << std::dec
+         << "\nend\n";
   }
 
   ContinuationCheckpoint read_checkpoint(const std::string &path, const Scene &scene, HarmonicBalance &hb)
@@ -118,8 +148,19 @@ namespace nsm
         hb.set_omega(p.omega);
         p.measures = hb.measure(p.x);
       }
-    if (reader.text_line() != "end" || c.points.empty())
-      reader.damaged("'end' after at least one point expected");
+    if (c.points.empty())
+      reader.damaged("at least one point expected");
+    const std::string  text  = reader.text_read();
+    std::istringstream model = reader.next("model ");
+    std::uint64_t      fingerprint = 0;
+    if (!(model >> std::hex >> fingerprint))
+      reader.damaged("the model's fingerprint expected");
+    if (fingerprint != model_fingerprint(hb, c.points, text))
+      throw InputError("command line: --resume: the points of '" + printable(path) +
+                       "' are not this scene's model's solutions bit for bit: its mesh or receptance differ from "
+                       "the interrupted run's (an entry that shapes them changed), or the file was edited: run the scene without --resume");
+    if (reader.text_line() != "end")
+      reader.damaged("'end' expected");
     return c;
   }
 } // namespace nsm

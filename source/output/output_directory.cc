@@ -6,13 +6,16 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstdint>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <random>
 #include <set>
 
 #include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace nsm
@@ -21,27 +24,18 @@ namespace nsm
   {
     namespace fs = std::filesystem;
 
+    /// The longest name of one folder (Linux's NAME_MAX) and of a whole
+    /// directory path that still leaves room for the files in it (PATH_MAX
+    /// less the longest file name a run writes, with its ".partial").
+    constexpr std::size_t max_name_bytes = 255;
+    constexpr std::size_t max_path_bytes = 4096 - 64;
+
     InputError directory_error(const std::string &target, const std::string &why)
     {
-      return InputError("parameter 'Output/Directory' = '" + target + "' " + why);
+      return InputError("parameter 'Output/Directory' = '" + printable(target) + "' " + why);
     }
 
-    /// Staging directories of runs that no longer exist (killed ones).
-    void remove_stale_staging(const fs::path &parent, const std::string &prefix)
-    {
-      std::error_code error;
-      for (const auto &entry : fs::directory_iterator(parent, error))
-        {
-          const std::string name = entry.path().filename().string();
-          if (name.rfind(prefix, 0) != 0)
-            continue;
-          const pid_t pid = std::atoi(name.c_str() + prefix.size());
-          if (pid > 0 && kill(pid, 0) != 0 && errno == ESRCH)
-            fs::remove_all(entry.path(), error);
-        }
-    }
-
-    /// The files a manifest lists; none if it is not a regular file.
+    /// The manifest's lines; none if it is not a regular file.
     std::set<std::string> listed_files(const fs::path &manifest)
     {
       std::set<std::string> listed;
@@ -54,20 +48,38 @@ namespace nsm
       return listed;
     }
 
-    /// A folder of files the manifest lists as "FOLDER/ (...)" (the VTK
-    /// snapshots).
-    bool listed_folder(const std::set<std::string> &listed, const std::string &folder)
+    /// The files a folder of VTK snapshots may hold, by name: the manifest
+    /// lists it as "FOLDER/ (N snapshots)", and the run wrote
+    /// snapshot_0000.vtu ... snapshot_{N-1}.vtu. nullopt if it is not listed.
+    std::optional<std::set<std::string>> listed_folder(const std::set<std::string> &listed,
+                                                       const std::string           &folder)
     {
-      return std::any_of(listed.begin(), listed.end(),
-                         [&](const std::string &line) { return line.rfind(folder + "/", 0) == 0; });
+      for (const std::string &line : listed)
+        {
+          unsigned long count = 0;
+          char          rest[16];
+          if (line.rfind(folder + "/ (", 0) != 0 ||
+              std::sscanf(line.c_str() + folder.size() + 3, "%lu snapshot%15s", &count, rest) != 2 ||
+              count > 1000000)
+            continue;
+          std::set<std::string> names;
+          for (unsigned long j = 0; j < count; ++j)
+            {
+              char name[32];
+              std::snprintf(name, sizeof name, "snapshot_%04lu.vtu", j);
+              names.insert(name);
+            }
+          return names;
+        }
+      return std::nullopt;
     }
 
-    /// A folder that holds regular files only (no link, no subfolder).
-    bool only_regular_files(const fs::path &folder)
+    /// Whether every entry of `folder` is a regular file named in `names`.
+    bool holds_only(const fs::path &folder, const std::set<std::string> &names)
     {
       std::error_code error;
       for (const auto &entry : fs::directory_iterator(folder, error))
-        if (entry.is_symlink() || !entry.is_regular_file())
+        if (entry.is_symlink() || !entry.is_regular_file() || !names.count(entry.path().filename().string()))
           return false;
       return !error;
     }
@@ -109,8 +121,17 @@ namespace nsm
             continue;
           if (entry.is_symlink())
             throw foreign(file);
-          if (entry.is_directory() && listed_folder(listed, file) && only_regular_files(entry.path()))
-            continue;
+          if (entry.is_directory())
+            {
+              const auto names = listed_folder(listed, file);
+              if (!names)
+                throw foreign(file);
+              for (const auto &inner : fs::directory_iterator(entry.path(), error))
+                if (inner.is_symlink() || !inner.is_regular_file() ||
+                    !names->count(inner.path().filename().string()))
+                  throw foreign(file + "/" + inner.path().filename().string());
+              continue;
+            }
           if (!listed.count(file) || !entry.is_regular_file())
             throw foreign(file);
         }
@@ -128,46 +149,205 @@ namespace nsm
       return text;
     }
 
-    /// Swaps two directories in one step; the fallback (a file system
-    /// without RENAME_EXCHANGE) leaves a moment with no target at all, never
-    /// one with a mixture.
-    void swap_directories(const fs::path &a, const fs::path &b)
+    /// A name no other run on any machine or PID namespace picks: the
+    /// process number and 64 random bits.
+    std::string unique_token()
     {
-      if (renameat2(AT_FDCWD, a.c_str(), AT_FDCWD, b.c_str(), RENAME_EXCHANGE) == 0)
+      std::random_device random;
+      char               text[48];
+      std::snprintf(text, sizeof text, "%ld-%08x%08x", static_cast<long>(getpid()), random(), random());
+      return text;
+    }
+
+    /// An exclusive lock on a directory (flock: held by the open file, across
+    /// renames, released when its process ends, however it ends); -1 if it is
+    /// held elsewhere or the directory cannot be opened.
+    int lock_directory(const fs::path &directory, const bool wait)
+    {
+      const int fd = open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+      if (fd < 0)
+        return -1;
+      if (flock(fd, LOCK_EX | (wait ? 0 : LOCK_NB)) != 0)
+        {
+          close(fd);
+          return -1;
+        }
+      return fd;
+    }
+
+    /// Moves each entry under `from` back to the same place under `to`, never
+    /// over an entry there; returns whether `from` is empty afterwards.
+    bool move_back(const fs::path &from, const fs::path &to)
+    {
+      std::error_code error;
+      std::vector<fs::path> entries;
+      for (const auto &entry : fs::directory_iterator(from, error))
+        entries.push_back(entry.path());
+      bool emptied = !error;
+      for (const fs::path &entry : entries)
+        {
+          const fs::path destination = to / entry.filename();
+          if (fs::is_directory(fs::symlink_status(entry, error)) &&
+              fs::is_directory(fs::symlink_status(destination, error)))
+            {
+              if (move_back(entry, destination))
+                fs::remove(entry, error);
+              else
+                emptied = false;
+            }
+          else if (renameat2(AT_FDCWD, entry.c_str(), AT_FDCWD, destination.c_str(), RENAME_NOREPLACE) != 0)
+            emptied = false;
+        }
+      return emptied;
+    }
+
+    /// Swaps two directories in one step. The fallback (a file system without
+    /// RENAME_EXCHANGE) passes the target (locked by the caller) through an
+    /// aside sibling: a
+    /// run killed between its renames leaves it there, and the next run puts
+    /// it back (or discards it, if the new output went in).
+    void swap_directories(const fs::path &staging, const fs::path &target, const std::string &aside)
+    {
+      if (renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) == 0)
         return;
-      // Not a staging name: a stale staging's removal must never take it.
-      const fs::path aside = b.parent_path() / (".nsm-bar-aside-" + std::to_string(getpid()));
-      fs::rename(b, aside);
-      fs::rename(a, b);
-      fs::rename(aside, a);
+      fs::rename(target, aside);
+      fs::rename(staging, target);
+      fs::rename(aside, staging);
+    }
+
+    /// Staging and aside directories of runs that no longer hold their lock
+    /// (killed ones): a staging directory is removed; an aside one (the
+    /// target's previous output, taken out by a run killed half-way through
+    /// its fallback swap) goes back in place, or is discarded if the new
+    /// output went in.
+    void clear_dead_siblings(const fs::path &parent, const std::string &prefix, const fs::path &target)
+    {
+      std::error_code       error;
+      std::vector<fs::path> siblings;
+      for (const auto &entry : fs::directory_iterator(parent, error))
+        if (entry.path().filename().string().rfind(prefix, 0) == 0)
+          siblings.push_back(entry.path());
+      for (const fs::path &sibling : siblings)
+        {
+          const int lock = lock_directory(sibling, false);
+          if (lock < 0)
+            continue; // a live run's, or not a directory
+          if (sibling.filename().string().rfind(prefix + "aside-", 0) != 0)
+            fs::remove_all(sibling, error);
+          else if (!fs::exists(fs::symlink_status(target, error)))
+            fs::rename(sibling, target, error);
+          else
+            discard_previous_output(sibling.string(), target.string());
+          close(lock);
+        }
+    }
+
+    /// The folders of `path` that do not exist yet, deepest first.
+    std::vector<std::string> missing_folders(fs::path path)
+    {
+      std::vector<std::string> missing;
+      std::error_code          error;
+      for (; !path.empty() && path != path.root_path() && !fs::exists(fs::symlink_status(path, error));
+           path = path.parent_path())
+        missing.push_back(path.string());
+      return missing;
+    }
+
+    /// Names no file system takes are refused before any work.
+    void check_name_lengths(const fs::path &path, const std::string &target)
+    {
+      if (target.size() > max_path_bytes)
+        throw directory_error(target.substr(0, 60) + "...", "is " + std::to_string(target.size()) +
+                                                              " bytes long: allowed at most " +
+                                                              std::to_string(max_path_bytes));
+      for (const fs::path &part : path)
+        if (part.string().size() > max_name_bytes)
+          throw directory_error(target.size() > 300 ? target.substr(0, 60) + "..." : target,
+                                "has a folder name of " + std::to_string(part.string().size()) +
+                                  " bytes: allowed at most " + std::to_string(max_name_bytes));
     }
   } // namespace
+
+  std::string discard_previous_output(const std::string &previous, const std::string &target)
+  {
+    const fs::path              folder(previous);
+    const std::set<std::string> listed = listed_files(folder / OutputDirectory::manifest);
+    std::error_code             error;
+    for (const std::string &line : listed)
+      {
+        if (line.rfind("/ ", 0) == 0 || line.empty())
+          continue; // a note
+        const std::size_t slash = line.find("/ (");
+        if (slash == std::string::npos)
+          {
+            if (line.find('/') == std::string::npos && fs::is_regular_file(fs::symlink_status(folder / line, error)))
+              fs::remove(folder / line, error);
+            continue;
+          }
+        const std::string snapshots = line.substr(0, slash);
+        if (const auto names = listed_folder(listed, snapshots))
+          {
+            for (const std::string &name : *names)
+              if (fs::is_regular_file(fs::symlink_status(folder / snapshots / name, error)))
+                fs::remove(folder / snapshots / name, error);
+            fs::remove(folder / snapshots, error); // only if empty
+          }
+      }
+    fs::remove(folder / OutputDirectory::manifest, error);
+    if (fs::remove(folder, error) || move_back(folder, target))
+      {
+        fs::remove_all(folder, error); // empty folders only are left
+        return "";
+      }
+    const std::string kept = target + ".files-kept-" + unique_token();
+    fs::rename(folder, kept, error);
+    return error ? previous : kept;
+  }
 
   OutputDirectory::OutputDirectory(const std::string &target)
   {
     if (has_control_character(target))
-      throw directory_error(printable(target), "holds a control character: allowed, a path without them");
+      throw directory_error(target, "holds a control character: allowed, a path without them");
     fs::path path = fs::path(target).lexically_normal();
     if (path.filename().empty())
       path = path.parent_path();
     if (path.filename() == "." || path.filename() == "..")
       throw directory_error(target, "must end in a directory name (not . or ..): it is "
                                     "replaced whole at the end of the run");
-    check_target(path, target);
+    check_name_lengths(path, target);
     fs::path parent = path.parent_path();
     if (parent.empty())
       parent = ".";
-    std::error_code error;
-    fs::create_directories(parent, error);
-    if (error)
-      throw directory_error(target, "cannot be created: " + error.message());
     const std::string prefix = staging_prefix(path.filename().string());
-    remove_stale_staging(parent, prefix);
-    staging_ = (parent / (prefix + std::to_string(getpid()))).string();
-    fs::remove_all(staging_, error);
-    if (!fs::create_directory(staging_, error) || error)
-      throw directory_error(target, "cannot be written: " +
-                                      (error ? error.message() : std::string("unknown error")));
+    std::error_code   error;
+    if (fs::is_directory(parent, error))
+      clear_dead_siblings(parent, prefix, path);
+    check_target(path, target);
+    created_parents_ = missing_folders(parent);
+    fs::create_directories(parent, error);
+    try
+      {
+        if (error)
+          throw directory_error(target, "cannot be created: " + error.message());
+        // Locked as soon as made; a run that took it for a dead one's in
+        // between removed it, and the next name is tried.
+        for (int attempt = 0; attempt < 8 && lock_ < 0; ++attempt)
+          {
+            staging_ = (parent / (prefix + "run-" + unique_token())).string();
+            if (!fs::create_directory(staging_, error) || error)
+              throw directory_error(target, "cannot be written: " +
+                                              (error ? error.message() : std::string("unknown error")));
+            lock_ = lock_directory(staging_, false);
+          }
+        if (lock_ < 0)
+          throw directory_error(target, "cannot be written: its staging directory cannot be locked");
+      }
+    catch (...)
+      {
+        for (const std::string &folder : created_parents_)
+          fs::remove(folder, error);
+        throw;
+      }
     target_ = path.string();
   }
 
@@ -175,20 +355,53 @@ namespace nsm
   {
     std::error_code error;
     if (!committed_)
-      fs::remove_all(staging_, error);
+      {
+        fs::remove_all(staging_, error);
+        // Only the folders this run made, and only if they stayed empty.
+        for (const std::string &folder : created_parents_)
+          fs::remove(folder, error);
+      }
+    if (lock_ >= 0)
+      close(lock_);
   }
+
+  namespace
+  {
+    /// Removes from `staging` what `listed` (the manifest's lines) does not
+    /// name: a plot or a file a stopped stage left half-written.
+    void prune_unlisted(const fs::path &staging, const std::set<std::string> &listed)
+    {
+      std::error_code       error;
+      std::vector<fs::path> unlisted;
+      for (const auto &entry : fs::directory_iterator(staging, error))
+        {
+          const std::string name = entry.path().filename().string();
+          if (name != OutputDirectory::manifest && !listed.count(name) &&
+              !(entry.is_directory() && listed_folder(listed, name)))
+            unlisted.push_back(entry.path());
+        }
+      for (const fs::path &path : unlisted)
+        fs::remove_all(path, error);
+    }
+  } // namespace
 
   std::vector<std::string> OutputDirectory::commit(const std::vector<std::string> &files,
                                                    const std::vector<std::string> &notes)
   {
     std::vector<std::string> final_paths;
+    std::set<std::string>    listed;
     const std::string        prefix = staging_ + "/";
     write_atomically(prefix + manifest, [&](std::ostream &out) {
       for (const std::string &f : files)
-        out << f.substr(prefix.size()) << '\n';
+        {
+          out << f.substr(prefix.size()) << '\n';
+          listed.insert(f.substr(prefix.size()));
+        }
       for (const std::string &note : notes)
         out << "/ " << printable(note) << '\n';
     });
+    prune_unlisted(staging_, listed);
+    int previous_lock = -1;
     for (const std::string &f : files)
       final_paths.push_back(target_ + "/" + f.substr(prefix.size()));
     try
@@ -203,18 +416,38 @@ namespace nsm
           {
             throw OutputError(std::string(e.what()) + " (it changed during the run); the new output is not kept");
           }
-        if (fs::exists(target_))
-          swap_directories(staging_, target_);
+        const fs::path    parent = fs::path(staging_).parent_path();
+        const std::string aside =
+          (parent / (staging_prefix(fs::path(target_).filename().string()) + "aside-" + unique_token())).string();
+        if (fs::exists(fs::symlink_status(target_)))
+          {
+            // Locked until its files are gone: no other run takes it, at the
+            // staging name after the swap, for a dead run's.
+            previous_lock = lock_directory(target_, true);
+            swap_directories(staging_, target_, aside);
+          }
         else
           fs::rename(staging_, target_);
       }
     catch (const fs::filesystem_error &e)
       {
-        throw OutputError("cannot move the new output into " + target_ + ": " + e.what());
+        if (previous_lock >= 0)
+          close(previous_lock);
+        throw OutputError("cannot move the new output into " + printable(target_) + ": " + e.what());
       }
     committed_ = true;
+    // The previous output, if any, now at the staging name: its own files go,
+    // a file of the user's that appeared after the last check goes back.
     std::error_code error;
-    fs::remove_all(staging_, error); // the previous output, if any
+    if (previous_lock >= 0)
+      {
+        const std::string kept = discard_previous_output(staging_, target_);
+        close(previous_lock);
+        if (!kept.empty())
+          throw OutputError("the new output is in " + printable(target_) + ", but files that appeared there during "
+                            "the run could not go back beside it (their names are taken): they are in " +
+                            printable(kept));
+      }
     return final_paths;
   }
 } // namespace nsm

@@ -1,22 +1,62 @@
+#include <nsm/base/interruption.h>
 #include <nsm/output/plots.h>
 
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 namespace nsm
 {
   namespace
   {
+    /// How often the wait for the script looks for a stop signal: a Ctrl-C
+    /// is answered within this time.
+    constexpr std::chrono::milliseconds stop_poll_interval(20);
+
+    enum class ProgramEnd
+    {
+      succeeded,
+      failed,
+      not_started,
+      stopped
+    };
+
+    /// Waits for `pid`; a stop signal to this process that arrives meanwhile
+    /// ends it (SIGTERM to its group) and is reported as `stopped`.
+    ProgramEnd wait_for(const pid_t pid)
+    {
+      const int signals_before = stop_signals_received();
+      int       status         = 0;
+      for (;;)
+        {
+          const pid_t done = waitpid(pid, &status, WNOHANG);
+          if (done == pid)
+            break;
+          if (done < 0)
+            return ProgramEnd::failed;
+          if (stop_signals_received() != signals_before)
+            {
+              kill(-pid, SIGTERM);
+              waitpid(pid, &status, 0);
+              return ProgramEnd::stopped;
+            }
+          std::this_thread::sleep_for(stop_poll_interval);
+        }
+      return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? ProgramEnd::succeeded : ProgramEnd::failed;
+    }
+
     /// Runs a program with these arguments, without a shell (no character of
-    /// an argument is interpreted), its output to `log`; returns whether it
-    /// exited with status 0.
-    bool run_program(const std::vector<std::string> &arguments, const std::string &log)
+    /// an argument is interpreted), in a process group of its own (a
+    /// terminal's Ctrl-C reaches this process alone), its output to `log`.
+    ProgramEnd run_program(const std::vector<std::string> &arguments, const std::string &log)
     {
       std::vector<char *> argv;
       for (const std::string &a : arguments)
@@ -28,23 +68,38 @@ namespace nsm
       posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
                                        O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0644);
       posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+      posix_spawnattr_t attributes;
+      posix_spawnattr_init(&attributes);
+      posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+      posix_spawnattr_setpgroup(&attributes, 0);
       pid_t      pid;
-      const bool spawned =
-        posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ) == 0;
+      const bool spawned = posix_spawn(&pid, argv[0], &actions, &attributes, argv.data(), environ) == 0;
+      posix_spawnattr_destroy(&attributes);
       posix_spawn_file_actions_destroy(&actions);
-      int status = 0;
-      return spawned && waitpid(pid, &status, 0) == pid && WIFEXITED(status) &&
-             WEXITSTATUS(status) == 0;
+      return spawned ? wait_for(pid) : ProgramEnd::not_started;
     }
 
-    /// A Python error for a full disk (ENOSPC) or a file size limit (EFBIG).
-    bool out_of_space(const std::string &error)
+    /// The plots the log names ("wrote PATH"), under `directory`; and its last line.
+    std::vector<std::string> plots_written(const std::string &log_path, const std::string &absolute,
+                                           const std::string &directory, std::string &last)
     {
-      return error.find("[Errno 28]") != std::string::npos || error.find("[Errno 27]") != std::string::npos;
+      std::vector<std::string> files;
+      std::ifstream            log(log_path);
+      for (std::string line; std::getline(log, line); last = line)
+        if (line.rfind("wrote ", 0) == 0)
+          {
+            // The script names the files under the absolute path; the run
+            // names them under `directory`, as it wrote the others.
+            std::string file = line.substr(6);
+            if (file.rfind(absolute + "/", 0) == 0)
+              file = directory + file.substr(absolute.size());
+            files.push_back(file);
+          }
+      return files;
     }
   } // namespace
 
-  std::vector<std::string> make_plots(const Scene::Contact &contact, const std::string &directory)
+  PlotResult make_plots(const Scene::Contact &contact, const std::string &directory)
   {
     std::ostringstream gap;
     gap.precision(17);
@@ -54,27 +109,26 @@ namespace nsm
     std::filesystem::remove(log_path, error);
     // The directory as an absolute path, after "--": a name that starts with
     // '-' is never read as an option.
-    const std::string absolute = std::filesystem::absolute(directory).string();
-    const bool ok = run_program({NSM_PYTHON, NSM_PLOT_SCRIPT, "--gap", gap.str(), "--", absolute}, log_path);
-    std::vector<std::string> files;
-    std::string              last;
-    std::ifstream            log(log_path);
-    for (std::string line; std::getline(log, line); last = line)
-      if (line.rfind("wrote ", 0) == 0)
-        {
-          // The script names the files under the absolute path; the run
-          // names them under `directory`, as it wrote the others.
-          std::string file = line.substr(6);
-          if (file.rfind(absolute + "/", 0) == 0)
-            file = directory + file.substr(absolute.size());
-          files.push_back(file);
-        }
-    // The log goes with the failed run's staging directory: its last line is kept.
-    if (!ok && out_of_space(last))
-      throw OutputError("the plots could not be written whole (disk full or file size limit?): " + last);
-    if (!ok)
-      throw NumericalError("the plotting script failed: " + last);
-    files.push_back(log_path);
-    return files;
+    const std::string absolute = std::filesystem::absolute(directory, error).string();
+    const ProgramEnd  end = run_program({NSM_PYTHON, NSM_PLOT_SCRIPT, "--gap", gap.str(), "--", absolute}, log_path);
+    PlotResult  result;
+    std::string last;
+    // The plots the script finished are whole (it renames each into place):
+    // they are kept, with the log, whether or not it went on to the end.
+    if (end != ProgramEnd::not_started)
+      {
+        result.files = plots_written(log_path, absolute, directory, last);
+        result.files.push_back(log_path);
+      }
+    if (end == ProgramEnd::stopped)
+      {
+        result.stopped_by = stop_signal();
+        result.failure    = std::string("stopped by ") + stop_signal_name(result.stopped_by);
+      }
+    else if (end == ProgramEnd::failed)
+      result.failure = "the plotting script failed: " + (last.empty() ? std::string("no message") : last);
+    else if (end == ProgramEnd::not_started)
+      result.failure = "the plotting script " + std::string(NSM_PYTHON) + " could not be started";
+    return result;
   }
 } // namespace nsm

@@ -1,3 +1,4 @@
+#include <nsm/base/text.h>
 #include <nsm/scene/scene.h>
 #include <nsm/scene/scene_entries.h>
 #include <nsm/scene/scene_file.h>
@@ -335,6 +336,12 @@ namespace nsm
           if (entry.sections.empty() || (entry.sections.front() != "Output" &&
                                          entry.sections.front() != "Resources" && entry.sections.front() != "Study"))
             scene.computation_entries.push_back(entry.path() + " = " + entry.value);
+        // Output entries that shape the model: the band the receptance and an
+        // adaptive mesh resolve.
+        scene.computation_entries.push_back(
+          "receptance band (the largest of Output/Receptance frequencies and Harmonics x Omega max) = " +
+          significant(scene.receptance_band(), 17));
+        scene.computation_entries.push_back("adaptive refinement band = " + significant(scene.refinement_band(), 17));
       }
     catch (const InputError &e)
       {

@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstdlib>
 #include <optional>
 #include <filesystem>
 #include <fstream>
@@ -336,6 +338,45 @@ namespace nsm
     }
   } // namespace
 
+  namespace
+  {
+    /// Why `value` cannot be a scene value, or "": text only, valid UTF-8
+    /// (deal.II's parameter tree and its JSON and XML are text), on one line
+    /// (a checkpoint and a recorded scene hold one entry per line; a tab is
+    /// white space and allowed).
+    std::string unusable_text(const std::string &value)
+    {
+      if (!is_valid_utf8(value))
+        return "is not valid UTF-8 text: allowed, text in UTF-8 (a byte shown as \\xNN is not)";
+      for (const char c : value)
+        if (c != '\t' && has_control_character(std::string(1, c)))
+          return "holds a control character (shown as \\xNN): allowed, one line of text";
+      return "";
+    }
+
+    /// Whether deal.II's get_double or get_integer reads `value` for an
+    /// entry of this pattern as its pattern accepts it: a subnormal number
+    /// (below 2.2e-308 in magnitude) matches a Double pattern, but
+    /// get_double refuses it (strtod's ERANGE).
+    bool converts(const std::string &value, const std::string &pattern)
+    {
+      errno = 0;
+      if (pattern.rfind("[Double", 0) == 0)
+        std::strtod(value.c_str(), nullptr);
+      else if (pattern.rfind("[Integer", 0) == 0)
+        std::strtol(value.c_str(), nullptr, 10);
+      return errno != ERANGE;
+    }
+
+    /// For a number refused though within the range: why.
+    std::string subnormal_note(const std::string &value, const std::string &pattern)
+    {
+      return pattern.rfind("[Double", 0) == 0 && dealii::Patterns::Double().match(value) && !converts(value, pattern) ?
+               " (a number of magnitude below 2.2e-308, subnormal, is not: write 0 or a larger one)" :
+               "";
+    }
+  } // namespace
+
   void read_scene_file(const std::string &path, dealii::ParameterHandler &prm)
   {
     const std::string extension = fs::path(path).extension().string();
@@ -383,10 +424,13 @@ namespace nsm
       {
         std::string value;
         in_sections(text, entry, [&] { value = text.get(entry.name); });
-        if (!dealii::Patterns::pattern_factory(entry.pattern)->match(value))
-          throw InputError("scene '" + shown(path) + "': parameter '" + entry.path() + "' = " + printable(value) +
-                           " is out of range: allowed " + allowed_values(entry.pattern) +
-                           (overridden(entry.path()) ? " (set by --set on the command line)" : ""));
+        const std::string where = "scene '" + shown(path) + "': parameter '" + entry.path() + "' = " + printable(value);
+        const std::string from_command_line = overridden(entry.path()) ? " (set by --set on the command line)" : "";
+        if (const std::string why = unusable_text(value); !why.empty())
+          throw InputError(where + " " + why + from_command_line);
+        if (!dealii::Patterns::pattern_factory(entry.pattern)->match(value) || !converts(value, entry.pattern))
+          throw InputError(where + " is out of range: allowed " + allowed_values(entry.pattern) +
+                           subnormal_note(value, entry.pattern) + from_command_line);
         in_sections(prm, entry, [&] { prm.set(entry.name, value); });
       }
   }

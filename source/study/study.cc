@@ -528,8 +528,23 @@ namespace nsm
     if (fine)
       report.files.push_back(study.directory() + "/reference.csv");
     if (base.scene.output.plots)
-      for (std::string &f : make_plots(base.scene.contact, study.directory()))
-        report.files.push_back(std::move(f));
+      {
+        // A plot is an output like study.csv: a stop or a failure while it is
+        // drawn keeps the rows (written in place before), and is said.
+        PlotResult plots = make_plots(base.scene.contact, study.directory());
+        for (std::string &f : plots.files)
+          report.files.push_back(std::move(f));
+        if (plots.stopped_by != 0)
+          {
+            report.stopped_by = report.stopped_by != 0 ? report.stopped_by : plots.stopped_by;
+            report.notes.insert(report.notes.begin(), "plots not drawn: " + plots.failure);
+          }
+        else if (!plots.failure.empty())
+          {
+            report.plot_failure = plots.failure;
+            report.notes.insert(report.notes.begin(), "plots not drawn: " + plots.failure);
+          }
+      }
     return report;
   }
 } // namespace nsm

@@ -257,8 +257,9 @@ def rows(executable):
              code=0, check=no_injection, leaves={"out'; touch INJECTED; echo '"}),
         dict(name="plot_fails", scene=BACKBONE + output(Directory="out", Backbone="true",
                                                         Plots="true"),
-             env={"MPLBACKEND": "no_such_backend"}, code=3,
-             words=["plotting script failed"]),
+             env={"MPLBACKEND": "no_such_backend"}, code=5,
+             words=["output error", "plots were not drawn", "plotting script failed"], leaves={"out"},
+             check=lambda _: read_rows("out/backbone.csv")),
         # 2. full disk (files limited to 1 KiB; backbone.csv needs more): exit 5,
         # nothing left
         dict(name="full_disk", scene=BACKBONE + output(Directory="out", Backbone="true"),
@@ -471,7 +472,7 @@ def run_row(executable, row):
     try:
         row.setdefault("scene_file", "scene.prm")
         if row.get("scene") is not None:
-            with open(row["scene_file"], "w") as f:
+            with open(row["scene_file"], "w", errors="surrogateescape") as f:
                 f.write(row["scene"])
         if "setup" in row:
             row["setup"](row)
@@ -479,7 +480,7 @@ def run_row(executable, row):
         preexec = row.get("preexec", hostile_round_two.limits(sigxfsz=signal.SIG_DFL))
         timeout = row.get("timeout", 600)
         # A session of its own: a timeout kills the run and whatever it started.
-        process = subprocess.Popen([executable, row["scene_file"]], stdout=subprocess.PIPE,
+        process = subprocess.Popen([executable, row["scene_file"], *row.get("args", [])], stdout=subprocess.PIPE,
                                    stderr=subprocess.PIPE, preexec_fn=preexec, start_new_session=True,
                                    env={**os.environ, **row.get("env", {})})
         try:

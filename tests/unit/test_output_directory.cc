@@ -6,9 +6,16 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
+#include <thread>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 namespace
 {
@@ -74,4 +81,195 @@ TEST(OutputDirectory, AFileThatAppearsDuringTheRunIsKeptAndTheRunFails)
   EXPECT_THROW(output.commit({file}), nsm::OutputError);
   EXPECT_EQ(text_of(target + "/study.csv"), "rows of another run\n");
   EXPECT_FALSE(fs::exists(target + "/a.csv"));
+}
+
+namespace
+{
+  /// An earlier run's output with a folder of two VTK snapshots, listed as
+  /// field_write_snapshots does ("FOLDER/ (N snapshots)").
+  void write_run_with_snapshots(const std::string &target)
+  {
+    nsm::OutputDirectory output(target);
+    const std::string    folder = output.staging() + "/field_0_snapshots";
+    fs::create_directories(folder);
+    for (const char *name : {"snapshot_0000.vtu", "snapshot_0001.vtu"})
+      std::ofstream(folder + "/" + name) << "<VTKFile/>\n";
+    const std::string file = nsm::write_atomically(output.staging() + "/a.csv", [](std::ostream &out) {
+      out << "x\n1\n";
+    });
+    output.commit({file, folder + "/ (2 snapshots)"});
+  }
+
+  /// Constructing an OutputDirectory on `target` is refused (InputError)
+  /// naming `file`.
+  void expect_refused_naming(const std::string &target, const std::string &file)
+  {
+    try
+      {
+        nsm::OutputDirectory output(target);
+        ADD_FAILURE() << "a directory holding " << file << " was taken";
+      }
+    catch (const nsm::InputError &e)
+      {
+        EXPECT_NE(std::string(e.what()).find(file), std::string::npos) << e.what();
+      }
+  }
+
+  /// Whether `path` is locked (flock) by another open file.
+  bool locked_elsewhere(const fs::path &path)
+  {
+    const int fd = open(path.c_str(), O_RDONLY | O_DIRECTORY);
+    const bool locked = fd >= 0 && flock(fd, LOCK_EX | LOCK_NB) != 0;
+    if (fd >= 0)
+      close(fd);
+    return locked;
+  }
+} // namespace
+
+// A user's file in a folder the manifest lists is the user's: the folder's
+// files are checked by name, not by type, and the run is refused.
+TEST(UsersFilesAreNeverRemoved, AFileInASnapshotFolderRefusesTheNextRun)
+{
+  const std::string target = (scratch("snapshots") / "out").string();
+  write_run_with_snapshots(target);
+  {
+    nsm::OutputDirectory again(target); // the run's own output is taken
+  }
+  for (const char *name : {"notes.txt", "snapshot_0002.vtu", ".hidden", "snapshot_0000.vtu.bak"})
+    {
+      std::ofstream(target + "/field_0_snapshots/" + name) << "mine\n";
+      expect_refused_naming(target, name);
+      EXPECT_EQ(text_of(target + "/field_0_snapshots/" + name), "mine\n");
+      fs::remove(target + "/field_0_snapshots/" + name);
+    }
+  fs::create_directory(target + "/field_0_snapshots/mine");
+  expect_refused_naming(target, "mine");
+  EXPECT_TRUE(fs::is_directory(target + "/field_0_snapshots/mine"));
+}
+
+// A file that appears after the commit's last check goes out with the
+// previous output: of that, only the files its manifest lists are removed,
+// and the user's goes back into the directory.
+TEST(UsersFilesAreNeverRemoved, AFileInThePreviousOutputGoesBackIntoTheDirectory)
+{
+  const fs::path base = scratch("previous");
+  write_run_with_snapshots((base / "previous").string());
+  std::ofstream(base / "previous" / "notes.txt") << "mine\n";
+  std::ofstream(base / "previous" / "field_0_snapshots" / "notes.txt") << "mine too\n";
+  write_run((base / "target").string());
+  EXPECT_EQ(nsm::discard_previous_output((base / "previous").string(), (base / "target").string()), "");
+  EXPECT_FALSE(fs::exists(base / "previous"));
+  EXPECT_EQ(text_of(base / "target" / "notes.txt"), "mine\n");
+  EXPECT_EQ(text_of(base / "target" / "field_0_snapshots" / "notes.txt"), "mine too\n");
+  EXPECT_FALSE(fs::exists(base / "target" / "field_0_snapshots" / "snapshot_0000.vtu"));
+  EXPECT_EQ(text_of(base / "target" / "a.csv"), "x\n1\n");
+
+  // A name the new output took (the old output had no b.csv, the new one
+  // has): the user's b.csv stays, in a visible folder that is named.
+  fs::remove_all(base / "target");
+  write_run((base / "previous").string());
+  std::ofstream(base / "previous" / "b.csv") << "mine\n";
+  {
+    nsm::OutputDirectory output((base / "target").string());
+    std::vector<std::string> files;
+    for (const char *name : {"/a.csv", "/b.csv"})
+      files.push_back(nsm::write_atomically(output.staging() + name, [](std::ostream &out) { out << "new\n"; }));
+    output.commit(files);
+  }
+  const std::string kept = nsm::discard_previous_output((base / "previous").string(), (base / "target").string());
+  ASSERT_NE(kept, "");
+  EXPECT_EQ(text_of(fs::path(kept) / "b.csv"), "mine\n");
+  EXPECT_FALSE(fs::exists(fs::path(kept) / "a.csv"));
+  EXPECT_EQ(text_of(base / "target" / "b.csv"), "new\n");
+  EXPECT_EQ(fs::path(kept).filename().string().rfind(".", 0), std::string::npos) << "a hidden name: " << kept;
+}
+
+// The race itself: a user's file created in the directory at any moment
+// while runs replace it survives every time (before, 14 of 180 went out with
+// the previous output).
+TEST(UsersFilesAreNeverRemoved, AFileCreatedDuringTheSwapSurvives)
+{
+  const std::string target = (scratch("race") / "out").string();
+  std::mt19937      random(20261127);
+  for (int trial = 0; trial < 200; ++trial)
+    {
+      fs::remove_all(target);
+      write_run(target);
+      const std::string file  = target + "/user-" + std::to_string(trial) + ".txt";
+      const int         delay = std::uniform_int_distribution<int>(0, 400)(random);
+      std::thread       user([&] {
+        std::this_thread::sleep_for(std::chrono::microseconds(delay));
+        std::ofstream(file) << "mine\n";
+      });
+      try
+        {
+          write_run(target);
+        }
+      catch (const std::exception &)
+        {
+          // Refused or failed because the file is there: as it should.
+        }
+      user.join();
+      ASSERT_TRUE(fs::exists(file)) << "trial " << trial << " (delay " << delay << " us) removed the user's file";
+      EXPECT_EQ(text_of(file), "mine\n");
+    }
+}
+
+// Staging folders of dead runs are removed, a live run's never, whichever
+// PID namespace it runs in: the lock tells, not the process number.
+TEST(OutputDirectory, ALiveRunsStagingIsKeptWhateverItsProcessNumber)
+{
+  const fs::path base = scratch("namespaces");
+  {
+    nsm::OutputDirectory live((base / "out").string());
+    const fs::path       staging = live.staging();
+    EXPECT_TRUE(locked_elsewhere(staging));
+    // A second run into the same directory (here, or in another container
+    // whose process numbers mean nothing here) leaves it alone.
+    nsm::OutputDirectory second((base / "out").string());
+    EXPECT_TRUE(fs::is_directory(staging));
+    EXPECT_NE(second.staging(), live.staging());
+  }
+  // A dead run's, whatever its number (here one of this live process).
+  nsm::OutputDirectory probe((base / "out").string());
+  const std::string prefix = fs::path(probe.staging()).filename().string().substr(0, 26);
+  fs::create_directory(base / (prefix + "run-" + std::to_string(getpid()) + "-dead"));
+  nsm::OutputDirectory next((base / "out").string());
+  EXPECT_FALSE(fs::exists(base / (prefix + "run-" + std::to_string(getpid()) + "-dead")));
+  EXPECT_TRUE(fs::is_directory(probe.staging()));
+}
+
+// A run killed in the fallback swap (no RENAME_EXCHANGE) between its renames
+// leaves the previous output aside: the next run puts it back.
+TEST(OutputDirectory, APreviousOutputLeftAsideIsPutBack)
+{
+  const fs::path base = scratch("aside");
+  write_run((base / "out").string());
+  std::string prefix;
+  {
+    nsm::OutputDirectory probe((base / "out").string());
+    prefix = fs::path(probe.staging()).filename().string().substr(0, 26);
+  }
+  fs::rename(base / "out", base / (prefix + "aside-1-killed"));
+  nsm::OutputDirectory next((base / "out").string());
+  EXPECT_EQ(text_of(base / "out" / "a.csv"), "x\n1\n");
+  EXPECT_FALSE(fs::exists(base / (prefix + "aside-1-killed")));
+}
+
+// A failed run removes the parent folders it made, and only those; a name
+// no file system takes is refused before anything is made.
+TEST(OutputDirectory, AFailedRunLeavesNoFolderItMade)
+{
+  const fs::path base = scratch("parents");
+  fs::create_directories(base / "kept");
+  {
+    nsm::OutputDirectory output((base / "kept" / "new" / "deeper" / "out").string());
+    EXPECT_TRUE(fs::is_directory(base / "kept" / "new" / "deeper"));
+  }
+  EXPECT_FALSE(fs::exists(base / "kept" / "new"));
+  EXPECT_TRUE(fs::is_directory(base / "kept"));
+  EXPECT_THROW(nsm::OutputDirectory((base / "made" / std::string(256, 'a')).string()), nsm::InputError);
+  EXPECT_FALSE(fs::exists(base / "made"));
+  EXPECT_NO_THROW(nsm::OutputDirectory((base / "made" / std::string(255, 'a')).string()));
+  EXPECT_FALSE(fs::exists(base / "made"));
 }

@@ -1,5 +1,6 @@
 // refinement.resume: the orbits a stopped run found come back exactly, and a
 // resumed refinement ends with the orbits of one that was never stopped.
+#include <nsm/base/checkpoint_reader.h>
 #include <nsm/base/errors.h>
 #include <nsm/base/progress.h>
 #include <nsm/verification/orbit_refinement.h>
@@ -9,6 +10,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include "hb_model.h"
@@ -34,10 +36,10 @@ namespace
       EXPECT_EQ(a->displacement[j], b->displacement[j]) << "point " << i << ", DoF " << j;
   }
 
+  /// A checkpoint file as the run writes it: the text, then its checksum.
   std::string write_file(const std::string &path, const std::string &text)
   {
-    std::ofstream(path) << text;
-    return path;
+    return nsm::write_checksummed(path, [&](std::ostream &out) { out << text; });
   }
 } // namespace
 
@@ -111,16 +113,37 @@ TEST(RefinementCheckpoint, AResumedRefinementEndsWithTheOrbitsOfAWholeOne)
   EXPECT_EQ(stable, found);
   EXPECT_LT(stable_before, found);
 
-  // A checkpoint cut short, or one of another mesh, is refused naming --resume.
-  write_file(path, text.str().substr(0, text.str().size() * 2 / 3));
-  try
+  // A checkpoint cut short (with its checksum, or cut after it was
+  // written), one with a digit changed, or one of another mesh, is refused
+  // naming --resume.
+  const std::string cut = text.str().substr(0, text.str().size() * 2 / 3);
+  std::string       digit_changed = text.str();
+  const std::size_t digit         = digit_changed.find("0x1.", digit_changed.find("\npoint ")) + 4;
+  digit_changed[digit]            = digit_changed[digit] == '1' ? '2' : '1';
+  const auto raw = [&](const std::string &content) { std::ofstream(path) << content; };
+  for (const auto &damage : std::vector<std::function<void()>>{
+         [&] { write_file(path, cut); },
+         [&] { raw(cut); },
+         [&] {
+           write_file(path, text.str());
+           std::ifstream      in(path);
+           std::ostringstream whole;
+           whole << in.rdbuf();
+           std::string file = whole.str();
+           file[file.find("0x1.", file.find("\npoint ")) + 4] = digit_changed[digit];
+           raw(file);
+         }})
     {
-      nsm::read_refinement_checkpoint(path, backbone, scene.output, model.discretisation.n_dofs());
-      ADD_FAILURE() << "a damaged checkpoint was read";
-    }
-  catch (const nsm::InputError &e)
-    {
-      EXPECT_NE(std::string(e.what()).find("--resume"), std::string::npos) << e.what();
+      damage();
+      try
+        {
+          nsm::read_refinement_checkpoint(path, backbone, scene.output, model.discretisation.n_dofs());
+          ADD_FAILURE() << "a damaged checkpoint was read";
+        }
+      catch (const nsm::InputError &e)
+        {
+          EXPECT_NE(std::string(e.what()).find("--resume"), std::string::npos) << e.what();
+        }
     }
   write_file(path, text.str());
   EXPECT_THROW(nsm::read_refinement_checkpoint(path, backbone, scene.output, model.discretisation.n_dofs() + 1),

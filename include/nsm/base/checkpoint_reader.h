@@ -1,11 +1,15 @@
 // Reading back a checkpoint nsm-bar wrote for --resume (continuation.resume,
-// verification.resume): its lines one at a time, numbers in hexadecimal
-// floating point. A line that is not what the writer wrote is refused with
-// an InputError naming --resume, the file and the line.
+// verification.resume, refinement.resume): its lines one at a time, numbers
+// in hexadecimal floating point. The file ends in a checksum of all its
+// text; a file whose checksum does not match, or a line that is not what
+// the writer wrote, is refused with an InputError naming --resume, the file
+// and the line.
 #pragma once
 
 #include <cstddef>
-#include <fstream>
+#include <cstdint>
+#include <functional>
+#include <ostream>
 #include <sstream>
 #include <string>
 
@@ -15,16 +19,27 @@ namespace nsm
   /// CheckpointReader::number.
   std::string exact(double value);
 
+  /// 64-bit FNV-1a of `size` bytes, continuing from `hash`: a change of any
+  /// one byte changes it (each step is a bijection of the state).
+  std::uint64_t fnv1a(const void *bytes, std::size_t size, std::uint64_t hash = 14695981039346656037ull);
+
+  /// Writes a checkpoint whole (write_atomically): the text `write` makes,
+  /// then "checksum H", H its FNV-1a hash in hexadecimal. Returns the path.
+  std::string write_checksummed(const std::string &path, const std::function<void(std::ostream &)> &write);
+
   class CheckpointReader
   {
   public:
     explicit CheckpointReader(const std::string &path);
 
     /// Whether the file could be opened.
-    bool opened() const { return static_cast<bool>(in_); }
+    bool opened() const { return opened_; }
 
     /// The next line whole.
     std::string text_line();
+
+    /// The text of the lines read so far.
+    std::string text_read();
 
     /// The next line, which must be `line` (a format line).
     void expect(const std::string &line);
@@ -41,8 +56,10 @@ namespace nsm
     [[noreturn]] void damaged(const std::string &why) const;
 
   private:
-    std::string   path_;
-    std::ifstream in_;
-    unsigned int  number_ = 0; ///< lines read
+    std::string        path_;
+    bool               opened_ = false;
+    bool               intact_ = false; ///< its checksum matches its text
+    std::istringstream in_;             ///< the text before the checksum line
+    unsigned int       number_ = 0;     ///< lines read
   };
 } // namespace nsm

@@ -1,16 +1,20 @@
-// A stop asked for by SIGINT (Ctrl-C) or SIGTERM, honoured at the next
+// A stop asked for by SIGINT (Ctrl-C), SIGTERM or SIGHUP, honoured at the next
 // boundary where the work done so far can be kept whole: a study's row, or,
 // in a single run, a point of the continuation.
 #pragma once
 
 namespace nsm
 {
-  /// From now on SIGINT and SIGTERM only record that a stop was asked for;
-  /// system calls they interrupt are restarted.
+  /// From now on SIGINT, SIGTERM and SIGHUP only record that a stop was
+  /// asked for; system calls they interrupt are restarted.
   void catch_stop_signals();
 
   /// The signal that asked for a stop; 0 if none did.
   int stop_signal();
+
+  /// How many stop signals arrived so far: work that must answer a new one
+  /// (the plots, drawn also after a stop) compares it with its start's.
+  int stop_signals_received();
 
   /// Whether the continuation stops at its next point when a stop is asked
   /// for: a single run's does (it then writes what it has); a study's does
@@ -41,6 +45,6 @@ namespace nsm
   /// reports a process the signal ended.
   int stop_exit_code(int signal);
 
-  /// "SIGINT", "SIGTERM", or "signal N".
+  /// "SIGINT", "SIGTERM", "SIGHUP", or "a signal".
   const char *stop_signal_name(int signal);
 } // namespace nsm

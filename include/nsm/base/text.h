@@ -5,12 +5,18 @@
 
 namespace nsm
 {
-  /// `text` with each control character (newline, tab, NUL, ...) written as
-  /// \xNN, so that a message that quotes it stays on one line.
+  /// `text` with each control character (newline, tab, NUL, ...) and each
+  /// byte that is not part of valid UTF-8 written as \xNN, so that a message
+  /// that quotes it stays on one line and is valid text.
   std::string printable(const std::string &text);
 
   /// Whether `text` holds a control character.
   bool has_control_character(const std::string &text);
+
+  /// Whether `text` is valid UTF-8 (shortest forms, no surrogates): what a
+  /// scene value must be, since deal.II's parameter tree and the JSON and XML
+  /// it writes hold text only.
+  bool is_valid_utf8(const std::string &text);
 
   /// `value` to `digits` significant digits, whatever its scale (energies go
   /// down to 1e-20 with small gaps), as messages and notes print numbers.

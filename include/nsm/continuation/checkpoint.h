@@ -5,6 +5,7 @@
 
 #include <nsm/continuation/backbone.h>
 
+#include <cstdint>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -39,13 +40,27 @@ namespace nsm
 
   /// Writes the checkpoint as text, numbers in hexadecimal floating point
   /// (exact), after the scene's computation entries (Scene), which a
-  /// resumed run must share.
+  /// resumed run must share, and before the model's fingerprint
+  /// (model_fingerprint). Write it
+  /// with write_checksummed (base/checkpoint_reader.h).
   void write_checkpoint(std::ostream &out, const ContinuationCheckpoint &checkpoint,
-                        const std::vector<std::string> &computation_entries);
+                        const std::vector<std::string> &computation_entries, HarmonicBalance &hb);
+
+  /// A hash of `text` (the checkpoint's lines before it), then of the bits
+  /// of each point's numbers (segment, Omega, residual norm, Newton
+  /// iterations, unknowns) and of the residual vector `hb` gives it: equal
+  /// for the run that wrote the checkpoint and a run on the same model, and
+  /// different, but for a chance of 2^-64, if any bit of the model (mesh,
+  /// receptance, band), of a point or of the text differs. Unlike the
+  /// file's checksum, only the program with the model can make it.
+  std::uint64_t model_fingerprint(HarmonicBalance &hb, const std::vector<BackbonePoint> &points,
+                                  const std::string &text);
 
   /// Reads the checkpoint at `path` for a run of `scene`, the points'
   /// measures computed again with `hb`. Throws InputError naming --resume:
-  /// no checkpoint, a checkpoint nsm-bar did not write whole, or a scene
-  /// entry that differs from the interrupted run's (named with both values).
+  /// no checkpoint, a checkpoint nsm-bar did not write whole (its checksum),
+  /// a scene entry that differs from the interrupted run's (every one named
+  /// with both values), or points that the model does not reproduce bit for
+  /// bit (its fingerprint).
   ContinuationCheckpoint read_checkpoint(const std::string &path, const Scene &scene, HarmonicBalance &hb);
 } // namespace nsm

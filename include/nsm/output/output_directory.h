@@ -11,7 +11,9 @@ namespace nsm
   /// the previous complete output or the new one, never a mixture, and never
   /// a file of an earlier run listed as new. A run that fails, or is killed,
   /// leaves the previous output as it was; its staging directory is removed
-  /// at once, or by the next run into the same directory.
+  /// at once, or by the next run into the same directory. No file of the
+  /// user's is ever removed: of an earlier output only the files its
+  /// manifest lists go, by name.
   class OutputDirectory
   {
   public:
@@ -29,8 +31,11 @@ namespace nsm
 
     /// Writes the manifest of `files` (paths under staging()), and after them
     /// the `notes`, each on a line that starts with "/ " (no file's name
-    /// can), swaps the staging directory in and removes the previous output.
-    /// Returns the files' final paths. Throws OutputError.
+    /// can), removes from the staging directory what the manifest does not
+    /// list (a plot stopped half-way), swaps it in and removes the files of
+    /// the previous output that its manifest lists; a file of the user's that
+    /// appeared meanwhile is moved back into the directory. Returns the
+    /// files' final paths. Throws OutputError.
     std::vector<std::string> commit(const std::vector<std::string> &files,
                                     const std::vector<std::string> &notes = {});
 
@@ -38,8 +43,17 @@ namespace nsm
     static constexpr const char *manifest = "nsm-bar.manifest";
 
   private:
-    std::string target_;
-    std::string staging_;
-    bool        committed_ = false;
+    std::string              target_;
+    std::string              staging_;
+    int                      lock_ = -1; ///< the staging directory, locked while this run lives
+    std::vector<std::string> created_parents_; ///< made for the target, deepest first
+    bool                     committed_ = false;
   };
+
+  /// Removes from `previous` (an earlier output, taken out of `target`) the
+  /// files its manifest lists and the manifest, then moves whatever is left
+  /// (a user's file) back into `target` under the same name; what cannot go
+  /// back (its name is taken) stays in `previous`, renamed to a visible
+  /// sibling of `target` whose name is returned (empty if nothing stayed).
+  std::string discard_previous_output(const std::string &previous, const std::string &target);
 } // namespace nsm

@@ -8,8 +8,25 @@
 
 namespace nsm
 {
-  /// Runs the shipped plotting script on the files in `directory`, with
-  /// its log in directory/plots.log; returns the files it wrote and the log.
-  /// Throws NumericalError with the log's last line if it fails.
-  std::vector<std::string> make_plots(const Scene::Contact &contact, const std::string &directory);
+  /// What the plotting script left: the plots drawn, or why there are none.
+  struct PlotResult
+  {
+    /// The plots it finished (each whole: the script renames it into place)
+    /// and its log (directory/plots.log), also when it failed or was stopped.
+    std::vector<std::string> files;
+    /// Empty if the plots were drawn; else why not: the script's last line
+    /// (a missing matplotlib, a file limit, a full disk...) or the stop.
+    std::string failure;
+    /// The signal (SIGINT, SIGTERM, SIGHUP) that ended the plotting; 0 if none.
+    int stopped_by = 0;
+  };
+
+  /// Runs the shipped plotting script on the files in `directory`, with its
+  /// log in directory/plots.log, in a process group of its own: a stop
+  /// signal reaches this process only, which ends the script at once (one
+  /// that came before the plots began does not: a stopped run draws what it
+  /// computed). A plot
+  /// is an output like any other: its failure never discards the files
+  /// computed, and is reported to the caller, not thrown.
+  PlotResult make_plots(const Scene::Contact &contact, const std::string &directory);
 } // namespace nsm

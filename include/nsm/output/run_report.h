@@ -25,13 +25,16 @@ namespace nsm
     std::vector<StageTiming> stages;
     std::vector<std::string> notes; ///< DoFs, refinement, memory
     std::vector<std::string> files;
-    /// The signal (SIGINT, SIGTERM) that stopped the run early; 0 if none.
+    /// The signal (SIGINT, SIGTERM, SIGHUP) that stopped the run early; 0 if none.
     int stopped_by = 0;
     /// The stopped run wrote its continuation's checkpoint: --resume goes on from it.
     bool resumable = false;
     /// A request the run could not meet after writing everything else
     /// (a field with no main point within reach); the run exits 3.
     std::string failure;
+    /// Why the plots were not drawn (the plotting environment failed); the
+    /// rest is written, and the run exits 5 (an output error).
+    std::string plot_failure;
   };
 
   /// The run summary: the result, the stages' times, the notes, the files written.
