@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, and runs one scene (default: prm/seed.prm).
+# Installs what is missing, builds the program, and runs it with the arguments
+# given (default: the scene prm/seed.prm), e.g.
+#   ./run.sh prm/uniform.prm --output DIR --set "Harmonic balance/Harmonics=80"
 set -euo pipefail
 cd "$(dirname "$0")"
-source scripts/install-and-build.sh
-./build/nsm-bar "${1:-prm/seed.prm}"
+NSM_BUILD_TARGETS=nsm-bar source scripts/install-and-build.sh
+if [ "$#" -eq 0 ]; then set -- prm/seed.prm; fi
+exec ./build/nsm-bar "$@"

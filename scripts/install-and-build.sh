@@ -19,5 +19,16 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"
 fi
 
+# The targets to build: NSM_BUILD_TARGETS (run.sh: the program alone), or all
+# of them (test.sh: the unit tests and the benchmark programs too). Progress
+# is shown one line per step; the whole log is in build.log.
+targets=()
+for target in ${NSM_BUILD_TARGETS:-}; do targets+=(--target "$target"); done
+echo "building ${NSM_BUILD_TARGETS:-everything} in build/ (a first build takes minutes; log in build.log)"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > build.log 2>&1 || { cat build.log; exit 1; }
-cmake --build build -j "$(nproc)" >> build.log 2>&1 || { tail -50 build.log; exit 1; }
+set +o pipefail
+cmake --build build -j "$(nproc)" "${targets[@]}" 2>&1 | tee -a build.log \
+  | grep --line-buffered -E '^\[ *[0-9]+%\] (Building|Linking)' | sed -u 's/ CXX object.*\/source\// /' | uniq
+status=${PIPESTATUS[0]}
+set -o pipefail
+[ "$status" -eq 0 ] || { tail -50 build.log; exit 1; }

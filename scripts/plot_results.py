@@ -16,6 +16,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib import ticker  # noqa: E402
 
 
 TEXT_COLUMNS = ("branch", "verified", "stable")
@@ -40,6 +41,22 @@ def save(figure, path):
     plt.close(figure)
     os.replace(partial, path)
     print("wrote " + path, flush=True)
+
+
+# What run drew the plots (--caption): the scene, its mesh and M.
+CAPTION = ""
+# The last line of a complete run of this script (source/output/plots.cc).
+DONE = "plots done"
+
+
+def label_between_decades(axes):
+    """A log axis spanning few decades gets labels at 2 and 5 times each
+    power of ten too, so that values can be read off it."""
+    low, high = axes.get_ylim()
+    if low > 0 and high / low < 1e4:
+        axes.yaxis.set_major_locator(ticker.LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+        axes.yaxis.set_major_formatter(ticker.FuncFormatter(lambda value, _: f"{value:g}"))
+        axes.yaxis.set_minor_formatter(ticker.NullFormatter())
 
 
 def grazing_scale(directory):
@@ -131,7 +148,9 @@ def backbone_plot(directory):
         r = read(resonances)
         first = True
         for omega, m, harmonic in zip(r.get("omega", []), r.get("mode", []), r.get("harmonic", [])):
-            if harmonic == 1:
+            # Only inside the axes: a label beyond them would stretch the
+            # figure's tight bounding box (Omega min = 0 lists w_1 / 1).
+            if harmonic == 1 and low - margin <= omega <= high + margin:
                 axes.axvline(omega, color="black", linewidth=1.2, label="linear frequency $\\omega_j$" if first else None)
                 right = omega > low + 0.9 * (high - low)  # near the right edge: label on the left
                 axes.annotate(f"$\\omega_{{{int(m)}}}$ " if right else f" $\\omega_{{{int(m)}}}$", (omega, 0.98),
@@ -157,9 +176,12 @@ def backbone_plot(directory):
     order = sorted(range(len(tops)), key=lambda i: -tops[i][1])
     place_labels(axes, [(tops[i][0], tops[i][1] / e_g,
                          f"$\\omega_{{{int(t['mode'][i])}}}/{int(t['harmonic'][i])}$") for i in order])
+    label_between_decades(axes)
     main = points["branch"].count("main")
     title = (f"Backbone: {main} main points, {len(points['Omega']) - main} on tongues, "
              f"{len(segments)} segments")
+    if CAPTION:
+        title = CAPTION + "\n" + title
     if "verified" in points:
         checked = sum(v in ("true", "false") for v in points["verified"])
         title += f"\n{checked} verified in time, {len(failed)} not periodic"
@@ -201,6 +223,28 @@ def orbit_error_plot(directory):
     save(figure, os.path.join(directory, "orbits.png"))
 
 
+def explain_ringing(top, bottom, tip, gap, peak):
+    """Says on the plot where the truncated series leaves the contact law's
+    bounds: a negative contact force, or the end beyond the wall. Both are
+    Gibbs ringing of M harmonics around the impact's jumps (the harmonic
+    balance enforces the law on the Fourier coefficients, so the truncated
+    series need not satisfy it pointwise)."""
+    n = len(tip["contact_force"])
+    negative = sum(v < -1e-9 * peak for v in tip["contact_force"])
+    beyond = sum(u > gap * (1 + 1e-9) for u in tip["contact_displacement"])
+    # In the free flight's free space: mid-height of the force (zero there),
+    # the bottom left of the displacement (which starts at the wall).
+    note = dict(fontsize=7, color="0.25", bbox=dict(boxstyle="round", fc="white", ec="0.7", alpha=0.9))
+    if negative:
+        bottom.text(0.5, 0.5, f"$\\lambda < 0$ at {negative} of {n} samples: Gibbs ringing of the truncated\n"
+                    "series at the impact's jumps, not a pull of the wall", ha="center", va="center",
+                    transform=bottom.transAxes, **note)
+    if beyond:
+        top.text(0.02, 0.04, f"$u(L) > g_0$ at {beyond} of {n} samples (largest "
+                 f"{max(tip['contact_displacement']) / gap:.4g} $g_0$):\nthe truncated series overshoots the wall",
+                 ha="left", va="bottom", transform=top.transAxes, **note)
+
+
 def field_plots(directory, gap):
     omegas = {}
     if os.path.exists(os.path.join(directory, "fields.csv")):
@@ -223,6 +267,9 @@ def field_plots(directory, gap):
         bottom.axhline(0.0, color="black", linewidth=0.5)
         bottom.set_ylabel(f"$\\lambda(t) / \\max|\\lambda|$ (max = {peak:.3g})")
         bottom.set_xlabel("$t / T$")
+        explain_ringing(top, bottom, tip, gap, peak)
+        if CAPTION:
+            figure.text(0.5, 0.005, CAPTION, ha="center", va="bottom", fontsize=7, color="0.3")
         save(figure, path.replace("_tip.csv", "_tip.png"))
 
         grid_path = path.replace("_tip.csv", "_spacetime.csv")
@@ -246,6 +293,7 @@ def field_plots(directory, gap):
 
 STUDY_ERRORS = (("spectrum_error", "eigenfrequencies"), ("receptance_error", "receptance"),
                 ("energy_error_max", "main-branch energy (max)"),
+                ("energy_error_median", "main-branch energy (median)"),
                 ("main_energy_error_median", "energy of the main points (median)"),
                 ("main_time_defect_median", "one-period defect in time / g0 (median)"))
 
@@ -270,6 +318,13 @@ def pareto(times, errors):
     return front
 
 
+def energy_partial(row, rows):
+    """A row whose main-branch energy error covers fewer Backbone omegas than
+    the study's best row (energy_points), or that ended inside them."""
+    most = max(int(r.get("energy_points") or 0) for r in rows)
+    return row.get("energy_error_partial") == "yes" or int(row.get("energy_points") or 0) < most
+
+
 def study_plot(directory):
     with open(os.path.join(directory, "study.csv"), newline="") as f:
         rows = [r for r in csv.DictReader(f) if r["status"] == "ok"]
@@ -279,7 +334,7 @@ def study_plot(directory):
     # The size along a line: the mesh, or the harmonics in a study of M alone.
     size, size_column, size_name = "cells", "dofs", "DoFs"
     if len({r["cells"] for r in rows}) == 1 and len({r["harmonics"] for r in rows}) > 1:
-        size, size_column, size_name = "harmonics", "hb_unknowns", "harmonic-balance unknowns"
+        size, size_column, size_name = "harmonics", "harmonics", "harmonics M"
     # One line per combination of the varying parameters but the size.
     # "-" marks a value a row's run does not use: it names nothing.
     varying = [c for c in swept if c != size and len({r[c] for r in rows} - {"-"}) > 1]
@@ -308,12 +363,12 @@ def study_plot(directory):
             by_time.loglog([float(r["wall_total_median"]) for r in group], errors, marker, ms=3,
                            color=colour)
         # study.csv says which rows measured the energy error over part of the Backbone omegas.
-        partial = [r for r in valid if column == "energy_error_max" and r["energy_error_partial"] == "yes"]
+        partial = [r for r in valid if column.startswith("energy_error") and energy_partial(r, rows)]
         if partial:
             errors = [float(r[column]) for r in partial]
             by_dofs.loglog([int(r[size_column]) for r in partial], errors, "o", ms=9, mfc="none", color="0.5")
             by_time.loglog([float(r["wall_total_median"]) for r in partial], errors, "o", ms=9, mfc="none",
-                           color="0.5", label="ended inside the Backbone omegas (not on the front)")
+                           color="0.5", label="measured at fewer Backbone omegas (not on the front)")
         on_front = [r for r in valid if r not in partial]
         front = pareto([float(r["wall_total_median"]) for r in on_front], [float(r[column]) for r in on_front])
         by_time.step([t for t, _ in front], [e for _, e in front], "k-", where="post", lw=1,
@@ -321,14 +376,16 @@ def study_plot(directory):
         by_time.plot([t for t, _ in front], [e for _, e in front], "ks", mfc="none", ms=7)
         by_dofs.set_xlabel(size_name)
         by_time.set_xlabel("wall time per run [s] (median)")
+        by_dofs.set_ylabel("relative error:\n" + name)
+        by_time.set_title("relative error: " + name + ", against time", fontsize=9)
         for a in (by_dofs, by_time):
-            a.set_ylabel("relative error: " + name)
             a.grid(True, which="both", alpha=0.3)
         by_time.legend(fontsize=7)
         if (column, name) == measures[0]:  # the series' legend once, right of the first row
             by_dofs.legend(fontsize=8, ncol=1 + len(groups) // 12, loc="upper left", bbox_to_anchor=(2.25, 1))
     figure.suptitle("Accuracy against cost, " + ", ".join(sorted({r["reference"] for r in rows})) +
-                    " reference")
+                    " reference" + ("\n" + CAPTION if CAPTION else ""))
+    figure.subplots_adjust(wspace=0.3)
     save(figure, os.path.join(directory, "study.png"))
 
 
@@ -336,13 +393,19 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("directory")
     parser.add_argument("--gap", type=float, required=True)
+    parser.add_argument("--caption", default="", help="what run drew the plots: its scene, mesh and M")
     arguments = parser.parse_args()
+    global CAPTION
+    CAPTION = arguments.caption
     if os.path.exists(os.path.join(arguments.directory, "backbone.csv")):
         backbone_plot(arguments.directory)
         orbit_error_plot(arguments.directory)
     field_plots(arguments.directory, arguments.gap)
     if os.path.exists(os.path.join(arguments.directory, "study.csv")):
         study_plot(arguments.directory)
+    # The run takes the plots as drawn only after this line (a script that
+    # ended early with status 0 drew some of them at most).
+    print(DONE, flush=True)
 
 
 if __name__ == "__main__":

@@ -2,6 +2,7 @@
 // only; the work is in run_scene(), or in run_study() for a scene that is a
 // study.
 #include <nsm/app/pipeline.h>
+#include <nsm/app/run_record.h>
 #include <nsm/scene/scene.h>
 #include <nsm/base/interruption.h>
 #include <nsm/base/threads.h>
@@ -18,6 +19,7 @@
 
 #include <algorithm>
 #include <csignal>
+#include <filesystem>
 #include <initializer_list>
 #include <cstdlib>
 #include <iostream>
@@ -85,6 +87,7 @@ namespace
   int run(int &argc, char **&argv, const std::string &path, const bool verbose, const bool resume,
           std::optional<dealii::Utilities::MPI::MPI_InitFinalize> &mpi)
   {
+    const std::string command_line = nsm::quoted_command_line(std::vector<std::string>(argv, argv + argc));
     try
       {
         const nsm::StudyScene file = nsm::StudyScene::from_file(path);
@@ -101,7 +104,7 @@ namespace
             // and the run writes what it has (interruption.h).
             nsm::catch_stop_signals();
             nsm::stop_at_points(true);
-            const nsm::RunReport report = nsm::run_scene(file.scene, resume);
+            const nsm::RunReport report = nsm::run_scene(file.scene, resume, command_line);
             nsm::print_report(report, std::cout, verbose);
             if (report.stopped_by != 0)
               {
@@ -129,6 +132,14 @@ namespace
         // rows written so far are kept, and a rerun resumes (set after
         // MPI_Init, which sets handlers of its own).
         nsm::catch_stop_signals();
+        // Answered at once: a row can take minutes. Serially, a second stop
+        // ends the current row at its next point (under mpirun the launcher
+        // decides how signals reach the ranks).
+        if (!mpi || dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1)
+          nsm::acknowledge_stops(
+            "nsm-bar: stop asked: the study stops after its current row (study.csv keeps the rows done, a rerun "
+            "goes on); ask again to stop that row at its next point and leave it out\n",
+            "nsm-bar: stop asked again: the current row stops at its next point and is left out\n", true);
         const bool           root   = !mpi || dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
         const nsm::RunReport report = nsm::run_study(path, file);
         if (root)
@@ -189,6 +200,7 @@ namespace
   }
 
   const char *const usage = "usage: nsm-bar SCENE.prm [--set \"Section/Entry=value\"]... [--output DIR] [--resume] [--verbose]\n"
+                            "       nsm-bar DIR --resume [--set ...]\n"
                             "       mpirun --allow-run-as-root -np R nsm-bar STUDY.prm [--set ...]\n"
                             "       nsm-bar --print-parameters[=markdown]\n"
                             "       nsm-bar --help\n";
@@ -201,6 +213,23 @@ namespace
     bool                                resume  = false;
     std::vector<nsm::ParameterOverride> overrides;
   };
+
+  /// `nsm-bar DIR --resume`: the scene is the run record's DIR/parameters.prm
+  /// (every entry as the stopped run read it, its --set values included),
+  /// into DIR itself; other --set values may follow it.
+  CommandLine resumed_from_record(CommandLine line)
+  {
+    std::error_code error;
+    if (!line.resume || !std::filesystem::is_directory(line.scene, error))
+      return line;
+    const std::string directory = line.scene;
+    line.scene                  = directory + "/parameters.prm";
+    if (!std::filesystem::is_regular_file(line.scene, error))
+      throw nsm::InputError("command line: --resume '" + nsm::printable(directory) +
+                            "': it holds no parameters.prm (the record a run writes): give the scene file instead");
+    line.overrides.insert(line.overrides.begin(), {"Output/Directory", directory});
+    return line;
+  }
 
   /// Parses the arguments after the program name; throws InputError.
   CommandLine parse_command_line(const std::vector<std::string> &arguments)
@@ -234,7 +263,7 @@ namespace
       }
     if (line.scene.empty())
       throw nsm::InputError("command line: no scene given");
-    return line;
+    return resumed_from_record(line);
   }
 
 } // namespace
@@ -248,7 +277,8 @@ int main(int argc, char **argv)
                 << "--set \"Section/Entry=value\"  override a scene entry (repeatable; checked like the file)\n"
                    "--output DIR                  the same as --set \"Output/Directory=DIR\"\n"
                    "--resume                      go on with the continuation of this scene's interrupted run, from\n"
-                   "                              the checkpoint it left in Output/Directory (continuation.resume)\n"
+                   "                              the checkpoint it left in Output/Directory (continuation.resume);\n"
+                   "                              nsm-bar DIR --resume takes the scene from DIR's record (parameters.prm)\n"
                    "--verbose                     print the continuation's events in the summary too\n"
                    "exit codes: 0 done, 2 bad input, 3 numerical failure, 4 other error, 5 a file could "
                    "not be written whole, 130 / 143 stopped by SIGINT / SIGTERM (a run writes what it computed, a study "

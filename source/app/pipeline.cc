@@ -10,10 +10,12 @@
 #include <nsm/model/discretisation.h>
 #include <nsm/model/memory_estimate.h>
 #include <nsm/app/pipeline.h>
+#include <nsm/app/run_record.h>
 #include <nsm/app/run_result.h>
 #include <nsm/output/plots.h>
 #include <nsm/base/checkpoint_reader.h>
 #include <nsm/base/interruption.h>
+#include <nsm/base/text.h>
 #include <nsm/base/progress.h>
 #include <nsm/model/receptance.h>
 #include <nsm/output/result_tables.h>
@@ -195,7 +197,10 @@ namespace nsm
           std::optional<ContinuationCheckpoint> checkpoint;
           if (resume_)
             {
-              checkpoint = read_checkpoint(scene_.output.directory + "/" + checkpoint_file, scene_, *hb_);
+              checkpoint  = read_checkpoint(scene_.output.directory + "/" + checkpoint_file, scene_, *hb_);
+              companions_ = checkpoint->companions;
+              check_companion(verification_checkpoint_file);
+              check_companion(refinement_checkpoint_file);
               report_.notes.push_back(resume_note(*checkpoint));
             }
           backbone_ = compute_backbone(*hb_, scene_, resonances_, checkpoint ? &*checkpoint : nullptr);
@@ -207,22 +212,45 @@ namespace nsm
 
       /// Writes the continuation's checkpoint and the points verified and refined so far
       /// (a stop signal ended the run).
+      /// The verification's and the refinement's checkpoints are written
+      /// first: the continuation's records their hashes (its companions),
+      /// under its model fingerprint, so that neither is taken edited.
       void write_checkpoints(const std::string &directory)
       {
+        CheckpointCompanions companions;
+        const auto companion = [&](const char *file, auto &&write) {
+          std::ostringstream text;
+          write(text);
+          companions[file] = fnv1a(text.str().data(), text.str().size());
+          report_.files.push_back(
+            write_checksummed(directory + "/" + file, [&](std::ostream &out) { out << text.str(); }));
+        };
+        if (present(verifications_) > 0)
+          companion(verification_checkpoint_file, [&](std::ostream &out) {
+            write_verification_checkpoint(out, backbone_, verifications_, scene_.output);
+          });
+        if (present(orbits_) > 0)
+          companion(refinement_checkpoint_file, [&](std::ostream &out) {
+            write_refinement_checkpoint(out, backbone_, orbits_, scene_.output);
+          });
         if ((report_.resumable = backbone_.checkpoint != nullptr))
           report_.files.push_back(write_checksummed(directory + "/" + checkpoint_file, [&](std::ostream &out) {
-            write_checkpoint(out, *backbone_.checkpoint, scene_.computation_entries, *hb_);
+            write_checkpoint(out, *backbone_.checkpoint, scene_.computation_entries, *hb_, companions);
           }));
-        if (present(verifications_) > 0)
-          report_.files.push_back(
-            write_checksummed(directory + "/" + verification_checkpoint_file, [&](std::ostream &out) {
-              write_verification_checkpoint(out, backbone_, verifications_, scene_.output);
-            }));
-        if (present(orbits_) > 0)
-          report_.files.push_back(
-            write_checksummed(directory + "/" + refinement_checkpoint_file, [&](std::ostream &out) {
-              write_refinement_checkpoint(out, backbone_, orbits_, scene_.output);
-            }));
+      }
+
+      /// A companion checkpoint (verification.resume, refinement.resume) is
+      /// read only if the continuation's checkpoint recorded its text.
+      void check_companion(const char *file) const
+      {
+        const std::string path = scene_.output.directory + "/" + file;
+        if (!std::ifstream(path).good())
+          return;
+        const auto recorded = companions_.find(file);
+        if (recorded == companions_.end() || recorded->second != text_hash(path))
+          throw InputError("command line: --resume: '" + printable(path) + "' is not the one the interrupted run "
+                           "wrote with its " + checkpoint_file + " (edited, or another run's): run the scene "
+                           "without --resume");
       }
 
       /// The points a stage holds (computed, or kept from a checkpoint).
@@ -381,8 +409,12 @@ namespace nsm
       /// the files computed are kept either way.
       int plots(const std::string &directory)
       {
-        PlotResult plots;
-        timed("plots", [&] { plots = make_plots(scene_.contact, directory); });
+        PlotResult        plots;
+        const std::string caption = "scene " + scene_.origin + ": FE_Q(" +
+                                    std::to_string(discretisation_->fe().degree) + ") x " +
+                                    std::to_string(discretisation_->n_cells()) + " cells, M = " +
+                                    std::to_string(scene_.harmonic_balance.harmonics);
+        timed("plots", [&] { plots = make_plots(scene_.contact, directory, caption); });
         for (std::string &f : plots.files)
           report_.files.push_back(std::move(f));
         if (!plots.failure.empty() && plots.stopped_by == 0)
@@ -489,10 +521,35 @@ namespace nsm
       RefinedOrbits                   orbits_;
       std::vector<double>             bar_amplitudes_;
       std::vector<PeriodicField>      fields_;
+      CheckpointCompanions            companions_; ///< of the checkpoint resumed from
     };
   } // namespace
 
-  RunReport run_scene(const Scene &scene, const bool resume)
+  namespace
+  {
+    /// The run's record in its output folder: parameters.prm (the scene as
+    /// read) and summary.txt (the record's header, then the summary as
+    /// printed, with the continuation's events and every file, these two
+    /// included, at its final path).
+    void write_record(const Scene &scene, const std::string &command_line, const OutputDirectory &output,
+                      RunReport &report)
+    {
+      if (!scene.parameter_file.empty())
+        report.files.push_back(write_atomically(output.staging() + "/parameters.prm", [&](std::ostream &out) {
+          out << scene.parameter_file;
+        }));
+      const std::string summary = output.staging() + "/summary.txt";
+      report.files.push_back(summary);
+      RunReport shown = report;
+      shown.files     = output.final_paths(report.files);
+      write_atomically(summary, [&](std::ostream &out) {
+        out << record_header(command_line);
+        print_report(shown, out, true);
+      });
+    }
+  } // namespace
+
+  RunReport run_scene(const Scene &scene, const bool resume, const std::string &command_line)
   {
     const bool needs_spectrum   = scene.output.spectrum_modes > 0;
     const bool needs_receptance = !scene.output.receptance_frequencies.empty();
@@ -574,6 +631,7 @@ namespace nsm
       note("not written: " + report.failure);
     if (!report.plot_failure.empty())
       note("plots not drawn: " + report.plot_failure);
+    write_record(scene, command_line, output, report);
     report.files = output.commit(report.files, manifest_notes);
     return report;
   }

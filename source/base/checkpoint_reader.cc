@@ -47,19 +47,42 @@ namespace nsm
     return write_atomically(path, [&](std::ostream &out) { out << text.str() << checksum_line(text.str()); });
   }
 
+  namespace
+  {
+    /// Where the checksum line of `text` starts: after its last but one
+    /// newline (the text before it is what was hashed).
+    std::size_t checksum_start(const std::string &text)
+    {
+      const std::size_t last = text.size() < 2 ? std::string::npos : text.rfind('\n', text.size() - 2);
+      return last == std::string::npos ? 0 : last + 1;
+    }
+
+    std::string whole_file(std::ifstream &file)
+    {
+      std::ostringstream whole;
+      whole << file.rdbuf();
+      return whole.str();
+    }
+  } // namespace
+
+  std::uint64_t text_hash(const std::string &path)
+  {
+    std::ifstream file(path);
+    if (!file)
+      return 0;
+    const std::string text = whole_file(file);
+    return fnv1a(text.data(), checksum_start(text));
+  }
+
   CheckpointReader::CheckpointReader(const std::string &path)
     : path_(path)
   {
     std::ifstream file(path);
     if (!(opened_ = static_cast<bool>(file)))
       return;
-    std::ostringstream whole;
-    whole << file.rdbuf();
-    const std::string text = whole.str();
-    // The checksum line is the last; the text before it is what was hashed.
-    const std::size_t last = text.size() < 2 ? std::string::npos : text.rfind('\n', text.size() - 2);
-    const std::size_t body = last == std::string::npos ? 0 : last + 1;
-    intact_ = text.compare(body, std::string::npos, checksum_line(text.substr(0, body))) == 0;
+    const std::string text = whole_file(file);
+    const std::size_t body = checksum_start(text);
+    intact_                = text.compare(body, std::string::npos, checksum_line(text.substr(0, body))) == 0;
     in_.str(text.substr(0, body));
   }
 

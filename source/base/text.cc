@@ -48,6 +48,14 @@ namespace nsm
       return length;
     }
 
+    /// A C1 control character (U+0080 to U+009F, such as CSI and NEL) at
+    /// text[i], in UTF-8: 0xC2 then 0x80 to 0x9F.
+    bool is_c1_control(const std::string &text, const std::size_t i)
+    {
+      return i + 1 < text.size() && static_cast<unsigned char>(text[i]) == 0xc2 &&
+             static_cast<unsigned char>(text[i + 1]) >= 0x80 && static_cast<unsigned char>(text[i + 1]) <= 0x9f;
+    }
+
     std::string escaped(const char c)
     {
       char text[8];
@@ -62,7 +70,12 @@ namespace nsm
     for (std::size_t i = 0; i < text.size();)
       {
         const std::size_t length = utf8_length(text, i);
-        if (length == 0 || (length == 1 && is_control(text[i])))
+        if (is_c1_control(text, i))
+          {
+            out += escaped(text[i]) + escaped(text[i + 1]);
+            i += 2;
+          }
+        else if (length == 0 || (length == 1 && is_control(text[i])))
           out += escaped(text[i++]);
         else
           {
@@ -75,8 +88,8 @@ namespace nsm
 
   bool has_control_character(const std::string &text)
   {
-    for (const char c : text)
-      if (is_control(c))
+    for (std::size_t i = 0; i < text.size(); ++i)
+      if (is_control(text[i]) || is_c1_control(text, i))
         return true;
     return false;
   }

@@ -71,7 +71,8 @@ namespace nsm
   }
 
   void write_checkpoint(std::ostream &file, const ContinuationCheckpoint &c,
-                        const std::vector<std::string> &computation_entries, HarmonicBalance &hb)
+                        const std::vector<std::string> &computation_entries, HarmonicBalance &hb,
+                        const CheckpointCompanions &companions)
   {
     std::ostringstream out;
     out << format_line << "\nentries " << computation_entries.size() << '\n';
@@ -94,6 +95,9 @@ namespace nsm
           out << ' ' << exact(v);
         out << '\n';
       }
+    out << "companions " << companions.size() << '\n';
+    for (const auto &[name, hash] : companions)
+      out << name << ' ' << std::hex << hash << std::dec << '\n';
     file << out.str() << "model " << std::hex << model_fingerprint(hb, c.points, out.str()) << std::dec
          << "\nend\n";
   }
@@ -150,17 +154,26 @@ namespace nsm
       }
     if (c.points.empty())
       reader.damaged("at least one point expected");
+    std::istringstream companions = reader.next("companions ");
+    for (std::size_t i = 0, n = reader.count(companions, 2); i < n; ++i)
+      {
+        std::istringstream line(reader.text_line());
+        std::string        name;
+        std::uint64_t      hash = 0;
+        if (!(line >> name >> std::hex >> hash))
+          reader.damaged("a companion checkpoint's name and hash expected");
+        c.companions[name] = hash;
+      }
     const std::string  text  = reader.text_read();
-    std::istringstream model = reader.next("model ");
-    std::uint64_t      fingerprint = 0;
-    if (!(model >> std::hex >> fingerprint))
-      reader.damaged("the model's fingerprint expected");
-    if (fingerprint != model_fingerprint(hb, c.points, text))
+    const std::string  model = reader.next("model ").str();
+    std::ostringstream fingerprint;
+    fingerprint << std::hex << model_fingerprint(hb, c.points, text);
+    if (model != fingerprint.str())
       throw InputError("command line: --resume: the points of '" + printable(path) +
                        "' are not this scene's model's solutions bit for bit: its mesh or receptance differ from "
                        "the interrupted run's (an entry that shapes them changed), or the file was edited: run the scene without --resume");
-    if (reader.text_line() != "end")
-      reader.damaged("'end' expected");
+    if (reader.text_line() != "end" || !reader.finished())
+      reader.damaged("'end' as the last line expected");
     return c;
   }
 } // namespace nsm

@@ -180,6 +180,7 @@ namespace nsm
       out.attach_dof_handler(dofs);
       const AxialDisplacement axial;
       out.add_data_vector(u, axial);
+      out.add_data_vector(u, "axial_displacement"); // the same u as a scalar: coloured with its sign
       out.add_data_vector(v, "velocity");
       out.add_data_vector(u, derived);
       out.build_patches(p);
@@ -207,6 +208,7 @@ namespace nsm
           // In 1D a vector has one component: VTK pads it to (u, 0, 0).
           out.add_data_vector(u, std::vector<std::string>{"displacement"}, dealii::DataOut<1>::type_dof_data,
                               {dealii::DataComponentInterpretation::component_is_part_of_vector});
+          out.add_data_vector(u, "axial_displacement");
           out.add_data_vector(v, "velocity");
           out.add_data_vector(u, derived);
           out.build_patches(d.fe().degree);

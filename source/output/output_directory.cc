@@ -11,6 +11,7 @@
 #include <fstream>
 #include <optional>
 #include <random>
+#include <regex>
 #include <set>
 
 #include <fcntl.h>
@@ -28,11 +29,23 @@ namespace nsm
     /// directory path that still leaves room for the files in it (PATH_MAX
     /// less the longest file name a run writes, with its ".partial").
     constexpr std::size_t max_name_bytes = 255;
-    constexpr std::size_t max_path_bytes = 4096 - 64;
+    /// PATH_MAX (4096) less what a run puts under the directory's parent: its
+    /// staging sibling's name (about 60 bytes) and the longest file name it
+    /// writes there (field_NNN_snapshots/snapshot_NNNN.vtu.partial), with
+    /// room to spare for the plotting script's absolute paths.
+    constexpr std::size_t max_path_bytes = 3800;
 
     InputError directory_error(const std::string &target, const std::string &why)
     {
       return InputError("parameter 'Output/Directory' = '" + printable(target) + "' " + why);
+    }
+
+    /// A name of one entry of the directory itself: no folder part, not "."
+    /// or "..". A manifest line that is not one (an edited manifest) names
+    /// nothing the run removes.
+    bool plain_name(const std::string &name)
+    {
+      return !name.empty() && name != "." && name != ".." && name.find('/') == std::string::npos;
     }
 
     /// The manifest's lines; none if it is not a regular file.
@@ -54,6 +67,8 @@ namespace nsm
     std::optional<std::set<std::string>> listed_folder(const std::set<std::string> &listed,
                                                        const std::string           &folder)
     {
+      if (!plain_name(folder))
+        return std::nullopt;
       for (const std::string &line : listed)
         {
           unsigned long count = 0;
@@ -65,23 +80,13 @@ namespace nsm
           std::set<std::string> names;
           for (unsigned long j = 0; j < count; ++j)
             {
-              char name[32];
+              char name[48];
               std::snprintf(name, sizeof name, "snapshot_%04lu.vtu", j);
               names.insert(name);
             }
           return names;
         }
       return std::nullopt;
-    }
-
-    /// Whether every entry of `folder` is a regular file named in `names`.
-    bool holds_only(const fs::path &folder, const std::set<std::string> &names)
-    {
-      std::error_code error;
-      for (const auto &entry : fs::directory_iterator(folder, error))
-        if (entry.is_symlink() || !entry.is_regular_file() || !names.count(entry.path().filename().string()))
-          return false;
-      return !error;
     }
 
     /// Whether the target may be replaced: missing, empty, or exactly an
@@ -201,6 +206,20 @@ namespace nsm
       return emptied;
     }
 
+    /// Removes `folder` and its subfolders if they hold no file; returns
+    /// whether it is gone.
+    bool remove_empty_folders(const fs::path &folder)
+    {
+      std::error_code       error;
+      std::vector<fs::path> inner;
+      for (const auto &entry : fs::directory_iterator(folder, error))
+        if (entry.is_directory() && !entry.is_symlink())
+          inner.push_back(entry.path());
+      for (const fs::path &f : inner)
+        remove_empty_folders(f);
+      return fs::remove(folder, error);
+    }
+
     /// Swaps two directories in one step. The fallback (a file system without
     /// RENAME_EXCHANGE) passes the target (locked by the caller) through an
     /// aside sibling: a
@@ -216,7 +235,9 @@ namespace nsm
     }
 
     /// Staging and aside directories of runs that no longer hold their lock
-    /// (killed ones): a staging directory is removed; an aside one (the
+    /// (killed ones), by their exact names: a staging directory is removed
+    /// (one that holds a manifest, an output, is discarded by it); an aside
+    /// one (the
     /// target's previous output, taken out by a run killed half-way through
     /// its fallback swap) goes back in place, or is discarded if the new
     /// output went in.
@@ -224,20 +245,23 @@ namespace nsm
     {
       std::error_code       error;
       std::vector<fs::path> siblings;
+      const std::regex      ours(std::regex_replace(prefix, std::regex(R"([.\\])"), R"(\$&)") +
+                                 R"(((run|aside)-\d+-[0-9a-f]{16}|\d+))");
       for (const auto &entry : fs::directory_iterator(parent, error))
-        if (entry.path().filename().string().rfind(prefix, 0) == 0)
+        if (std::regex_match(entry.path().filename().string(), ours))
           siblings.push_back(entry.path());
       for (const fs::path &sibling : siblings)
         {
           const int lock = lock_directory(sibling, false);
           if (lock < 0)
             continue; // a live run's, or not a directory
-          if (sibling.filename().string().rfind(prefix + "aside-", 0) != 0)
-            fs::remove_all(sibling, error);
-          else if (!fs::exists(fs::symlink_status(target, error)))
+          const bool aside = sibling.filename().string().rfind(prefix + "aside-", 0) == 0;
+          if (aside && !fs::exists(fs::symlink_status(target, error)))
             fs::rename(sibling, target, error);
+          else if (aside || fs::exists(fs::symlink_status(sibling / OutputDirectory::manifest, error)))
+            discard_previous_output(sibling.string(), target.string()); // an output: its own files go
           else
-            discard_previous_output(sibling.string(), target.string());
+            fs::remove_all(sibling, error); // a killed run's half-written files
           close(lock);
         }
     }
@@ -256,9 +280,11 @@ namespace nsm
     /// Names no file system takes are refused before any work.
     void check_name_lengths(const fs::path &path, const std::string &target)
     {
-      if (target.size() > max_path_bytes)
-        throw directory_error(target.substr(0, 60) + "...", "is " + std::to_string(target.size()) +
-                                                              " bytes long: allowed at most " +
+      std::error_code   error;
+      const std::size_t bytes = fs::absolute(path, error).string().size();
+      if (bytes > max_path_bytes)
+        throw directory_error(target.substr(0, 60) + "...", "is " + std::to_string(bytes) +
+                                                              " bytes long as an absolute path: allowed at most " +
                                                               std::to_string(max_path_bytes));
       for (const fs::path &part : path)
         if (part.string().size() > max_name_bytes)
@@ -280,7 +306,8 @@ namespace nsm
         const std::size_t slash = line.find("/ (");
         if (slash == std::string::npos)
           {
-            if (line.find('/') == std::string::npos && fs::is_regular_file(fs::symlink_status(folder / line, error)))
+            if (plain_name(line) && line != OutputDirectory::manifest &&
+                fs::is_regular_file(fs::symlink_status(folder / line, error)))
               fs::remove(folder / line, error);
             continue;
           }
@@ -294,11 +321,12 @@ namespace nsm
           }
       }
     fs::remove(folder / OutputDirectory::manifest, error);
-    if (fs::remove(folder, error) || move_back(folder, target))
-      {
-        fs::remove_all(folder, error); // empty folders only are left
+    // What is left is the user's: it goes back into the directory. A file
+    // made meanwhile through a handle on the old folder goes too (a few
+    // passes); empty folders are removed one by one, never a whole tree.
+    for (int pass = 0; pass < 3; ++pass)
+      if (fs::remove(folder, error) || (move_back(folder, target) && remove_empty_folders(folder)))
         return "";
-      }
     const std::string kept = target + ".files-kept-" + unique_token();
     fs::rename(folder, kept, error);
     return error ? previous : kept;
@@ -385,10 +413,17 @@ namespace nsm
     }
   } // namespace
 
+  std::vector<std::string> OutputDirectory::final_paths(const std::vector<std::string> &files) const
+  {
+    std::vector<std::string> paths;
+    for (const std::string &f : files)
+      paths.push_back(target_ + "/" + f.substr(staging_.size() + 1));
+    return paths;
+  }
+
   std::vector<std::string> OutputDirectory::commit(const std::vector<std::string> &files,
                                                    const std::vector<std::string> &notes)
   {
-    std::vector<std::string> final_paths;
     std::set<std::string>    listed;
     const std::string        prefix = staging_ + "/";
     write_atomically(prefix + manifest, [&](std::ostream &out) {
@@ -401,9 +436,8 @@ namespace nsm
         out << "/ " << printable(note) << '\n';
     });
     prune_unlisted(staging_, listed);
-    int previous_lock = -1;
-    for (const std::string &f : files)
-      final_paths.push_back(target_ + "/" + f.substr(prefix.size()));
+    int                            previous_lock = -1;
+    const std::vector<std::string> paths         = final_paths(files);
     try
       {
         // Checked again: another run may have written into the directory
@@ -448,6 +482,6 @@ namespace nsm
                             "the run could not go back beside it (their names are taken): they are in " +
                             printable(kept));
       }
-    return final_paths;
+    return paths;
   }
 } // namespace nsm

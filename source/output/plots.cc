@@ -1,4 +1,5 @@
 #include <nsm/base/interruption.h>
+#include <nsm/base/text.h>
 #include <nsm/output/plots.h>
 
 #include <fcntl.h>
@@ -20,6 +21,10 @@ namespace nsm
     /// How often the wait for the script looks for a stop signal: a Ctrl-C
     /// is answered within this time.
     constexpr std::chrono::milliseconds stop_poll_interval(20);
+    /// How long a script asked to end (SIGTERM) has before it is killed.
+    constexpr std::chrono::seconds end_grace(5);
+    /// The script's last line when it drew every plot (plot_results.py).
+    constexpr const char *done_line = "plots done";
 
     enum class ProgramEnd
     {
@@ -45,7 +50,15 @@ namespace nsm
           if (stop_signals_received() != signals_before)
             {
               kill(-pid, SIGTERM);
-              waitpid(pid, &status, 0);
+              const auto deadline = std::chrono::steady_clock::now() + end_grace;
+              while (waitpid(pid, &status, WNOHANG) == 0)
+                if (std::chrono::steady_clock::now() < deadline)
+                  std::this_thread::sleep_for(stop_poll_interval);
+                else
+                  {
+                    kill(-pid, SIGKILL); // it ignores SIGTERM
+                    waitpid(pid, &status, 0);
+                  }
               return ProgramEnd::stopped;
             }
           std::this_thread::sleep_for(stop_poll_interval);
@@ -97,9 +110,25 @@ namespace nsm
           }
       return files;
     }
+    /// The plot a script ended half-way left (NAME.png.partial): the
+    /// directory is a run's staging one or a study's, whose .partial files
+    /// are the program's own.
+    void remove_half_drawn(const std::string &directory)
+    {
+      std::error_code                    error;
+      std::vector<std::filesystem::path> half;
+      for (const auto &entry : std::filesystem::directory_iterator(directory, error))
+        {
+          const std::string name = entry.path().filename().string();
+          if (entry.is_regular_file() && name.size() > 12 && name.compare(name.size() - 12, 12, ".png.partial") == 0)
+            half.push_back(entry.path());
+        }
+      for (const auto &path : half)
+        std::filesystem::remove(path, error);
+    }
   } // namespace
 
-  PlotResult make_plots(const Scene::Contact &contact, const std::string &directory)
+  PlotResult make_plots(const Scene::Contact &contact, const std::string &directory, const std::string &caption)
   {
     std::ostringstream gap;
     gap.precision(17);
@@ -110,7 +139,7 @@ namespace nsm
     // The directory as an absolute path, after "--": a name that starts with
     // '-' is never read as an option.
     const std::string absolute = std::filesystem::absolute(directory, error).string();
-    const ProgramEnd  end = run_program({NSM_PYTHON, NSM_PLOT_SCRIPT, "--gap", gap.str(), "--", absolute}, log_path);
+    const ProgramEnd  end = run_program({NSM_PYTHON, NSM_PLOT_SCRIPT, "--gap", gap.str(), "--caption=" + printable(caption), "--", absolute}, log_path);
     PlotResult  result;
     std::string last;
     // The plots the script finished are whole (it renames each into place):
@@ -120,7 +149,10 @@ namespace nsm
         result.files = plots_written(log_path, absolute, directory, last);
         result.files.push_back(log_path);
       }
-    if (end == ProgramEnd::stopped)
+    if (end == ProgramEnd::succeeded && last != done_line)
+      result.failure = "the plotting script ended without drawing every plot (its last line: " +
+                       (last.empty() ? std::string("none") : last) + ")";
+    else if (end == ProgramEnd::stopped)
       {
         result.stopped_by = stop_signal();
         result.failure    = std::string("stopped by ") + stop_signal_name(result.stopped_by);
@@ -129,6 +161,8 @@ namespace nsm
       result.failure = "the plotting script failed: " + (last.empty() ? std::string("no message") : last);
     else if (end == ProgramEnd::not_started)
       result.failure = "the plotting script " + std::string(NSM_PYTHON) + " could not be started";
+    if (!result.failure.empty())
+      remove_half_drawn(directory);
     return result;
   }
 } // namespace nsm

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <sstream>
 #include <tuple>
@@ -318,6 +319,19 @@ namespace nsm
     return from_parameters(prm, path);
   }
 
+  namespace
+  {
+    /// output/NAME, NAME the scene file's name without its extension
+    /// ("scene" for a name that has none left).
+    std::string default_directory(const std::string &scene_file)
+    {
+      std::string name = std::filesystem::path(scene_file).stem().string();
+      if (name.empty() || name == "." || name == "..")
+        name = "scene";
+      return "output/" + name;
+    }
+  } // namespace
+
   Scene Scene::from_parameters(ParameterHandler &prm, const std::string &origin, const bool is_study)
   {
     Scene scene;
@@ -330,6 +344,9 @@ namespace nsm
         scene.harmonic_balance.parse(prm);
         scene.continuation.parse(prm);
         scene.output.parse(prm);
+        if (scene.output.directory.empty())
+          scene.output.directory = default_directory(origin);
+        scene.origin = origin;
         scene.resources.parse(prm);
         scene.check_consistency(is_study);
         for (const DeclaredEntry &entry : declared_entries(prm))

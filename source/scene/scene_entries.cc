@@ -1,7 +1,10 @@
 #include <nsm/scene/scene.h>
 #include <nsm/scene/scene_entries.h>
+#include <nsm/base/text.h>
 
 #include <cmath>
+#include <limits>
+#include <cerrno>
 #include <cstdlib>
 #include <sstream>
 
@@ -40,13 +43,17 @@ namespace nsm::scene_entries
 
   double parse_double(const std::string &text, const std::string &parameter)
   {
-    // strtod, not stod: a value below the normal range (1e-308, 4.9e-324)
-    // is a finite number that underflows gracefully, not an error.
+    // As the scalar entries (scene_file.cc): a value that strtod reads only
+    // by underflow (1e-400) or as a subnormal (1e-310, 4.9e-324) is refused.
     const std::string trimmed = trim(text);
     char             *end     = nullptr;
-    const double      value   = trimmed.empty() ? 0 : std::strtod(trimmed.c_str(), &end);
+    errno                     = 0;
+    const double value        = trimmed.empty() ? 0 : std::strtod(trimmed.c_str(), &end);
     if (trimmed.empty() || end != trimmed.c_str() + trimmed.size() || !std::isfinite(value))
-      throw InputError("parameter '" + parameter + "': '" + text + "' is not a finite number");
+      throw InputError("parameter '" + parameter + "': '" + printable(text) + "' is not a finite number");
+    if (errno == ERANGE || (value != 0 && std::abs(value) < std::numeric_limits<double>::min()))
+      throw InputError("parameter '" + parameter + "': '" + printable(text) +
+                       "' is subnormal (of magnitude below 2.2e-308): allowed, 0 or a normal number");
     return value;
   }
 

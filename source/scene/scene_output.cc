@@ -24,7 +24,8 @@ namespace nsm
                       Patterns::Anything(),
                       "Output directory: a new one, or one that an earlier run wrote. A run "
                       "writes into a hidden sibling and swaps it in at the end, so the "
-                      "directory holds the previous complete output or the new one.");
+                      "directory holds the previous complete output or the new one. Empty: "
+                      "output/NAME, NAME the scene file's name without its extension.");
     prm.declare_entry("Spectrum modes",
                       text(d.spectrum_modes),
                       Patterns::Integer(0, 100000),
@@ -118,7 +119,6 @@ namespace nsm
   {
     prm.enter_subsection("Output");
     directory = prm.get("Directory");
-    require(!directory.empty(), "Output/Directory", "a non-empty path", "''");
     require(!has_control_character(directory), "Output/Directory", "a path without control characters",
             "'" + printable(directory) + "'");
     spectrum_modes = get_unsigned(prm, "Spectrum modes");

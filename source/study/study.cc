@@ -22,6 +22,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <thread>
 
 namespace nsm
 {
@@ -158,24 +159,35 @@ namespace nsm
     /// The run summary's answer to "what does accuracy cost": per measured
     /// error, the rows that no other row beats in both error and median
     /// time (the Pareto front), fastest first. Rows whose energy errors
-    /// cover part of the Backbone omegas (energy_error_partial) are left out
-    /// of the backbone error's front.
+    /// cover part of the Backbone omegas are left out of the backbone
+    /// errors' fronts: those whose continuation ended inside them
+    /// (energy_error_partial), and those measured at fewer of them than the
+    /// study's best row (energy_points), as study.png marks them.
     std::vector<std::string> pareto_notes(const CsvTable &table, const std::size_t key_size)
     {
       const auto column  = [&](const std::string &name) { return column_of(table, name); };
       const auto varying = varying_columns(table, key_size);
       const std::size_t        time = column("wall_total_median");
+      const auto               points = [&](const std::vector<CsvCell> &row) {
+        const std::string &cell = text_cell(row, column("energy_points"));
+        return cell.empty() ? 0ul : std::stoul(cell);
+      };
+      unsigned long most_points = 0;
+      for (const auto &row : table.rows)
+        most_points = std::max(most_points, points(row));
       std::vector<std::string> notes;
-      for (const char *error : {"spectrum_error", "receptance_error", "energy_error_max", "main_time_defect_median"})
+      for (const char *error : {"spectrum_error", "receptance_error", "energy_error_max", "energy_error_median",
+                                "main_time_defect_median"})
         {
-          const bool backbone_error = std::string(error) == "energy_error_max";
+          const bool backbone_error = std::string(error).rfind("energy_error", 0) == 0;
           std::vector<std::pair<double, const std::vector<CsvCell> *>> rows;
           unsigned int                                                 partial = 0;
           for (const auto &row : table.rows)
             {
               if (text_cell(row, column(error)).empty())
                 continue;
-              if (backbone_error && text_cell(row, column("energy_error_partial")) == "yes")
+              if (backbone_error &&
+                  (text_cell(row, column("energy_error_partial")) == "yes" || points(row) < most_points))
                 ++partial;
               else
                 rows.emplace_back(std::stod(text_cell(row, time)), &row);
@@ -195,8 +207,9 @@ namespace nsm
               }
           if (partial > 0)
             notes.push_back("  (" + std::string(error) + ": " + std::to_string(partial) +
-                            (partial == 1 ? " row left out, its continuation" : " rows left out, their continuation") +
-                            " ended inside the Backbone omegas: energy_error_partial)");
+                            (partial == 1 ? " row left out: it measured" : " rows left out: they measured") +
+                            " at fewer Backbone omegas than " + std::to_string(most_points) +
+                            " (energy_points), or ended inside them (energy_error_partial))");
         }
       if (!notes.empty())
         notes.insert(notes.begin(), "the fastest row to each error (median time):");
@@ -355,6 +368,13 @@ namespace nsm
                   cells.push_back(std::move(cell));
                 packed = pack_row(missing_[mine], cells);
               }
+            // A second stop signal stopped this row at a point (serially):
+            // the row is left out, the rows done are kept.
+            if (!parallel(comm_) && point_stop_signal() != 0)
+              {
+                stopped_by_ = stop_signal();
+                return;
+              }
             const std::vector<std::string> gathered =
               parallel(comm_) ? dealii::Utilities::MPI::gather(comm_, packed, 0) : std::vector<std::string>{packed};
             if (root())
@@ -388,6 +408,11 @@ namespace nsm
           lines.push_back(counted(fewer, "row") + " measured fewer than Study/Spectrum modes = " +
                           std::to_string(base_.study.spectrum_modes) +
                           ": their meshes have fewer modes (spectrum_modes_measured)");
+        if (ranks_ > 1 && ran_ > 0)
+          lines.push_back("timings: the rows ran on " + counted(ranks_, "rank") + " sharing " +
+                          counted(std::thread::hardware_concurrency(), "core") +
+                          ": they compete for the cores and the memory bandwidth, so their wall_ and cpu_ "
+                          "columns (and the fastest rows below) are not comparable with a serial study's");
         if (stopped_by_)
           lines.push_back(std::string("stopped by ") + stop_signal_name(stopped_by_) + " after " +
                           std::to_string(resumed() + ran_) + " of " + counted(combinations_.size(), "row") +
@@ -531,7 +556,7 @@ namespace nsm
       {
         // A plot is an output like study.csv: a stop or a failure while it is
         // drawn keeps the rows (written in place before), and is said.
-        PlotResult plots = make_plots(base.scene.contact, study.directory());
+        PlotResult plots = make_plots(base.scene.contact, study.directory(), "study " + path);
         for (std::string &f : plots.files)
           report.files.push_back(std::move(f));
         if (plots.stopped_by != 0)

@@ -223,7 +223,14 @@ namespace nsm
     dealii::ParameterHandler prm;
     declare(prm);
     read_scene_file(path, prm);
-    return from_parameters(prm, path);
+    StudyScene scene = from_parameters(prm, path);
+    prm.enter_subsection("Output");
+    prm.set("Directory", scene.scene.output.directory);
+    prm.leave_subsection();
+    std::ostringstream text;
+    prm.print_parameters(text, dealii::ParameterHandler::ShortPRM);
+    scene.scene.parameter_file = text.str();
+    return scene;
   }
 
   StudyScene StudyScene::from_parameters(dealii::ParameterHandler &prm, const std::string &origin)

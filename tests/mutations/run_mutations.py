@@ -144,8 +144,8 @@ MUTATIONS = [
      "bool left_energy_range() const { return above_energy_max > 0; }",
      "bool left_energy_range() const { return false; }"),
     ("a row that ended inside the Backbone omegas may lead the energy front", "source/study/study.cc",
-     "if (backbone_error && text_cell(row, column(\"energy_error_partial\")) == \"yes\")",
-     "if (false && backbone_error && text_cell(row, column(\"energy_error_partial\")) == \"yes\")"),
+     "(text_cell(row, column(\"energy_error_partial\")) == \"yes\" || points(row) < most_points))",
+     "false && (text_cell(row, column(\"energy_error_partial\")) == \"yes\" || points(row) < most_points))"),
     ("a row's energy error over part of the Backbone omegas not marked", "source/study/study_measures.cc",
      "return *reached > *low && *reached < *high;", "return *reached > *low && *reached < *low;"),
     ("results that depend on the machine's cores", "source/base/threads.cc",
@@ -171,6 +171,14 @@ MUTATIONS = [
      "f.bilinear         = (f.free + f.clamped) / 2;"),
     ("a resumed verification integrates the points it kept again", "source/verification/time_verification.cc",
      "if (i < known.size() && known[i])", "if (false && i < known.size() && known[i])"),
+    ("the previous output removed whole, a user's file in it too", "source/output/output_directory.cc",
+     "if (fs::remove(folder, error) || move_back(folder, target))", "if (true)"),
+    ("a snapshot folder's files checked by type, not by name", "source/output/output_directory.cc",
+     "if (inner.is_symlink() || !inner.is_regular_file() ||\n                    !names->count(inner.path().filename().string()))",
+     "if (inner.is_symlink() || !inner.is_regular_file())"),
+    ("a checkpoint read whatever its checksum", "source/base/checkpoint_reader.cc",
+     "intact_ = text.compare(body, std::string::npos, checksum_line(text.substr(0, body))) == 0;",
+     "intact_ = true;"),
 ]
 
 

@@ -57,7 +57,8 @@ def main():
         if not all(n in lines[0] for n in needles):
             failures.append(f"short branch: {lines[0]!r} lacks one of {needles}")
         if sorted(os.listdir("short")) != ["backbone.csv", "continuation.log", "grazing.csv", "nsm-bar.manifest",
-                                           "resonances.csv", "spectrum.csv", "tongues.csv"]:
+                                           "parameters.prm", "resonances.csv", "spectrum.csv", "summary.txt",
+                                           "tongues.csv"]:
             failures.append(f"short branch wrote {sorted(os.listdir('short'))}")
     return report(failures)
 

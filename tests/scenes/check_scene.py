@@ -190,12 +190,14 @@ def read_vtu(path):
     assert grid.GetNumberOfPoints() > 0 and grid.GetNumberOfCells() > 0, f"{path}: empty"
     data = grid.GetPointData()
     arrays = {data.GetArrayName(i): vtk_to_numpy(data.GetArray(i)) for i in range(data.GetNumberOfArrays())}
-    assert set(arrays) == {"displacement", "velocity", "strain", "normal_force"}, set(arrays)
+    assert set(arrays) == {"displacement", "axial_displacement", "velocity", "strain", "normal_force"}, set(arrays)
     # The displacement is a vector along x (Warp By Vector moves the bar along
-    # its axis): three components, the last two zero.
+    # its axis): three components, the last two zero; axial_displacement is
+    # the same value as a scalar (ParaView colours it with its sign).
     vector = arrays["displacement"]
     assert vector.ndim == 2 and vector.shape[1] == 3, vector.shape
     assert all(y == 0 and z == 0 for _, y, z in vector), f"{path}: displacement not along x"
+    assert (arrays.pop("axial_displacement") == vector[:, 0]).all(), f"{path}: axial_displacement is not u"
     arrays["displacement"] = vector[:, 0]
     fields = grid.GetFieldData()
     read_vtu.field_data = {fields.GetArrayName(i): vtk_to_numpy(fields.GetArray(i))[0]
@@ -394,11 +396,11 @@ def check_no_field_outputs(name, summary):
     """A backbone scene without fields, VTK and plots writes none of them and
     spends no time on them."""
     files = sorted(os.listdir(name))
-    assert files == ["backbone.csv", "continuation.log", "grazing.csv", "nsm-bar.manifest", "resonances.csv",
-                     "tongues.csv"], files
+    assert files == ["backbone.csv", "continuation.log", "grazing.csv", "nsm-bar.manifest", "parameters.prm",
+                     "resonances.csv", "summary.txt", "tongues.csv"], files
     with open(f"{name}/nsm-bar.manifest") as f:
-        assert sorted(f.read().split()) == ["backbone.csv", "continuation.log", "grazing.csv", "resonances.csv",
-                                            "tongues.csv"]
+        assert sorted(f.read().split()) == ["backbone.csv", "continuation.log", "grazing.csv", "parameters.prm",
+                                            "resonances.csv", "summary.txt", "tongues.csv"]
     for stage in ("fields", "plots"):
         assert f"  {stage} " not in summary, stage
 

@@ -199,7 +199,8 @@ def checkpoint_edit(edit, checksum, room_pages=0):
     def setup(row):
         stopped_run(row["executable"], room_pages=room_pages)
         text = read(CHECKPOINT)
-        body, line = text[:text.rindex("checksum ")], text[text.rindex("checksum "):]
+        at = text.rfind("checksum ")
+        body, line = (text[:at], text[at:]) if at >= 0 else (text, "")
         changed = edit(body)
         assert changed != body, "the edit changed nothing"
         write(CHECKPOINT, changed + ("checksum %016x\n" % fnv1a(changed.encode()) if checksum else line))
@@ -251,6 +252,42 @@ def flipped_state(body):
     return "\n".join(lines)
 
 
+def planted_verification(row):
+    """A stopped run without verification points, then a verification.resume
+    planted beside its checkpoint, whole (its checksum right) and listed in
+    the manifest."""
+    scene = ANNOUNCED + output(Verify_in_time="true", Verify_every=50)
+    stopped_run(row["executable"], scene)
+    body = "nsm-bar verification checkpoint 1\nsettings 2000 2\nend\n"
+    write("out/verification.resume", body + "checksum %016x\n" % fnv1a(body.encode()))
+    with open("out/nsm-bar.manifest", "a") as f:  # listed, as the run's own would be
+        f.write("verification.resume\n")
+    write("scene.prm", scene)
+
+
+def users_lookalike_folder(row):
+    name = staging_prefix("out") + "mine"
+    os.makedirs(name)
+    write(os.path.join(name, "notes.txt"), "mine\n")
+    row["users"] = os.path.join(name, "notes.txt")
+
+
+def manifest_pointing_outside(row):
+    write("first.prm", VTK)
+    prepare_run(row["executable"], "first.prm")
+    os.makedirs("victim")
+    for name in ("snapshot_0000.vtu", "snapshot_0001.vtu"):
+        write(os.path.join("victim", name), "mine\n")
+    with open("out/nsm-bar.manifest", "a") as f:
+        f.write("../victim/ (2 snapshots)\n")
+    row["users"] = "victim/snapshot_0001.vtu"
+
+
+def fake_matplotlib_exiting(_):
+    os.makedirs("fake/matplotlib")
+    write("fake/matplotlib/__init__.py", "import os\nos._exit(0)\n")
+
+
 def checkpoint_kept(_):
     assert os.path.exists(CHECKPOINT), "the refused resume removed the checkpoint"
 
@@ -295,7 +332,9 @@ def locked_sibling(live):
     process keeps it locked, as a run in another PID namespace would) or
     none does (a dead run's, with a process number that is alive here)."""
     def setup(row):
-        name = staging_prefix("out") + "run-1-" + ("live" if live else "dead")
+        # A live one under a process number that does not exist here (its
+        # run's PID namespace is another); a dead one under one that does.
+        name = staging_prefix("out") + ("4000000" if live else "run-1-0123456789abcdef")
         os.makedirs(name)
         write(os.path.join(name, "backbone.csv.partial"), "half\n")
         if live:
@@ -321,7 +360,7 @@ def aside_output(target_exists):
     def setup(row):
         write("first.prm", SMALL + output(Directory="out", Spectrum_modes=2))
         prepare_run(row["executable"], "first.prm")
-        aside = staging_prefix("out") + "aside-1-killed"
+        aside = staging_prefix("out") + "aside-1-0123456789abcdef"
         (shutil.copytree if target_exists else os.rename)("out", aside)
         write(os.path.join(aside, "notes.txt"), "mine\n")
         row["aside"] = aside
@@ -368,6 +407,12 @@ def new_rows(executable):
                                    ("beyond_count", "out/field_0_snapshots/snapshot_9999.vtu", "snapshot_9999"),
                                    ("hidden", "out/field_0_snapshots/.notes", ".notes"),
                                    ("folder", "out/field_0_snapshots/mine/", "mine")]],
+        # An edited manifest pointing outside the directory; a folder of the
+        # user's named like a staging one. old: both deleted.
+        dict(name="manifest_line_outside_the_directory", cls=1, scene=VTK, code=(0, 2), leaves={"out", "victim"},
+             setup=manifest_pointing_outside, check=users_file_intact),
+        dict(name="users_folder_named_like_a_staging_one", cls=1, scene=PLOTTED, code=0, leaves={"out"},
+             setup=users_lookalike_folder, check=users_file_intact),
         # ---- 3. signals while the plots are drawn ---------------------------
         # old: exit 3 "the plotting script failed: KeyboardInterrupt", nothing kept.
         *[dict(name=f"{sig.name.lower()}_during_plots", cls=3, scene=PLOTTED, interrupt=(sig, "plots"),
@@ -410,6 +455,11 @@ def new_rows(executable):
              args=["--resume"], code=2, words=["--resume"], leaves={"out"}, check=checkpoint_kept),
         dict(name="checkpoint_points_swapped", cls=5, scene=None, setup=checkpoint_edit(swapped_points, True, room_pages=1),
              args=["--resume"], code=2, words=["--resume"], leaves={"out"}, check=checkpoint_kept),
+        # A verification.resume the interrupted run did not write. old: its
+        # points were taken as verified.
+        dict(name="checkpoint_planted_verification", cls=5, scene=None, setup=planted_verification,
+             args=["--resume", "--set", "Output/Progress every=1e6"], code=2, words=["--resume", "verification.resume"],
+             leaves={"out"}, check=checkpoint_kept),
         dict(name="checkpoint_cut_short", cls=5, scene=None,
              setup=checkpoint_edit(lambda b: b[:len(b) // 2] + "\n", False), args=["--resume"], code=2,
              words=["--resume"], leaves={"out"}, check=checkpoint_kept),
@@ -420,6 +470,14 @@ def new_rows(executable):
           for entry, value in [("Continuation/Energy max", "1e-310"), ("Output/Progress every", "4.9e-324"),
                                ("Continuation/Fill gaps wider than", "2e-308"),
                                ("Continuation/Energy max", "-1e-320")]],
+        # Lists too. old: accepted (the subnormal written into receptance.csv).
+        *[dict(name=f"subnormal_in_{tag}", cls=6, scene=scene, args=["--set", f"{entry}={value}"], code=2,
+               words=[entry, "subnormal"], before_work=True)
+          for tag, scene, entry, value in [
+              ("receptance_list", PLOTTED, "Output/Receptance frequencies", "0.5, 1e-310"),
+              ("underflow_in_list", PLOTTED, "Output/Receptance frequencies", "1e-400"),
+              ("study_list", SMALL + section("Study", Spectrum_modes=2) + output(Directory="out"),
+               "Study/Receptance frequencies", "1e-310")]],
         # ---- 7. text that is not UTF-8 --------------------------------------
         # old: exit 4 "<unspecified file>(354): invalid code sequence".
         dict(name="not_utf8_output_option", cls=7, scene=PLOTTED, args=["--output", latin1], code=2,
@@ -438,6 +496,12 @@ def new_rows(executable):
              code=2, words=["Bar/Cross section", "control character"], before_work=True),
         dict(name="escape_in_cross_section", cls=8, scene=PLOTTED, args=["--set", "Bar/Cross section=1.5\x1b- x"],
              code=2, words=["Bar/Cross section", "control character"], before_work=True),
+        # C1 controls (CSI, NEL) in UTF-8. old: accepted, and printed raw.
+        dict(name="c1_control_in_cross_section", cls=8, scene=PLOTTED, args=["--set", "Bar/Cross section=1.5\x9b- x"],
+             code=2, words=["Bar/Cross section", "control character", "\\xc2\\x9b"], before_work=True,
+             check=no_control_characters),
+        dict(name="c1_control_in_directory", cls=8, scene=PLOTTED, args=["--output", "out\x85x"], code=2,
+             words=["Output/Directory", "control character"], before_work=True, check=no_control_characters),
         # ---- 9. a redrawn study.png is whole or untouched -------------------
         # old: rewritten in place, a kill or a full disk left it truncated.
         dict(name="study_png_redraw_fails", cls=9, scene=STUDY_PLOTTED, setup=study_done,
@@ -453,10 +517,19 @@ def new_rows(executable):
              code=5, words=["output error", "plots"], leaves={"out"}, check=backbone_kept),
         dict(name="plots_file_limit", cls=10, scene=PLOTTED, preexec=limits(nofile=6), code=5,
              words=["output error", "plots"], leaves={"out"}, check=backbone_kept),
+        # A script that ends with status 0 before drawing. old: exit 0, no plots, no word.
+        dict(name="plots_script_exits_early", cls=10, scene=PLOTTED, setup=fake_matplotlib_exiting,
+             env={"PYTHONPATH": os.path.abspath("hostile/plots_script_exits_early/fake")}, code=5,
+             words=["output error", "plots"], leaves={"out", "fake"}, check=backbone_kept),
         # ---- 11. names no file system takes, folders a failed run made -------
         # old: refused after all the work (exit 5).
         dict(name="directory_name_256_bytes", cls=11, scene=PLOTTED, args=["--output", "new/" + "a" * 256],
              code=2, words=["Output/Directory", "256 bytes"], before_work=True),
+        # A long path ending in a short name. old: exit 5 after the work
+        # (the staging name is longer than the last component).
+        dict(name="directory_path_4000_bytes", cls=11, scene=PLOTTED,
+             args=["--output", "/".join(["d" * 200] * 19) + "/o"], code=2, words=["Output/Directory", "bytes long"],
+             before_work=True),
         # old: new/deeper was left behind by the failed run.
         dict(name="failed_run_removes_its_folders", cls=11,
              scene=SMALL + section("Contact", Alpha="1e12") + output(Directory="new/deeper/out", Backbone="true"),

@@ -184,6 +184,24 @@ TEST(UsersFilesAreNeverRemoved, AFileInThePreviousOutputGoesBackIntoTheDirectory
   EXPECT_EQ(fs::path(kept).filename().string().rfind(".", 0), std::string::npos) << "a hidden name: " << kept;
 }
 
+// An edited manifest names nothing outside the directory: a line with a
+// folder part, "..", or an absolute path removes nothing.
+TEST(UsersFilesAreNeverRemoved, AManifestLineOutsideTheDirectoryRemovesNothing)
+{
+  const fs::path base = scratch("edited");
+  write_run((base / "previous").string());
+  fs::create_directories(base / "victim");
+  for (const char *name : {"snapshot_0000.vtu", "snapshot_0001.vtu", "data.csv"})
+    std::ofstream(base / "victim" / name) << "mine\n";
+  std::ofstream(base / "previous" / "nsm-bar.manifest", std::ios::app)
+    << "../victim/ (2 snapshots)\n" << (base / "victim").string() << "/ (2 snapshots)\n../victim/data.csv\n"
+    << (base / "victim" / "data.csv").string() << "\n..\n";
+  write_run((base / "target").string());
+  nsm::discard_previous_output((base / "previous").string(), (base / "target").string());
+  for (const char *name : {"snapshot_0000.vtu", "snapshot_0001.vtu", "data.csv"})
+    EXPECT_EQ(text_of(base / "victim" / name), "mine\n") << name;
+}
+
 // The race itself: a user's file created in the directory at any moment
 // while runs replace it survives every time (before, 14 of 180 went out with
 // the previous output).
@@ -233,10 +251,16 @@ TEST(OutputDirectory, ALiveRunsStagingIsKeptWhateverItsProcessNumber)
   // A dead run's, whatever its number (here one of this live process).
   nsm::OutputDirectory probe((base / "out").string());
   const std::string prefix = fs::path(probe.staging()).filename().string().substr(0, 26);
-  fs::create_directory(base / (prefix + "run-" + std::to_string(getpid()) + "-dead"));
+  const fs::path dead = base / (prefix + "run-" + std::to_string(getpid()) + "-0123456789abcdef");
+  fs::create_directory(dead);
+  // A folder of the user's that only starts like a staging name is not one.
+  const fs::path mine = base / (prefix + "mine");
+  fs::create_directory(mine);
+  std::ofstream(mine / "notes.txt") << "mine\n";
   nsm::OutputDirectory next((base / "out").string());
-  EXPECT_FALSE(fs::exists(base / (prefix + "run-" + std::to_string(getpid()) + "-dead")));
+  EXPECT_FALSE(fs::exists(dead));
   EXPECT_TRUE(fs::is_directory(probe.staging()));
+  EXPECT_EQ(text_of(mine / "notes.txt"), "mine\n");
 }
 
 // A run killed in the fallback swap (no RENAME_EXCHANGE) between its renames
@@ -250,10 +274,10 @@ TEST(OutputDirectory, APreviousOutputLeftAsideIsPutBack)
     nsm::OutputDirectory probe((base / "out").string());
     prefix = fs::path(probe.staging()).filename().string().substr(0, 26);
   }
-  fs::rename(base / "out", base / (prefix + "aside-1-killed"));
+  fs::rename(base / "out", base / (prefix + "aside-1-0123456789abcdef"));
   nsm::OutputDirectory next((base / "out").string());
   EXPECT_EQ(text_of(base / "out" / "a.csv"), "x\n1\n");
-  EXPECT_FALSE(fs::exists(base / (prefix + "aside-1-killed")));
+  EXPECT_FALSE(fs::exists(base / (prefix + "aside-1-0123456789abcdef")));
 }
 
 // A failed run removes the parent folders it made, and only those; a name

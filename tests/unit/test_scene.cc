@@ -143,7 +143,9 @@ TEST(Scene, DeclaredDefaultsAreTheStructDefaults)
   EXPECT_EQ(pc.search_reach, dc.search_reach);
   EXPECT_EQ(pc.leap_from_fewer_harmonics, dc.leap_from_fewer_harmonics);
   const auto &po = parsed.output, &dout = d.output;
-  EXPECT_EQ(po.directory, dout.directory);
+  // The default directory (empty) becomes output/NAME, NAME the scene's.
+  EXPECT_EQ(dout.directory, "");
+  EXPECT_EQ(po.directory.rfind("output/", 0), 0u) << po.directory;
   EXPECT_EQ(po.spectrum_modes, dout.spectrum_modes);
   EXPECT_EQ(po.receptance_frequencies, dout.receptance_frequencies);
   EXPECT_EQ(po.backbone, dout.backbone);

@@ -27,6 +27,10 @@ namespace nsm
   /// then "checksum H", H its FNV-1a hash in hexadecimal. Returns the path.
   std::string write_checksummed(const std::string &path, const std::function<void(std::ostream &)> &write);
 
+  /// The text of the checkpoint at `path` before its checksum line, hashed
+  /// (fnv1a); 0 if it cannot be read.
+  std::uint64_t text_hash(const std::string &path);
+
   class CheckpointReader
   {
   public:
@@ -40,6 +44,9 @@ namespace nsm
 
     /// The text of the lines read so far.
     std::string text_read();
+
+    /// Whether every line before the checksum was read.
+    bool finished() { return in_.peek() == std::char_traits<char>::eof(); }
 
     /// The next line, which must be `line` (a format line).
     void expect(const std::string &line);

@@ -21,6 +21,13 @@ namespace nsm
   /// not (its rows stop at row boundaries, whole).
   void stop_at_points(bool enabled);
 
+  /// What a stop signal answers at once, on stderr: `first` on the first
+  /// signal, `again` on each later one (nullptr: nothing); both must live to
+  /// the end of the program. With `points_on_second_signal`, a second
+  /// signal turns stop_at_points on (a study's current row stops at its next
+  /// point).
+  void acknowledge_stops(const char *first, const char *again, bool points_on_second_signal);
+
   /// The signal to stop at this point for; 0 if none, or if stop_at_points
   /// is off.
   int point_stop_signal();

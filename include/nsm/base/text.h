@@ -5,12 +5,13 @@
 
 namespace nsm
 {
-  /// `text` with each control character (newline, tab, NUL, ...) and each
-  /// byte that is not part of valid UTF-8 written as \xNN, so that a message
-  /// that quotes it stays on one line and is valid text.
+  /// `text` with each control character (newline, tab, NUL, DEL, and the C1
+  /// controls U+0080 to U+009F such as CSI) and each byte that is not part of
+  /// valid UTF-8 written as \xNN, so that a message that quotes it stays on
+  /// one line, is valid text and moves no terminal's cursor.
   std::string printable(const std::string &text);
 
-  /// Whether `text` holds a control character.
+  /// Whether `text` holds a control character (C0, DEL or C1).
   bool has_control_character(const std::string &text);
 
   /// Whether `text` is valid UTF-8 (shortest forms, no surrogates): what a

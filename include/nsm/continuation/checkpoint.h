@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <iosfwd>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,6 +15,11 @@
 namespace nsm
 {
   class HarmonicBalance;
+
+  /// The hashes (fnv1a of the text before the checksum) of the checkpoints
+  /// written beside the continuation's, by file name (verification.resume,
+  /// refinement.resume): a resumed run reads only these.
+  using CheckpointCompanions = std::map<std::string, std::uint64_t>;
 
   struct ContinuationCheckpoint
   {
@@ -33,6 +39,8 @@ namespace nsm
     /// as `end` says.
     bool        complete = false;
     BackboneEnd end      = BackboneEnd::range;
+    /// The checkpoints written beside this one.
+    CheckpointCompanions companions;
   };
 
   /// The checkpoint's name in the output directory.
@@ -44,7 +52,8 @@ namespace nsm
   /// (model_fingerprint). Write it
   /// with write_checksummed (base/checkpoint_reader.h).
   void write_checkpoint(std::ostream &out, const ContinuationCheckpoint &checkpoint,
-                        const std::vector<std::string> &computation_entries, HarmonicBalance &hb);
+                        const std::vector<std::string> &computation_entries, HarmonicBalance &hb,
+                        const CheckpointCompanions &companions = {});
 
   /// A hash of `text` (the checkpoint's lines before it), then of the bits
   /// of each point's numbers (segment, Omega, residual norm, Newton

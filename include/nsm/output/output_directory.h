@@ -29,6 +29,9 @@ namespace nsm
     /// Where this run writes its files.
     const std::string &staging() const { return staging_; }
 
+    /// Where `files` (paths under staging()) will be once committed.
+    std::vector<std::string> final_paths(const std::vector<std::string> &files) const;
+
     /// Writes the manifest of `files` (paths under staging()), and after them
     /// the `notes`, each on a line that starts with "/ " (no file's name
     /// can), removes from the staging directory what the manifest does not

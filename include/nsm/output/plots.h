@@ -21,12 +21,13 @@ namespace nsm
     int stopped_by = 0;
   };
 
-  /// Runs the shipped plotting script on the files in `directory`, with its
+  /// Runs the shipped plotting script on the files in `directory` (each
+  /// figure says `caption`: which scene, mesh and M drew it), with its
   /// log in directory/plots.log, in a process group of its own: a stop
   /// signal reaches this process only, which ends the script at once (one
   /// that came before the plots began does not: a stopped run draws what it
   /// computed). A plot
   /// is an output like any other: its failure never discards the files
   /// computed, and is reported to the caller, not thrown.
-  PlotResult make_plots(const Scene::Contact &contact, const std::string &directory);
+  PlotResult make_plots(const Scene::Contact &contact, const std::string &directory, const std::string &caption);
 } // namespace nsm

@@ -181,7 +181,10 @@ namespace nsm
 
     struct Output
     {
-      std::string         directory      = "output";
+      /// Empty: output/NAME, NAME the scene file's name without its
+      /// extension (Scene::from_parameters), so that scenes without a
+      /// Directory never write into one folder.
+      std::string         directory;
       unsigned int        spectrum_modes = 0;
       std::vector<double> receptance_frequencies;
       bool                backbone       = false;
@@ -212,6 +215,14 @@ namespace nsm
     /// what decides the continuation's points. A run resumed with --resume
     /// must share them with the run it continues (continuation/checkpoint.h).
     std::vector<std::string> computation_entries;
+
+    /// The scene as read, every entry (the --set values applied, the output
+    /// directory resolved), as a parameter file that runs it again: the run
+    /// record's parameters.prm. Empty for a scene not read from a file.
+    std::string parameter_file;
+
+    /// Where the scene was read from (the scene file; a study's row says so).
+    std::string origin;
 
     /// Reads and validates a scene file; throws InputError.
     static Scene from_file(const std::string &path);
