@@ -388,7 +388,8 @@ namespace nsm
               for (const std::string &event : report_.events)
                 out << event << '\n';
             }));
-          const FieldOutputOptions options{scene_.field_time_samples(), scene_.output.vtk, scene_.output.plots};
+          const FieldOutputOptions options{scene_.field_time_samples(), scene_.output.vtk, scene_.output.plots,
+                                           scene_.output.vtk_time_over_period};
           Progress progress("output", scene_.output.progress_every);
           for (std::size_t i = 0; i < fields_.size(); ++i)
             {

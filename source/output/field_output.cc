@@ -121,7 +121,7 @@ namespace nsm
 
     /// The (x, t) mesh: x cells as the bar's mesh, time cells so that the
     /// support points of FE_Q(p) in t number at least `samples`.
-    void make_space_time_mesh(dealii::Triangulation<2> &mesh, const PeriodicField &field, const Discretisation &d,
+    void make_space_time_mesh(dealii::Triangulation<2> &mesh, const double duration, const Discretisation &d,
                               const unsigned int samples)
     {
       const unsigned int  p = d.fe().degree;
@@ -135,23 +135,30 @@ namespace nsm
           x_steps.push_back(b - a);
       }
       const unsigned int        time_cells = (samples + p - 1) / p;
-      const std::vector<double> t_steps(time_cells, field.period() / time_cells);
+      const std::vector<double> t_steps(time_cells, duration / time_cells);
       dealii::GridGenerator::subdivided_hyper_rectangle(mesh, {x_steps, t_steps}, dealii::Point<2>(0, 0),
-                                                        dealii::Point<2>(d.bar().length(), field.period()));
+                                                        dealii::Point<2>(d.bar().length(), duration));
     }
 
     /// The space-time field on the 2D mesh of (x, t), FE_Q(p) in both, values
     /// interpolated at the support points (exact in x: the 2D and 1D support
     /// points coincide).
+    /// The VTK files' time unit: the period (their time is t / T) or 1.
+    double time_unit(const PeriodicField &field, const bool over_period)
+    {
+      return over_period ? field.period() : 1.0;
+    }
+
     std::string write_space_time(const std::string    &directory,
                                  unsigned int          index,
                                  const PeriodicField  &field,
                                  const Discretisation &d,
-                                 unsigned int          samples)
+                                 unsigned int          samples,
+                                 const double          unit)
     {
       const unsigned int       p = d.fe().degree;
       dealii::Triangulation<2> mesh;
-      make_space_time_mesh(mesh, field, d, samples);
+      make_space_time_mesh(mesh, field.period() / unit, d, samples);
       const dealii::FE_Q<2> fe(p);
       dealii::DoFHandler<2> dofs(mesh);
       dofs.distribute_dofs(fe);
@@ -171,8 +178,8 @@ namespace nsm
       for (unsigned int i = 0; i < dofs.n_dofs(); ++i)
         {
           const unsigned int dof = dof_at(points[i][0]);
-          u[i] = field.displacement(dof, points[i][1]);
-          v[i] = field.velocity(dof, points[i][1]);
+          u[i] = field.displacement(dof, points[i][1] * unit);
+          v[i] = field.velocity(dof, points[i][1] * unit);
         }
 
       const AxialStrainAndForce<2> derived(d.bar());
@@ -193,7 +200,8 @@ namespace nsm
                                              unsigned int          index,
                                              const PeriodicField  &field,
                                              const Discretisation &d,
-                                             unsigned int          samples)
+                                             unsigned int          samples,
+                                             const double          unit)
     {
       const std::string folder = name(index, "_snapshots");
       std::filesystem::create_directories(directory + "/" + folder);
@@ -212,11 +220,11 @@ namespace nsm
           out.add_data_vector(v, "velocity");
           out.add_data_vector(u, derived);
           out.build_patches(d.fe().degree);
-          out.set_flags(vtk_flags(t));
+          out.set_flags(vtk_flags(t / unit));
           std::ostringstream file;
           file << folder << "/snapshot_" << std::setw(4) << std::setfill('0') << j << ".vtu";
           write_vtu(directory + "/" + file.str(), out, false);
-          series.emplace_back(t, file.str());
+          series.emplace_back(t / unit, file.str());
         }
       return {write_atomically(directory + "/" + name(index, "_snapshots.pvd"),
                          [&](std::ostream &s) { dealii::DataOutBase::write_pvd_record(s, series); }),
@@ -291,8 +299,9 @@ namespace nsm
       files.push_back(write_csv(directory, space_time_table(index, field, d, n)));
     if (options.vtk)
       {
-        files.push_back(write_space_time(directory, index, field, d, n));
-        for (std::string &f : write_snapshots(directory, index, field, d, n))
+        const double unit = time_unit(field, options.vtk_time_over_period);
+        files.push_back(write_space_time(directory, index, field, d, n, unit));
+        for (std::string &f : write_snapshots(directory, index, field, d, n, unit))
           files.push_back(std::move(f));
       }
     return files;

@@ -66,6 +66,11 @@ namespace nsm
                       Patterns::Bool(),
                       "ParaView files of the fields: space-time .vtu, .pvd of 1D snapshots, "
                       "fields.pvd.");
+    prm.declare_entry("VTK time",
+                      d.vtk_time_over_period ? "t/T" : "t",
+                      Patterns::Selection("t|t/T"),
+                      "The VTK files' time axis: t (the space-time mesh spans one period T, the "
+                      "snapshots' TIME is t), or t/T (it spans 1, as the plots' axis).");
     prm.declare_entry("Plots",
                       text(d.plots),
                       Patterns::Bool(),
@@ -135,6 +140,7 @@ namespace nsm
             "0 or an integer in [4, 100000]",
             std::to_string(field_time_samples));
     vtk            = prm.get_bool("VTK");
+    vtk_time_over_period = prm.get("VTK time") == "t/T";
     plots          = prm.get_bool("Plots");
     progress_every = prm.get_double("Progress every");
     verify_in_time   = prm.get_bool("Verify in time");

@@ -15,6 +15,7 @@ usage: check_record.py NSM_BAR
   `nsm-bar DIR --resume` alone, from its record, and ends whole.
 - scripts/compare_backbones.py answers --help, takes folders, and draws the
   two runs in one PNG.
+- Output/VTK time = t/T puts the VTK files' time in periods, as the plots.
 """
 import filecmp
 import os
@@ -113,6 +114,31 @@ def compare_script():
     print("compare_backbones.py: --help, folders, overlay.png")
 
 
+def vtk_time_axis(executable):
+    """Output/VTK time = t/T: the space-time mesh spans one unit of time and
+    the snapshots' times are fractions of the period; with t, one period."""
+    import vtk  # Debian's python3-vtk9
+    from vtk.util.numpy_support import vtk_to_numpy
+    spans = {}
+    for axis in ("t", "t/T"):
+        directory = "vtk_" + axis.replace("/", "_")
+        write("vtk.prm", small_seed_scene({"Directory": directory, "Fields at": 1.925, "VTK": "true",
+                                           "VTK time": axis}, omega_max=1.93))
+        run([executable, "vtk.prm"])
+        reader = vtk.vtkXMLUnstructuredGridReader()
+        reader.SetFileName(f"{directory}/field_0.vtu")
+        reader.Update()
+        times = vtk_to_numpy(reader.GetOutput().GetPoints().GetData())[:, 1]
+        steps = [float(t) for t in re.findall(r'timestep="([^"]+)"', read(f"{directory}/field_0_snapshots.pvd"))]
+        spans[axis] = (times.min(), times.max(), max(steps))
+    period = 2 * 3.141592653589793 / 1.925
+    low, high, last = spans["t"]
+    assert low == 0 and abs(high - period) < 1e-5 * period and period * 0.9 < last < period, spans
+    low, high, last = spans["t/T"]
+    assert low == 0 and abs(high - 1) < 1e-6 and 0.9 < last < 1, spans
+    print(f"VTK time axis: t spans {spans['t'][1]:.6g} (the period), t/T spans {spans['t/T'][1]:.6g}")
+
+
 def main():
     executable = os.path.abspath(sys.argv[1])
     for directory in ("recorded", "again", "without_set", "output", "stopped"):
@@ -121,6 +147,7 @@ def main():
     default_directories(executable)
     resume_from_record(executable)
     compare_script()
+    vtk_time_axis(executable)
 
 
 if __name__ == "__main__":

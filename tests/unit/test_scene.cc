@@ -153,6 +153,7 @@ TEST(Scene, DeclaredDefaultsAreTheStructDefaults)
   EXPECT_EQ(po.fields_every, dout.fields_every);
   EXPECT_EQ(po.field_time_samples, dout.field_time_samples);
   EXPECT_EQ(po.vtk, dout.vtk);
+  EXPECT_EQ(po.vtk_time_over_period, dout.vtk_time_over_period);
   EXPECT_EQ(po.plots, dout.plots);
   EXPECT_EQ(po.progress_every, dout.progress_every);
   EXPECT_EQ(po.verify_in_time, dout.verify_in_time);

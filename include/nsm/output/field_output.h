@@ -17,6 +17,8 @@ namespace nsm
     unsigned int time_samples; ///< per period: CSV rows, snapshots, plots
     bool         vtk;
     bool         plots;
+    /// The VTK files' time axis in periods (t / T, as the plots), not in t.
+    bool vtk_time_over_period = false;
   };
 
   /// Writes field_<index>_* files; returns the paths written.

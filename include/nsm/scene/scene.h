@@ -194,6 +194,8 @@ namespace nsm
       unsigned int        fields_every       = 0; ///< every n-th backbone point; 0 = none
       unsigned int        field_time_samples = 0; ///< 0: 2 (2 M + 1)
       bool                vtk                = false;
+      /// The VTK files' time axis: t / T (the plots' axis) instead of t.
+      bool vtk_time_over_period = false;
       bool                plots              = false;
       double              progress_every     = 5.0; ///< seconds; 0 = never
       bool                verify_in_time     = false;
