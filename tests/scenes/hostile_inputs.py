@@ -9,6 +9,7 @@ the allowed range where the row gives it); that no file is left behind
 besides what the row set up; and the row's own check, if any. Uses the
 standard library only.
 """
+import contextlib
 import csv
 import math
 import re
@@ -460,10 +461,11 @@ def signal_name(code):
     return str(code)
 
 
-def run_row(executable, row):
-    """Runs the row in ./hostile/NAME and checks it; raises AssertionError with
-    every expectation that failed."""
-    import hostile_round_two
+@contextlib.contextmanager
+def row_directory(row):
+    """./hostile/NAME, made anew, is the working directory while the row runs
+    (its scene written there as row["scene_file"]); it is removed after a row
+    that passed, and kept for a look after one that failed."""
     directory = os.path.abspath(os.path.join("hostile", row["name"]))
     shutil.rmtree(directory, ignore_errors=True)
     os.makedirs(directory)
@@ -474,6 +476,17 @@ def run_row(executable, row):
         if row.get("scene") is not None:
             with open(row["scene_file"], "w", errors="surrogateescape") as f:
                 f.write(row["scene"])
+        yield
+    finally:
+        os.chdir(home)
+    shutil.rmtree(directory, ignore_errors=True)
+
+
+def run_row(executable, row):
+    """Runs the row in ./hostile/NAME and checks it; raises AssertionError with
+    every expectation that failed."""
+    import hostile_round_two
+    with row_directory(row):
         if "setup" in row:
             row["setup"](row)
         before = listing(".")
@@ -519,9 +532,6 @@ def run_row(executable, row):
         if "check" in row and not reasons:
             row["check"](row)
         assert not reasons, f"{row['name']}: " + "; ".join(reasons)
-    finally:
-        os.chdir(home)
-    shutil.rmtree(directory, ignore_errors=True)
 
 
 def main():

@@ -34,7 +34,7 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-from hostile_inputs import SMALL, listing, output, run_row, section  # noqa: E402
+from hostile_inputs import SMALL, listing, output, row_directory, run_row, section  # noqa: E402
 from hostile_round_two import limits, prepare_run, read, write  # noqa: E402
 from stop_signals import blocked_writing_stderr, full_pipe  # noqa: E402
 
@@ -576,18 +576,8 @@ def main():
         start = time.time()
         try:
             if "interrupt" in row or "launcher" in row:
-                directory = os.path.abspath(os.path.join("hostile", row["name"]))
-                shutil.rmtree(directory, ignore_errors=True)
-                os.makedirs(directory)
-                home = os.getcwd()
-                os.chdir(directory)
-                try:
-                    row.setdefault("scene_file", "scene.prm")
-                    write(row["scene_file"], row["scene"])
+                with row_directory(row):
                     (interrupted if "interrupt" in row else launched)(row, executable)
-                finally:
-                    os.chdir(home)
-                shutil.rmtree(directory, ignore_errors=True)
             else:
                 run_row(executable, row)
             counts[row["cls"]] += 1
