@@ -28,7 +28,7 @@ echo "building ${NSM_BUILD_TARGETS:-everything} in build/ (a first build takes m
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > build.log 2>&1 || { cat build.log; exit 1; }
 set +o pipefail
 cmake --build build -j "$(nproc)" "${targets[@]}" 2>&1 | tee -a build.log \
-  | grep --line-buffered -E '^\[ *[0-9]+%\] (Building|Linking)' | sed -u 's/ CXX object.*\/source\// /' | uniq
+  | grep --line-buffered -E '^\[ *[0-9]+%\] (Building|Linking)' | sed -u 's/ CXX object.*\/source\// /'
 status=${PIPESTATUS[0]}
 set -o pipefail
 [ "$status" -eq 0 ] || { tail -50 build.log; exit 1; }
