@@ -381,6 +381,10 @@ namespace nsm
 
   OutputDirectory::~OutputDirectory()
   {
+    // Unlocked first: under a tight limit on open files (ulimit -n 4) the
+    // removal needs the lock's descriptor.
+    if (lock_ >= 0)
+      close(lock_);
     std::error_code error;
     if (!committed_)
       {
@@ -389,8 +393,6 @@ namespace nsm
         for (const std::string &folder : created_parents_)
           fs::remove(folder, error);
       }
-    if (lock_ >= 0)
-      close(lock_);
   }
 
   namespace

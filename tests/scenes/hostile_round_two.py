@@ -565,7 +565,8 @@ def new_rows(executable):
         # exit 1, 48 lines of PMIX/ORTE/MPI_INIT text.
         dict(name="fsize_1024_study_serial", scene=STUDY_QUIET, code=5, words=["output error"],
              preexec=limits(fsize=1024), check=no_mpi_text),
-        # RLIMIT_NOFILE: a plain scene (no plots) runs from 4 (at 3 the dynamic
+        # RLIMIT_NOFILE: a plain scene (no plots) runs from 5 (4 and its staging
+        # folder's lock: hostile_round_three.py's nofile_4; at 3 the dynamic
         # loader fails before main, exit 127); with plots from 7 or 8 (Python's);
         # the old study needs 24 (MPI singleton init).
         # old: exit 1, 29 lines of ORTE errors.
