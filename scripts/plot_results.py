@@ -375,6 +375,9 @@ def study_plot(directory):
                      label="Pareto front")
         by_time.plot([t for t, _ in front], [e for _, e in front], "ks", mfc="none", ms=7)
         by_dofs.set_xlabel(size_name)
+        if size == "harmonics":  # M itself on the axis: 5, 10, 20, not 2 x 10^1
+            by_dofs.xaxis.set_major_formatter(ticker.FuncFormatter(lambda value, _: f"{value:g}"))
+            by_dofs.xaxis.set_minor_formatter(ticker.FuncFormatter(lambda value, _: f"{value:g}"))
         by_time.set_xlabel("wall time per run [s] (median)")
         by_dofs.set_ylabel("relative error:\n" + name)
         by_time.set_title("relative error: " + name + ", against time", fontsize=9)
@@ -385,7 +388,7 @@ def study_plot(directory):
             by_dofs.legend(fontsize=8, ncol=1 + len(groups) // 12, loc="upper left", bbox_to_anchor=(2.25, 1))
     figure.suptitle("Accuracy against cost, " + ", ".join(sorted({r["reference"] for r in rows})) +
                     " reference" + ("\n" + CAPTION if CAPTION else ""))
-    figure.subplots_adjust(wspace=0.3)
+    figure.subplots_adjust(wspace=0.3, hspace=0.35)
     save(figure, os.path.join(directory, "study.png"))
 
 
