@@ -25,6 +25,7 @@ followed.
 import argparse
 import csv
 import os
+import signal
 import statistics
 import sys
 
@@ -115,13 +116,14 @@ def overlay(runs, path):
     axes.set_yscale("log")
     axes.set_xlabel("Omega")
     axes.set_ylabel("energy")
-    axes.set_title("backbones compared: A against B")
+    axes.set_title("backbones compared: " + " against ".join(label for label, _ in runs), fontsize=10)
     axes.legend(fontsize=8)
     figure.savefig(path, dpi=130, bbox_inches="tight")
     print(f"wrote {path}")
 
 
 def main():
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # piped into head: end quietly
     parser = argparse.ArgumentParser(
         description="Compare two runs' main branches at A's main points; optionally draw both.")
     parser.add_argument("a", help="run A: its backbone.csv or its output folder")
@@ -141,7 +143,7 @@ def main():
         b = sampled_like(read(args.sampled_from), b)
     compare(a, b, args.tolerance, main_pieces(b, args.same_segment, args.max_gap))
     if args.plot:
-        overlay([("A", a), ("B", b)], args.plot)
+        overlay([(f"A ({args.a})", a), (f"B ({args.b})", b)], args.plot)
 
 
 if __name__ == "__main__":
