@@ -172,13 +172,14 @@ MUTATIONS = [
     ("a resumed verification integrates the points it kept again", "source/verification/time_verification.cc",
      "if (i < known.size() && known[i])", "if (false && i < known.size() && known[i])"),
     ("the previous output removed whole, a user's file in it too", "source/output/output_directory.cc",
-     "if (fs::remove(folder, error) || move_back(folder, target))", "if (true)"),
+     "if (fs::remove(folder, error) || (move_back(folder, target) && remove_empty_folders(folder)))",
+     "if (fs::remove_all(folder, error) != static_cast<std::uintmax_t>(-2))"),
     ("a snapshot folder's files checked by type, not by name", "source/output/output_directory.cc",
      "if (inner.is_symlink() || !inner.is_regular_file() ||\n                    !names->count(inner.path().filename().string()))",
      "if (inner.is_symlink() || !inner.is_regular_file())"),
     ("a checkpoint read whatever its checksum", "source/base/checkpoint_reader.cc",
-     "intact_ = text.compare(body, std::string::npos, checksum_line(text.substr(0, body))) == 0;",
-     "intact_ = true;"),
+     "intact_                = text.compare(body, std::string::npos, checksum_line(text.substr(0, body))) == 0;",
+     "intact_                = true;"),
 ]
 
 
