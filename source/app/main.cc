@@ -104,6 +104,10 @@ namespace
             // and the run writes what it has (interruption.h).
             nsm::catch_stop_signals();
             nsm::stop_at_points(true);
+            // Answered at once: a verification point can take a while.
+            nsm::acknowledge_stops("nsm-bar: stop asked: the run stops at its next point and writes what it "
+                                   "computed (ask again while the plots are drawn to end them)\n",
+                                   nullptr, false);
             const nsm::RunReport report = nsm::run_scene(file.scene, resume, command_line);
             nsm::print_report(report, std::cout, verbose);
             if (report.stopped_by != 0)

@@ -1,4 +1,5 @@
 #include <nsm/base/dense_lu.h>
+#include <nsm/base/vector_clones.h>
 
 #include <algorithm>
 #include <cmath>
@@ -13,8 +14,9 @@ namespace nsm
     /// The rank-1 update of the trailing columns, a[k+1:, j] -= a[k+1:, k] a[k, j]:
     /// axpys on contiguous columns, built for AVX-512, for AVX2 and FMA where
     /// the processor has them (GCC function multiversioning) and for plain
-    /// x86-64 elsewhere.
-    __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void
+    /// x86-64 elsewhere; one portable build on other processors
+    /// (base/vector_clones.h).
+    NSM_CLONES_AVX512_AVX2 void
     eliminate(const int n, const int k, double *a)
     {
       const double *__restrict multipliers = a + std::size_t(k) * n;
@@ -140,7 +142,7 @@ namespace nsm
     /// The trailing update A22 -= L21 U12 of the block of `width` pivots from
     /// column k0, built for AVX-512, for AVX2 and FMA where the processor has
     /// them (GCC function multiversioning).
-    __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) void
+    NSM_CLONES_AVX512_AVX2 void
     update_trailing(const int n, const int k0, const int width, double *a)
     {
       if (width == block)
@@ -161,7 +163,7 @@ namespace nsm
 
     /// LU with partial pivoting of the panel of columns k0..k0+width-1 (rows
     /// k0..), whole rows swapped; then U12, the panel's rows right of it.
-    __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"))) bool factor_panel(const int n, const int k0, const int width, double *a, int *pivots)
+    NSM_CLONES_AVX512_AVX2 bool factor_panel(const int n, const int k0, const int width, double *a, int *pivots)
     {
       auto at = [a, n](const int i, const int j) -> double & { return a[i + std::size_t(j) * n]; };
       for (int k = k0; k < k0 + width; ++k)

@@ -1,4 +1,5 @@
 #include <nsm/harmonic_balance/trigonometric_series.h>
+#include <nsm/base/vector_clones.h>
 
 namespace nsm
 {
@@ -22,7 +23,7 @@ namespace nsm
     /// by lanes * tau per block; built for AVX2 and FMA where the processor
     /// has them (GCC function multiversioning).
     template <unsigned int lanes>
-    __attribute__((target_clones("arch=x86-64-v3", "default"))) void
+    NSM_CLONES_AVX2 void
     block_sums(const unsigned int size, const double *__restrict a, const double *__restrict b,
                const double *__restrict ka, const double *__restrict kb, const double *c0, const double *s0,
                const double step_c, const double step_s, double *value, double *slope)
