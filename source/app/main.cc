@@ -105,8 +105,8 @@ namespace
             nsm::catch_stop_signals();
             nsm::stop_at_points(true);
             // Answered at once: a verification point can take a while.
-            nsm::acknowledge_stops("nsm-bar: stop asked: the run stops at its next point and writes what it "
-                                   "computed (ask again while the plots are drawn to end them)\n",
+            nsm::acknowledge_stops("nsm-bar: stop asked: the run stops at its next point, or ends the plots it "
+                                   "draws, and writes what it computed\n",
                                    nullptr, false);
             const nsm::RunReport report = nsm::run_scene(file.scene, resume, command_line);
             nsm::print_report(report, std::cout, verbose);
