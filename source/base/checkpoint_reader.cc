@@ -30,6 +30,21 @@ namespace nsm
                     static_cast<unsigned long long>(fnv1a(text.data(), text.size())));
       return line;
     }
+
+    /// Where the checksum line of `text` starts: after its last but one
+    /// newline (the text before it is what was hashed).
+    std::size_t checksum_start(const std::string &text)
+    {
+      const std::size_t last = text.size() < 2 ? std::string::npos : text.rfind('\n', text.size() - 2);
+      return last == std::string::npos ? 0 : last + 1;
+    }
+
+    std::string whole_file(std::ifstream &file)
+    {
+      std::ostringstream whole;
+      whole << file.rdbuf();
+      return whole.str();
+    }
   } // namespace
 
   std::uint64_t fnv1a(const void *bytes, const std::size_t size, std::uint64_t hash)
@@ -46,24 +61,6 @@ namespace nsm
     write(text);
     return write_atomically(path, [&](std::ostream &out) { out << text.str() << checksum_line(text.str()); });
   }
-
-  namespace
-  {
-    /// Where the checksum line of `text` starts: after its last but one
-    /// newline (the text before it is what was hashed).
-    std::size_t checksum_start(const std::string &text)
-    {
-      const std::size_t last = text.size() < 2 ? std::string::npos : text.rfind('\n', text.size() - 2);
-      return last == std::string::npos ? 0 : last + 1;
-    }
-
-    std::string whole_file(std::ifstream &file)
-    {
-      std::ostringstream whole;
-      whole << file.rdbuf();
-      return whole.str();
-    }
-  } // namespace
 
   std::uint64_t text_hash(const std::string &path)
   {

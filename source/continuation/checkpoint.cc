@@ -47,28 +47,76 @@ namespace nsm
           return end;
       reader.damaged("an end of the continuation expected");
     }
-  } // namespace
 
-  std::uint64_t model_fingerprint(HarmonicBalance &hb, const std::vector<BackbonePoint> &points,
-                                  const std::string &text)
-  {
-    std::uint64_t       hash = fnv1a(text.data(), text.size());
-    std::vector<double> residual;
-    const auto          add = [&](const double *values, const std::size_t n) {
-      hash = fnv1a(values, n * sizeof(double), hash);
-    };
-    for (const BackbonePoint &p : points)
-      {
-        hb.set_omega(p.omega);
-        hb.evaluate(p.x, &residual, nullptr, nullptr);
-        const double numbers[] = {static_cast<double>(p.segment), p.omega, p.residual,
-                                  static_cast<double>(p.newton_iterations)};
-        add(numbers, 4);
-        add(p.x.data(), p.x.size());
-        add(residual.data(), residual.size());
-      }
-    return hash;
-  }
+    /// The model's fingerprint goes on with point `p`: the bits of its
+    /// numbers (segment, Omega, residual norm, Newton iterations, unknowns)
+    /// and of the residual vector `hb`, set to its Omega, gives it.
+    std::uint64_t hash_point(const HarmonicBalance &hb, const BackbonePoint &p, const std::uint64_t hash)
+    {
+      std::vector<double> residual;
+      hb.evaluate(p.x, &residual, nullptr, nullptr);
+      const double numbers[] = {static_cast<double>(p.segment), p.omega, p.residual,
+                                static_cast<double>(p.newton_iterations)};
+      const std::uint64_t with_numbers = fnv1a(p.x.data(), p.x.size() * sizeof(double),
+                                               fnv1a(numbers, sizeof numbers, hash));
+      return fnv1a(residual.data(), residual.size() * sizeof(double), with_numbers);
+    }
+
+    /// The fingerprint line's value: the points' hash (hash_point from the
+    /// empty hash, in order) after the text of the checkpoint's lines before
+    /// it, in hexadecimal.
+    std::string fingerprint(const std::string &text, const std::uint64_t points)
+    {
+      std::ostringstream out;
+      out << std::hex << fnv1a(&points, sizeof points, fnv1a(text.data(), text.size()));
+      return out.str();
+    }
+
+    /// The "point" lines: each point's numbers, its measures computed again
+    /// with `hb`; `points_hash` goes on with each (hash_point).
+    std::vector<BackbonePoint> read_points(CheckpointReader &reader, HarmonicBalance &hb,
+                                           const std::size_t max_points, std::uint64_t &points_hash)
+    {
+      std::istringstream         header = reader.next("points ");
+      std::vector<BackbonePoint> points(reader.count(header, max_points));
+      for (BackbonePoint &p : points)
+        {
+          std::istringstream line = reader.next("point ");
+          p.segment               = reader.count(line, max_points);
+          p.omega                 = reader.number(line);
+          p.residual              = reader.number(line);
+          p.newton_iterations     = reader.count(line, 1u << 30);
+          p.x.resize(reader.count(line, hb.n_unknowns()));
+          if (p.x.size() != hb.n_unknowns())
+            reader.damaged(std::to_string(hb.n_unknowns()) + " unknowns expected");
+          for (double &v : p.x)
+            v = reader.number(line);
+          hb.set_omega(p.omega);
+          p.measures  = hb.measure(p.x);
+          points_hash = hash_point(hb, p, points_hash);
+        }
+      if (points.empty())
+        reader.damaged("at least one point expected");
+      return points;
+    }
+
+    /// The "companions" lines: the other checkpoints' names and hashes.
+    CheckpointCompanions read_companions(CheckpointReader &reader)
+    {
+      CheckpointCompanions companions;
+      std::istringstream   header = reader.next("companions ");
+      for (std::size_t i = 0, n = reader.count(header, 2); i < n; ++i)
+        {
+          std::istringstream line(reader.text_line());
+          std::string        name;
+          std::uint64_t      hash = 0;
+          if (!(line >> name >> std::hex >> hash))
+            reader.damaged("a companion checkpoint's name and hash expected");
+          companions[name] = hash;
+        }
+      return companions;
+    }
+  } // namespace
 
   void write_checkpoint(std::ostream &file, const ContinuationCheckpoint &c,
                         const std::vector<std::string> &computation_entries, HarmonicBalance &hb,
@@ -98,8 +146,13 @@ namespace nsm
     out << "companions " << companions.size() << '\n';
     for (const auto &[name, hash] : companions)
       out << name << ' ' << std::hex << hash << std::dec << '\n';
-    file << out.str() << "model " << std::hex << model_fingerprint(hb, c.points, out.str()) << std::dec
-         << "\nend\n";
+    std::uint64_t points_hash = fnv1a(nullptr, 0);
+    for (const BackbonePoint &p : c.points)
+      {
+        hb.set_omega(p.omega);
+        points_hash = hash_point(hb, p, points_hash);
+      }
+    file << out.str() << "model " << fingerprint(out.str(), points_hash) << "\nend\n";
   }
 
   ContinuationCheckpoint read_checkpoint(const std::string &path, const Scene &scene, HarmonicBalance &hb)
@@ -135,43 +188,15 @@ namespace nsm
     c.folds.resize(reader.count(folds, max_points));
     for (double &omega : c.folds)
       omega = reader.number(folds);
-    std::istringstream points = reader.next("points ");
-    c.points.resize(reader.count(points, max_points));
-    for (BackbonePoint &p : c.points)
-      {
-        std::istringstream line = reader.next("point ");
-        p.segment               = reader.count(line, max_points);
-        p.omega                 = reader.number(line);
-        p.residual              = reader.number(line);
-        p.newton_iterations     = reader.count(line, 1u << 30);
-        p.x.resize(reader.count(line, hb.n_unknowns()));
-        if (p.x.size() != hb.n_unknowns())
-          reader.damaged(std::to_string(hb.n_unknowns()) + " unknowns expected");
-        for (double &v : p.x)
-          v = reader.number(line);
-        hb.set_omega(p.omega);
-        p.measures = hb.measure(p.x);
-      }
-    if (c.points.empty())
-      reader.damaged("at least one point expected");
-    std::istringstream companions = reader.next("companions ");
-    for (std::size_t i = 0, n = reader.count(companions, 2); i < n; ++i)
-      {
-        std::istringstream line(reader.text_line());
-        std::string        name;
-        std::uint64_t      hash = 0;
-        if (!(line >> name >> std::hex >> hash))
-          reader.damaged("a companion checkpoint's name and hash expected");
-        c.companions[name] = hash;
-      }
-    const std::string  text  = reader.text_read();
-    const std::string  model = reader.next("model ").str();
-    std::ostringstream fingerprint;
-    fingerprint << std::hex << model_fingerprint(hb, c.points, text);
-    if (model != fingerprint.str())
+    std::uint64_t points_hash = fnv1a(nullptr, 0);
+    c.points                  = read_points(reader, hb, max_points, points_hash);
+    c.companions              = read_companions(reader);
+    const std::string text    = reader.text_read();
+    if (reader.next("model ").str() != fingerprint(text, points_hash))
       throw InputError("command line: --resume: the points of '" + printable(path) +
                        "' are not this scene's model's solutions bit for bit: its mesh or receptance differ from "
-                       "the interrupted run's (an entry that shapes them changed), or the file was edited: run the scene without --resume");
+                       "the interrupted run's (an entry that shapes them changed), or the file was edited: run "
+                       "the scene without --resume");
     if (reader.text_line() != "end" || !reader.finished())
       reader.damaged("'end' as the last line expected");
     return c;

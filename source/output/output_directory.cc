@@ -25,9 +25,7 @@ namespace nsm
   {
     namespace fs = std::filesystem;
 
-    /// The longest name of one folder (Linux's NAME_MAX) and of a whole
-    /// directory path that still leaves room for the files in it (PATH_MAX
-    /// less the longest file name a run writes, with its ".partial").
+    /// The longest name of one folder (Linux's NAME_MAX).
     constexpr std::size_t max_name_bytes = 255;
     /// PATH_MAX (4096) less what a run puts under the directory's parent: its
     /// staging sibling's name (about 60 bytes) and the longest file name it
@@ -222,9 +220,8 @@ namespace nsm
 
     /// Swaps two directories in one step. The fallback (a file system without
     /// RENAME_EXCHANGE) passes the target (locked by the caller) through an
-    /// aside sibling: a
-    /// run killed between its renames leaves it there, and the next run puts
-    /// it back (or discards it, if the new output went in).
+    /// aside sibling: a run killed between its renames leaves it there, and
+    /// the next run puts it back (or discards it, if the new output went in).
     void swap_directories(const fs::path &staging, const fs::path &target, const std::string &aside)
     {
       if (renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) == 0)
@@ -237,10 +234,9 @@ namespace nsm
     /// Staging and aside directories of runs that no longer hold their lock
     /// (killed ones), by their exact names: a staging directory is removed
     /// (one that holds a manifest, an output, is discarded by it); an aside
-    /// one (the
-    /// target's previous output, taken out by a run killed half-way through
-    /// its fallback swap) goes back in place, or is discarded if the new
-    /// output went in.
+    /// one (the target's previous output, taken out by a run killed half-way
+    /// through its fallback swap) goes back in place, or is discarded if the
+    /// new output went in.
     void clear_dead_siblings(const fs::path &parent, const std::string &prefix, const fs::path &target)
     {
       std::error_code       error;
@@ -438,6 +434,7 @@ namespace nsm
         out << "/ " << printable(note) << '\n';
     });
     prune_unlisted(staging_, listed);
+    bool                           had_previous  = false;
     int                            previous_lock = -1;
     const std::vector<std::string> paths         = final_paths(files);
     try
@@ -455,7 +452,7 @@ namespace nsm
         const fs::path    parent = fs::path(staging_).parent_path();
         const std::string aside =
           (parent / (staging_prefix(fs::path(target_).filename().string()) + "aside-" + unique_token())).string();
-        if (fs::exists(fs::symlink_status(target_)))
+        if ((had_previous = fs::exists(fs::symlink_status(target_))))
           {
             // Locked until its files are gone: no other run takes it, at the
             // staging name after the swap, for a dead run's.
@@ -474,11 +471,11 @@ namespace nsm
     committed_ = true;
     // The previous output, if any, now at the staging name: its own files go,
     // a file of the user's that appeared after the last check goes back.
-    std::error_code error;
-    if (previous_lock >= 0)
+    if (had_previous)
       {
         const std::string kept = discard_previous_output(staging_, target_);
-        close(previous_lock);
+        if (previous_lock >= 0)
+          close(previous_lock);
         if (!kept.empty())
           throw OutputError("the new output is in " + printable(target_) + ", but files that appeared there during "
                             "the run could not go back beside it (their names are taken): they are in " +

@@ -52,13 +52,11 @@ namespace nsm
               kill(-pid, SIGTERM);
               const auto deadline = std::chrono::steady_clock::now() + end_grace;
               while (waitpid(pid, &status, WNOHANG) == 0)
-                if (std::chrono::steady_clock::now() < deadline)
-                  std::this_thread::sleep_for(stop_poll_interval);
-                else
-                  {
+                {
+                  if (std::chrono::steady_clock::now() >= deadline)
                     kill(-pid, SIGKILL); // it ignores SIGTERM
-                    waitpid(pid, &status, 0);
-                  }
+                  std::this_thread::sleep_for(stop_poll_interval);
+                }
               return ProgramEnd::stopped;
             }
           std::this_thread::sleep_for(stop_poll_interval);
@@ -139,7 +137,8 @@ namespace nsm
     // The directory as an absolute path, after "--": a name that starts with
     // '-' is never read as an option.
     const std::string absolute = std::filesystem::absolute(directory, error).string();
-    const ProgramEnd  end = run_program({NSM_PYTHON, NSM_PLOT_SCRIPT, "--gap", gap.str(), "--caption=" + printable(caption), "--", absolute}, log_path);
+    const ProgramEnd  end      = run_program(
+      {NSM_PYTHON, NSM_PLOT_SCRIPT, "--gap", gap.str(), "--caption=" + printable(caption), "--", absolute}, log_path);
     PlotResult  result;
     std::string last;
     // The plots the script finished are whole (it renames each into place):

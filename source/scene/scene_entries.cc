@@ -41,17 +41,21 @@ namespace nsm::scene_entries
     return s.substr(first, last - first + 1);
   }
 
+  bool outside_normal_range(const std::string &text)
+  {
+    errno              = 0;
+    const double value = std::strtod(trim(text).c_str(), nullptr);
+    return errno == ERANGE || (value != 0 && std::abs(value) < std::numeric_limits<double>::min());
+  }
+
   double parse_double(const std::string &text, const std::string &parameter)
   {
-    // As the scalar entries (scene_file.cc): a value that strtod reads only
-    // by underflow (1e-400) or as a subnormal (1e-310, 4.9e-324) is refused.
     const std::string trimmed = trim(text);
     char             *end     = nullptr;
-    errno                     = 0;
-    const double value        = trimmed.empty() ? 0 : std::strtod(trimmed.c_str(), &end);
+    const double      value   = trimmed.empty() ? 0 : std::strtod(trimmed.c_str(), &end);
     if (trimmed.empty() || end != trimmed.c_str() + trimmed.size() || !std::isfinite(value))
       throw InputError("parameter '" + parameter + "': '" + printable(text) + "' is not a finite number");
-    if (errno == ERANGE || (value != 0 && std::abs(value) < std::numeric_limits<double>::min()))
+    if (outside_normal_range(trimmed))
       throw InputError("parameter '" + parameter + "': '" + printable(text) +
                        "' is subnormal (of magnitude below 2.2e-308): allowed, 0 or a normal number");
     return value;

@@ -1,5 +1,6 @@
 #include <nsm/base/text.h>
 #include <nsm/scene/scene.h>
+#include <nsm/scene/scene_entries.h>
 #include <nsm/scene/scene_file.h>
 
 #include <deal.II/base/exceptions.h>
@@ -361,10 +362,10 @@ namespace nsm
     /// get_double refuses it (strtod's ERANGE).
     bool converts(const std::string &value, const std::string &pattern)
     {
-      errno = 0;
       if (pattern.rfind("[Double", 0) == 0)
-        std::strtod(value.c_str(), nullptr);
-      else if (pattern.rfind("[Integer", 0) == 0)
+        return !scene_entries::outside_normal_range(value);
+      errno = 0;
+      if (pattern.rfind("[Integer", 0) == 0)
         std::strtol(value.c_str(), nullptr, 10);
       return errno != ERANGE;
     }

@@ -559,15 +559,13 @@ namespace nsm
         PlotResult plots = make_plots(base.scene.contact, study.directory(), "study " + path);
         for (std::string &f : plots.files)
           report.files.push_back(std::move(f));
-        if (plots.stopped_by != 0)
+        if (!plots.failure.empty())
           {
-            report.stopped_by = report.stopped_by != 0 ? report.stopped_by : plots.stopped_by;
             report.notes.insert(report.notes.begin(), "plots not drawn: " + plots.failure);
-          }
-        else if (!plots.failure.empty())
-          {
-            report.plot_failure = plots.failure;
-            report.notes.insert(report.notes.begin(), "plots not drawn: " + plots.failure);
+            if (plots.stopped_by == 0)
+              report.plot_failure = plots.failure;
+            else if (report.stopped_by == 0)
+              report.stopped_by = plots.stopped_by;
           }
       }
     return report;

@@ -48,22 +48,17 @@ namespace nsm
 
   /// Writes the checkpoint as text, numbers in hexadecimal floating point
   /// (exact), after the scene's computation entries (Scene), which a
-  /// resumed run must share, and before the model's fingerprint
-  /// (model_fingerprint). Write it
-  /// with write_checksummed (base/checkpoint_reader.h).
+  /// resumed run must share, and the `companions`' hashes, and before the
+  /// model's fingerprint: a hash of the text before it and of the bits of
+  /// each point's numbers and of the residual vector `hb` gives it. A run on
+  /// the same model computes the same; if any bit of the model (mesh,
+  /// receptance, band), of a point or of the text differs, it differs but for
+  /// a chance of 2^-64. Unlike the file's checksum, only the program with
+  /// the model can make it. Write it with write_checksummed
+  /// (base/checkpoint_reader.h).
   void write_checkpoint(std::ostream &out, const ContinuationCheckpoint &checkpoint,
                         const std::vector<std::string> &computation_entries, HarmonicBalance &hb,
                         const CheckpointCompanions &companions = {});
-
-  /// A hash of `text` (the checkpoint's lines before it), then of the bits
-  /// of each point's numbers (segment, Omega, residual norm, Newton
-  /// iterations, unknowns) and of the residual vector `hb` gives it: equal
-  /// for the run that wrote the checkpoint and a run on the same model, and
-  /// different, but for a chance of 2^-64, if any bit of the model (mesh,
-  /// receptance, band), of a point or of the text differs. Unlike the
-  /// file's checksum, only the program with the model can make it.
-  std::uint64_t model_fingerprint(HarmonicBalance &hb, const std::vector<BackbonePoint> &points,
-                                  const std::string &text);
 
   /// Reads the checkpoint at `path` for a run of `scene`, the points'
   /// measures computed again with `hb`. Throws InputError naming --resume:

@@ -25,7 +25,13 @@ namespace nsm::scene_entries
   std::string trim(const std::string &s);
 
   /// A finite number, all of `text`; else an InputError naming `parameter`.
+  /// A subnormal one is refused too (outside_normal_range).
   double parse_double(const std::string &text, const std::string &parameter);
+
+  /// Whether strtod reads `text` only outside the normal range of doubles:
+  /// by underflow (1e-400), as a subnormal (1e-310, 4.9e-324) or by
+  /// overflow. A scene's number never is, in an entry or in a list.
+  bool outside_normal_range(const std::string &text);
 
   /// An Integer entry whose pattern allows no negative value.
   unsigned int get_unsigned(dealii::ParameterHandler &prm, const std::string &name);
