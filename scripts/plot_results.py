@@ -120,6 +120,11 @@ def backbone_plot(directory):
     if tongue:
         axes.semilogy([w for w, _ in tongue], [e for _, e in tongue], "x", markersize=3,
                       color="C3", alpha=0.6, label="resonance tongues", zorder=2)
+    # Other families a leap landed on: less contact than the mode before them.
+    other = [(w, e) for w, e, b in zip(points["Omega"], energy, points["branch"]) if b == "other"]
+    if other:
+        axes.semilogy([w for w, _ in other], [e for _, e in other], "+", markersize=3,
+                      color="0.55", alpha=0.6, label="other families", zorder=1)
     # Points whose time integration does not come back after one period:
     # small rings behind the branch, so that they do not hide it.
     failed = [(w, e) for w, e, v in zip(points["Omega"], energy, points.get("verified", [])) if v == "false"]
@@ -178,8 +183,9 @@ def backbone_plot(directory):
                          f"$\\omega_{{{int(t['mode'][i])}}}/{int(t['harmonic'][i])}$") for i in order])
     label_between_decades(axes)
     main = points["branch"].count("main")
-    title = (f"Backbone: {main} main points, {len(points['Omega']) - main} on tongues, "
-             f"{len(segments)} segments")
+    others = points["branch"].count("other")
+    title = (f"Backbone: {main} main points, {len(points['Omega']) - main - others} on tongues, "
+             f"{others} on other families, {len(segments)} segments")
     if CAPTION:
         title = CAPTION + "\n" + title
     if "verified" in points:

@@ -48,14 +48,24 @@ namespace nsm
       return s.str();
     }
 
-    /// A field asked for at an Omega where the computed branch is a tongue.
-    std::string tongue_field_note(const BackbonePoint &p)
+    /// A field asked for at an Omega where the computed branch is a tongue or
+    /// another family.
+    std::string off_main_field_note(const BackbonePoint &p)
     {
       std::ostringstream s;
       s.precision(6);
-      s << "field at Omega = " << p.omega << " is on the resonance tongue of w_" << p.resonance.mode << " / "
-        << p.resonance.harmonic << " = " << p.resonance.omega << ", not on the main branch (energy "
-        << p.measures.energy << ", above the main branch beyond it by more than Tongue share)";
+      s << "field at Omega = " << p.omega;
+      if (p.branch == Branch::other)
+        s << " is on another family, not on the main branch (contact fraction " << p.measures.contact_fraction
+          << ", below the mode's before it by more than Main contact drop)";
+      else
+        {
+          s << " is on a resonance tongue";
+          if (p.resonance.harmonic > 0)
+            s << " of w_" << p.resonance.mode << " / " << p.resonance.harmonic << " = " << p.resonance.omega;
+          s << ", not on the main branch (energy " << p.measures.energy
+            << ", above the main branch beyond it by more than Tongue share)";
+        }
       return s.str();
     }
 
@@ -361,8 +371,8 @@ namespace nsm
               if (!point)
                 continue;
               fields_.emplace_back(*hb_, *discretisation_, *point);
-              if (const BackbonePoint &p = fields_.back().point(); p.branch == Branch::tongue)
-                report_.notes.push_back(tongue_field_note(p));
+              if (const BackbonePoint &p = fields_.back().point(); p.branch != Branch::main)
+                report_.notes.push_back(off_main_field_note(p));
               if (o.verify_in_time)
                 report_.notes.push_back(field_verification(fields_.back(), *discretisation_, hb_->law(), scene_.output));
               if (o.refine_in_time)

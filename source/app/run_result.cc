@@ -60,9 +60,12 @@ namespace nsm
       std::ostringstream s;
       s.precision(6);
       const double reached = *backbone.omega_reached(direction);
+      const auto   other   = std::count_if(backbone.points.begin(), backbone.points.end(),
+                                           [](const BackbonePoint &p) { return p.branch == Branch::other; });
       s << "backbone from Omega = " << backbone.points.front().omega << " to " << reached
         << " (ended: " << ending(backbone, reached, c) << "): " << main << " main points, "
-        << backbone.points.size() - main << " points on " << backbone.tongues.size() << " tongues";
+        << backbone.points.size() - main - other << " points on " << backbone.tongues.size() << " tongues, "
+        << other << " on other families";
       return s.str();
     }
 
@@ -82,8 +85,8 @@ namespace nsm
     }
 
     /// The widest gap between consecutive main points, and the entry that
-    /// searches such gaps.
-    std::string widest_gap(const Backbone &backbone, const double direction, const Scene::Continuation &c)
+    /// searches such gaps (no search: Fill gaps wider than = 0).
+    std::string widest_gap(const Backbone &backbone, const double direction)
     {
       const std::vector<std::pair<double, double>> gaps = main_gaps(backbone.points, direction);
       const auto widest = std::max_element(gaps.begin(), gaps.end(), [](const auto &a, const auto &b) {
@@ -93,10 +96,55 @@ namespace nsm
       s.precision(4);
       s << "widest gap between main points: " << std::abs(widest->second - widest->first) << std::setprecision(6)
         << " from Omega = " << widest->first << " to " << widest->second
-        << (c.fill_gaps_wider_than > 0 ? " (left by Continuation/Fill gaps wider than = " +
-                                           significant(c.fill_gaps_wider_than, 6) + ")" :
-                                         " (Continuation/Fill gaps wider than searches such gaps)");
+        << " (Continuation/Fill gaps wider than searches such gaps)";
       return s.str();
+    }
+
+    /// What the gap search found in the gap (from, to): the record of the
+    /// search of the gap nearest to it.
+    std::string search_found(const Backbone &backbone, const double from, const double to)
+    {
+      const GapSearch *record = nullptr;
+      for (const GapSearch &g : backbone.gap_searches)
+        if (!record ||
+            std::abs(g.from - from) + std::abs(g.to - to) < std::abs(record->from - from) + std::abs(record->to - to))
+          record = &g;
+      if (!record)
+        return "not searched (the continuation ended before the gap search)";
+      std::ostringstream s;
+      s.precision(3);
+      const unsigned int failed = record->starts - record->other_family - record->tongue;
+      s << record->starts << " Newton starts from the predicted mode: " << record->other_family
+        << " converged on other families";
+      if (record->other_family > 0)
+        s << " (contact fraction at most " << record->most_contact << ", the mode's " << record->contact_before
+          << " before the gap)";
+      s << ", " << record->tongue << " on tongues, " << failed << " did not converge";
+      if (record->landed)
+        s << "; the segment traced from Omega = " << std::setprecision(6) << *record->landed
+          << " is not main against the points beyond it";
+      return s.str();
+    }
+
+    /// Every interval wider than Fill gaps wider than where no main point was
+    /// found (up to the range's end if the branch reached it), with what the
+    /// gap search found there.
+    std::vector<std::string> unfound_stretches(const Backbone &backbone, const double direction,
+                                               const Scene::Continuation &c)
+    {
+      const bool reached = backbone.end == BackboneEnd::range;
+      const double far   = direction > 0 ? c.omega_max : c.omega_min;
+      std::vector<std::string> lines;
+      for (const auto &[from, to] : main_gaps(backbone.points, direction, reached ? std::optional<double>(far) :
+                                                                                     std::nullopt))
+        if (std::abs(to - from) > c.fill_gaps_wider_than)
+          {
+            std::ostringstream s;
+            s.precision(6);
+            s << "no main point from Omega = " << from << " to " << to << ": " << search_found(backbone, from, to);
+            lines.push_back(s.str());
+          }
+      return lines;
     }
 
     /// The main points' energy error against the uniform bar's exact mode,
@@ -135,8 +183,11 @@ namespace nsm
     std::vector<std::string> lines{coverage(backbone, main.size(), direction, continuation)};
     if (!main.empty())
       lines.push_back(energies(main));
-    if (main.size() > 1)
-      lines.push_back(widest_gap(backbone, direction, continuation));
+    if (main.size() > 1 && continuation.fill_gaps_wider_than == 0)
+      lines.push_back(widest_gap(backbone, direction));
+    if (!main.empty() && continuation.fill_gaps_wider_than > 0)
+      for (std::string &line : unfound_stretches(backbone, direction, continuation))
+        lines.push_back(std::move(line));
     for (std::string &line : exact_errors(main, bar, contact))
       lines.push_back(std::move(line));
     return lines;

@@ -11,7 +11,7 @@ namespace nsm
 {
   namespace
   {
-    constexpr const char *format_line = "nsm-bar continuation checkpoint 2";
+    constexpr const char *format_line = "nsm-bar continuation checkpoint 3";
 
     /// The interrupted run's entries must be the scene's: the first that
     /// differs is named with both values.
@@ -134,7 +134,12 @@ namespace nsm
     out << "folds " << c.folds.size();
     for (const double omega : c.folds)
       out << ' ' << exact(omega);
-    out << "\npoints " << c.points.size() << '\n';
+    out << "\ngaps " << c.gap_searches.size() << '\n';
+    for (const GapSearch &g : c.gap_searches)
+      out << exact(g.from) << ' ' << exact(g.to) << ' ' << g.starts << ' ' << g.other_family << ' ' << g.tongue
+          << ' ' << exact(g.most_contact) << ' ' << exact(g.contact_before) << ' '
+          << (g.landed ? exact(*g.landed) : std::string("-")) << '\n';
+    out << "points " << c.points.size() << '\n';
     for (const BackbonePoint &p : c.points)
       {
         out << "point " << p.segment << ' ' << exact(p.omega) << ' ' << exact(p.residual) << ' '
@@ -188,6 +193,27 @@ namespace nsm
     c.folds.resize(reader.count(folds, max_points));
     for (double &omega : c.folds)
       omega = reader.number(folds);
+    std::istringstream gaps = reader.next("gaps ");
+    c.gap_searches.resize(reader.count(gaps, max_points));
+    for (GapSearch &g : c.gap_searches)
+      {
+        std::istringstream line(reader.text_line());
+        g.from           = reader.number(line);
+        g.to             = reader.number(line);
+        g.starts         = reader.count(line, 1000 * max_points);
+        g.other_family   = reader.count(line, 1000 * max_points);
+        g.tongue         = reader.count(line, 1000 * max_points);
+        g.most_contact   = reader.number(line);
+        g.contact_before = reader.number(line);
+        std::string landed;
+        if (!(line >> landed))
+          reader.damaged("a gap search's landing or '-' expected");
+        if (landed != "-")
+          {
+            std::istringstream value(landed);
+            g.landed = reader.number(value);
+          }
+      }
     std::uint64_t points_hash = fnv1a(nullptr, 0);
     c.points                  = read_points(reader, hb, max_points, points_hash);
     c.companions              = read_companions(reader);

@@ -55,6 +55,7 @@ namespace nsm
       c->points.assign(b.points.begin(), b.points.begin() + cut.points);
       c->events.assign(b.events.begin(), b.events.begin() + cut.events);
       c->folds.assign(b.folds.begin(), b.folds.begin() + cut.folds);
+      c->gap_searches = b.gap_searches;
       c->leaps = cut.leaps;
       c->span  = context.span;
       return c;
@@ -144,6 +145,7 @@ namespace nsm
       backbone.points      = c.points;
       backbone.events      = c.events;
       backbone.folds       = c.folds;
+      backbone.gap_searches = c.gap_searches;
       backbone.leaps       = c.leaps;
       backbone.end         = c.end;
       context.span         = c.span;

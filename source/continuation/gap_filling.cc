@@ -1,10 +1,12 @@
 #include <nsm/base/interruption.h>
+#include <nsm/continuation/constants.h>
 #include <nsm/continuation/gap_filling.h>
 #include <nsm/continuation/main_branch.h>
 #include <nsm/continuation/sequential_steps.h>
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <set>
 #include <utility>
 
@@ -66,10 +68,83 @@ namespace nsm
       return (1 + context.scene.continuation.tongue_share) * envelope_at(points, far_side, context.direction);
     }
 
+    /// The main points that predict the mode in a gap: the one at its start,
+    /// one about trend_base x Omega behind it, and the first at or beyond
+    /// its far side (each null if none).
+    struct Trend
+    {
+      const BackbonePoint *start = nullptr, *base = nullptr, *far = nullptr;
+    };
+
+    Trend trend_into(const BranchContext &context, const std::vector<BackbonePoint> &labelled, const Gap &gap)
+    {
+      Trend        t;
+      const double back = gap.first - context.direction * continuation_constants::trend_base * gap.first;
+      for (const BackbonePoint &p : labelled)
+        {
+          if (p.branch != Branch::main)
+            continue;
+          if (context.beyond(p.omega, gap.first))
+            {
+              if (!context.beyond(gap.second, p.omega) && (!t.far || context.beyond(t.far->omega, p.omega)))
+                t.far = &p;
+              continue;
+            }
+          if (!t.start || context.beyond(p.omega, t.start->omega))
+            t.start = &p;
+          if (p.omega != gap.first && (!t.base || std::abs(p.omega - back) < std::abs(t.base->omega - back)))
+            t.base = &p;
+        }
+      return t;
+    }
+
+    /// The guesses at omega: the secant along the trend, the straight line
+    /// to the far side's main point, and the start's own unknowns.
+    std::vector<std::vector<double>> predicted_guesses(const Trend &t, const double omega)
+    {
+      std::vector<std::vector<double>> guesses;
+      if (t.base)
+        guesses.push_back(interpolated_guess(*t.base, *t.start, omega));
+      if (t.far)
+        guesses.push_back(interpolated_guess(*t.start, *t.far, omega));
+      guesses.push_back(t.start->x);
+      return guesses;
+    }
+
+    /// Newton from the mode predicted along its trend (predicted_guesses) at
+    /// Omegas spaced a gap_starts_per_width-th of Fill gaps wider than across
+    /// the gap, nearest its start first; the first solution the labels put
+    /// on the main branch; what the others were is counted in `search`.
+    bool predicted_landing(BranchContext &context, const std::vector<BackbonePoint> &labelled, const Gap &gap,
+                           const Trend &trend, const unsigned int segment, BackbonePoint &point, GapSearch &search)
+    {
+      const double spacing =
+        context.scene.continuation.fill_gaps_wider_than / continuation_constants::gap_starts_per_width;
+      for (double omega = gap.first + context.direction * spacing; context.beyond(gap.second, omega);
+           omega += context.direction * spacing)
+        for (const std::vector<double> &guess : predicted_guesses(trend, omega))
+          {
+            ++search.starts;
+            if (!context.solve(omega, guess, segment, point, BranchContext::Newton::both))
+              continue;
+            label_point(context.hb, context.scene, labelled, point);
+            if (point.branch == Branch::main)
+              return true;
+            if (point.branch == Branch::other)
+              {
+                ++search.other_family;
+                search.most_contact = std::max(search.most_contact, point.measures.contact_fraction);
+              }
+            else
+              ++search.tongue;
+          }
+      return false;
+    }
+
     /// The first solution inside the gap that the labels put on the main
-    /// branch, from the guesses in turn; false if none.
-    bool landing(BranchContext &context, const std::vector<BackbonePoint> &labelled, const Gap &gap,
-                 const unsigned int segment, BackbonePoint &point)
+    /// branch, from the guesses of the branch with half the harmonics in turn.
+    bool landing_from_fewer_harmonics(BranchContext &context, const std::vector<BackbonePoint> &labelled,
+                                      const Gap &gap, const unsigned int segment, BackbonePoint &point)
     {
       for (const BackbonePoint *q : guesses_in(context, gap))
         {
@@ -83,21 +158,77 @@ namespace nsm
       return false;
     }
 
-    /// The landing becomes the first point of a new segment, traced until it
-    /// folds, climbs above the tongue threshold or reaches the gap's far side.
+    /// Sequential steps from the far side's main point back towards the
+    /// gap's start (the secant predictor and the jump guard of a segment),
+    /// until the branch folds, reaches the start, climbs above
+    /// `tongue_above` or Max steps would be passed; the points traced, in
+    /// the direction of continuation, become a new segment. True if any.
+    bool traced_back(BranchContext &context, Backbone &backbone, const Trend &trend, const Gap &gap,
+                     const unsigned int segment, const double tongue_above)
+    {
+      const auto                &c = context.scene.continuation;
+      std::vector<BackbonePoint> back{*trend.far};
+      double                     step = c.initial_step;
+      while (step >= c.min_step && backbone.points.size() + back.size() <= c.max_steps)
+        {
+          const BackbonePoint &current = back.back();
+          const double         omega   = current.omega - context.direction * step;
+          if (!context.beyond(omega, gap.first))
+            break;
+          const std::vector<double> guess =
+            back.size() > 1 ? interpolated_guess(back[back.size() - 2], current, omega) : current.x;
+          BackbonePoint point;
+          if (!context.solve(omega, guess, segment, point) || !stays_on_branch(current, point, c))
+            {
+              step /= continuation_constants::step_shrink;
+              continue;
+            }
+          if (point.measures.energy > tongue_above)
+            break;
+          if (point.newton_iterations <= continuation_constants::easy_iterations)
+            step = std::min(continuation_constants::step_growth * step, context.max_step());
+          back.push_back(std::move(point));
+        }
+      if (back.size() < 2)
+        return false;
+      backbone.events.push_back(event_message("filled a gap of the main branch back from its far side",
+                                              back.back().omega));
+      std::move(back.rbegin(), back.rend() - 1, std::back_inserter(backbone.points));
+      return true;
+    }
+
+    /// A landing from the predicted mode or from the branch with half the
+    /// harmonics becomes the first point of a new segment, traced until it
+    /// folds, climbs above the tongue threshold or reaches the gap's far
+    /// side; without one, the branch is traced back from the far side. A gap
+    /// left is recorded with its search.
     bool fill(BranchContext &context, Backbone &backbone, const std::vector<BackbonePoint> &labelled, const Gap &gap)
     {
       unsigned int segment = 0;
       for (const BackbonePoint &p : backbone.points)
         segment = std::max(segment, p.segment + 1);
-      BackbonePoint point;
-      if (!landing(context, labelled, gap, segment, point))
-        return false;
-      backbone.events.push_back(
-        event_message("filled a gap of the main branch from the branch with half the harmonics", point.omega));
-      backbone.points.push_back(std::move(point));
-      sequential_segment(context, backbone, segment, StepLimits{gap.second, tongue_threshold(context, labelled, gap.second)});
-      return true;
+      const Trend  trend     = trend_into(context, labelled, gap);
+      const double threshold = tongue_threshold(context, labelled, gap.second);
+      GapSearch    search{gap.first, gap.second};
+      search.contact_before =
+        most_contact_before(labelled, gap.second, context.direction, context.scene.continuation.tongue_share);
+      BackbonePoint     point;
+      const std::size_t before = backbone.points.size();
+      const bool predicted = trend.start && predicted_landing(context, labelled, gap, trend, segment, point, search);
+      if (predicted || landing_from_fewer_harmonics(context, labelled, gap, segment, point))
+        {
+          backbone.events.push_back(event_message(predicted ?
+                                                    "filled a gap of the main branch from the predicted mode" :
+                                                    "filled a gap of the main branch from the branch with half the harmonics",
+                                                  point.omega));
+          search.landed = point.omega;
+          backbone.points.push_back(std::move(point));
+          sequential_segment(context, backbone, segment, StepLimits{gap.second, threshold});
+        }
+      else if (trend.far && traced_back(context, backbone, trend, gap, segment, threshold))
+        search.landed = backbone.points[before].omega;
+      backbone.gap_searches.push_back(search);
+      return search.landed.has_value();
     }
   } // namespace
 
@@ -107,7 +238,7 @@ namespace nsm
     if (width <= 0)
       return;
     const PointStopsDeferred            whole;
-    std::set<Gap>                       tried; // gaps with no landing
+    std::set<Gap>                       tried; // gaps searched
     for (bool filled = true; filled;)
       {
         if (context.full(backbone))

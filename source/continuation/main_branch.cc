@@ -63,10 +63,14 @@ namespace nsm
 
   std::vector<bool> above_envelope(const std::vector<BackbonePoint> &points,
                                    const double                      direction,
-                                   const double                      share)
+                                   const double                      share,
+                                   const std::vector<bool>          &among)
   {
-    std::vector<std::size_t> order(points.size());
-    std::iota(order.begin(), order.end(), 0);
+    const auto counted = [&](const std::size_t i) { return among.empty() || among[i]; };
+    std::vector<std::size_t> order;
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (counted(i))
+        order.push_back(i);
     // From the far end back, so that the running minimum is the envelope;
     // points at one Omega share it.
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
@@ -87,7 +91,8 @@ namespace nsm
 
   std::vector<bool> behind_front(const std::vector<BackbonePoint> &points,
                                  const double                      direction,
-                                 const std::vector<bool>          &above)
+                                 const std::vector<bool>          &above,
+                                 const std::vector<bool>          &among)
   {
     std::vector<bool> behind(points.size());
     double            front = -std::numeric_limits<double>::infinity();
@@ -95,13 +100,90 @@ namespace nsm
       {
         if (i > 0 && points[i].segment != points[i - 1].segment)
           front = -std::numeric_limits<double>::infinity();
-        if (above[i])
+        if (above[i] || !(among.empty() || among[i]))
           continue;
         behind[i] = direction * points[i].omega < front;
         if (!behind[i])
           front = direction * points[i].omega;
       }
     return behind;
+  }
+
+  namespace
+  {
+    /// Per point: on the lower envelope of the points `among` and not behind
+    /// its segment's front.
+    std::vector<bool> on_envelope(const std::vector<BackbonePoint> &points, const double direction,
+                                  const double share, const std::vector<bool> &among)
+    {
+      const std::vector<bool> above  = above_envelope(points, direction, share, among);
+      const std::vector<bool> behind = behind_front(points, direction, above, among);
+      std::vector<bool>       on(points.size());
+      for (std::size_t i = 0; i < points.size(); ++i)
+        on[i] = among[i] && !above[i] && !behind[i];
+      return on;
+    }
+
+    /// The indices of the points in the direction of continuation (trace
+    /// order among points at one Omega).
+    std::vector<std::size_t> along_omega(const std::vector<BackbonePoint> &points, const double direction)
+    {
+      std::vector<std::size_t> order(points.size());
+      std::iota(order.begin(), order.end(), 0);
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return direction * points[a].omega < direction * points[b].omega;
+      });
+      return order;
+    }
+  } // namespace
+
+  InternalResonance named_if_near(const InternalResonance &r, const double lo, const double hi)
+  {
+    const double distance = r.omega < lo ? lo - r.omega : r.omega > hi ? r.omega - hi : 0.0;
+    return distance <= continuation_constants::resonance_name_tolerance * r.omega ? r : InternalResonance{0, 0, 0};
+  }
+
+  namespace
+  {
+    /// Per point: on the lower envelope of its own segment's points and not
+    /// behind that segment's front; other segments' points, of whatever
+    /// family, play no part.
+    std::vector<bool> on_own_envelope(const std::vector<BackbonePoint> &points, const double direction,
+                                      const double share)
+    {
+      std::vector<bool> own(points.size());
+      for (std::size_t first = 0; first < points.size();)
+        {
+          std::size_t end = first;
+          while (end < points.size() && points[end].segment == points[first].segment)
+            ++end;
+          std::vector<bool> segment(points.size());
+          std::fill(segment.begin() + first, segment.begin() + end, true);
+          const std::vector<bool> on = on_envelope(points, direction, share, segment);
+          std::copy(on.begin() + first, on.begin() + end, own.begin() + first);
+          first = end;
+        }
+      return own;
+    }
+  } // namespace
+
+  std::vector<bool> main_family(const std::vector<BackbonePoint> &points,
+                                const double                      direction,
+                                const double                      share,
+                                const double                      drop)
+  {
+    const std::vector<bool> own = on_own_envelope(points, direction, share);
+    std::vector<bool>       family(points.size(), true);
+    double                  most = -std::numeric_limits<double>::infinity();
+    for (const std::size_t i : along_omega(points, direction))
+      {
+        const double contact = points[i].measures.contact_fraction;
+        if (contact < most - drop)
+          family[i] = false;
+        else if (own[i])
+          most = std::max(most, contact);
+      }
+    return family;
   }
 
   namespace
@@ -119,54 +201,68 @@ namespace nsm
     /// The fundamental near the branch's own mode is the branch itself, not an
     /// internal resonance: an excursion named so (with fewer than 4
     /// harmonics, where none can stand out) is the branch's own shape.
-    bool is_internal(const InternalResonance &r, const Scene &scene)
+    bool is_own_fundamental(const InternalResonance &r, const unsigned int mode)
     {
-      return !(r.harmonic == 1 && r.mode == scene.continuation.mode);
+      return r.harmonic == 1 && r.mode == mode;
     }
 
-    /// A tongue point of resonance r if r names an internal resonance; main
-    /// for r = {0, 0, 0} (on the envelope) or the branch's own fundamental.
-    void mark(BackbonePoint &point, const InternalResonance &r, const Scene &scene)
+    void mark(BackbonePoint &point, const Branch branch, const InternalResonance &r = {0, 0, 0})
     {
-      const bool tongue = r.harmonic > 0 && is_internal(r, scene);
-      point.branch      = tongue ? Branch::tongue : Branch::main;
-      point.resonance   = tongue ? r : InternalResonance{0, 0, 0};
+      point.branch    = branch;
+      point.resonance = branch == Branch::tongue ? r : InternalResonance{0, 0, 0};
     }
 
-    /// Per point: above the envelope or behind its segment's front.
-    std::vector<bool> off_main(const std::vector<BackbonePoint> &points, const Scene &scene)
+    /// Labels the run [first, end) of the main family's points off its
+    /// envelope: a tongue named from its most energetic point, or main if
+    /// that names the branch's own fundamental.
+    void label_run(HarmonicBalance &hb, const unsigned int mode, std::vector<BackbonePoint> &points,
+                   const std::size_t first, const std::size_t end)
     {
-      const double            direction = branch_direction(scene.contact);
-      const std::vector<bool> above     = above_envelope(points, direction, scene.continuation.tongue_share);
-      const std::vector<bool> behind    = behind_front(points, direction, above);
-      std::vector<bool>       off(points.size());
-      for (std::size_t i = 0; i < points.size(); ++i)
-        off[i] = above[i] || behind[i];
-      return off;
+      const auto   begin = points.begin() + first, stop = points.begin() + end;
+      const auto   top   = std::max_element(begin, stop, [](const BackbonePoint &a, const BackbonePoint &b) {
+        return a.measures.energy < b.measures.energy;
+      });
+      const auto [lo, hi] = std::minmax_element(begin, stop, [](const BackbonePoint &a, const BackbonePoint &b) {
+        return a.omega < b.omega;
+      });
+      const InternalResonance r = tongue_resonance(hb, *top);
+      for (auto p = begin; p != stop; ++p)
+        is_own_fundamental(r, mode) ? mark(*p, Branch::main) :
+                                      mark(*p, Branch::tongue, named_if_near(r, lo->omega, hi->omega));
     }
   } // namespace
 
   void label_branches(HarmonicBalance &hb, const Scene &scene, std::vector<BackbonePoint> &points)
   {
-    const std::vector<bool> off = off_main(points, scene);
+    const auto             &c         = scene.continuation;
+    const double            direction = branch_direction(scene.contact);
+    const std::vector<bool> family    = main_family(points, direction, c.tongue_share, c.main_contact_drop);
+    const std::vector<bool> on        = on_envelope(points, direction, c.tongue_share, family);
     for (std::size_t first = 0; first < points.size();)
       {
-        std::size_t end = first;
-        while (end < points.size() && off[end])
-          ++end;
-        if (end == first)
+        if (!family[first] || on[first])
           {
-            mark(points[first++], {0, 0, 0}, scene);
+            mark(points[first], family[first] ? Branch::main : Branch::other);
+            ++first;
             continue;
           }
-        const auto top = std::max_element(points.begin() + first, points.begin() + end,
-                                          [](const BackbonePoint &a, const BackbonePoint &b) {
-                                            return a.measures.energy < b.measures.energy;
-                                          });
-        const InternalResonance r = tongue_resonance(hb, *top);
-        for (; first < end; ++first)
-          mark(points[first], r, scene);
+        std::size_t end = first;
+        while (end < points.size() && family[end] && !on[end])
+          ++end;
+        label_run(hb, c.mode, points, first, end);
+        first = end;
       }
+  }
+
+  double most_contact_before(const std::vector<BackbonePoint> &points, const double omega, const double direction,
+                             const double share)
+  {
+    const std::vector<bool> own  = on_own_envelope(points, direction, share);
+    double                  most = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (own[i] && points[i].branch != Branch::other && direction * (points[i].omega - omega) < 0)
+        most = std::max(most, points[i].measures.contact_fraction);
+    return most;
   }
 
   void label_point(HarmonicBalance                  &hb,
@@ -174,13 +270,20 @@ namespace nsm
                    const std::vector<BackbonePoint> &points,
                    BackbonePoint                    &point)
   {
-    const double least =
-      std::min(point.measures.energy, envelope_at(points, point.omega, branch_direction(scene.contact)));
-    mark(point,
-         exceeds_envelope(point.measures.energy, least, scene.continuation.tongue_share) ?
-           tongue_resonance(hb, point) :
-           InternalResonance{0, 0, 0},
-         scene);
+    const auto  &c         = scene.continuation;
+    const double direction = branch_direction(scene.contact);
+    const double least     = std::min(point.measures.energy, envelope_at(points, point.omega, direction));
+    if (point.measures.contact_fraction <
+        most_contact_before(points, point.omega, direction, c.tongue_share) - c.main_contact_drop)
+      mark(point, Branch::other);
+    else if (!exceeds_envelope(point.measures.energy, least, c.tongue_share))
+      mark(point, Branch::main);
+    else
+      {
+        const InternalResonance r = tongue_resonance(hb, point);
+        is_own_fundamental(r, c.mode) ? mark(point, Branch::main) :
+                                        mark(point, Branch::tongue, named_if_near(r, point.omega, point.omega));
+      }
     hb.set_omega(point.omega);
   }
 
@@ -188,7 +291,7 @@ namespace nsm
   {
     double least = std::numeric_limits<double>::infinity();
     for (const BackbonePoint &q : points)
-      if (direction * (q.omega - omega) >= 0)
+      if (q.branch != Branch::other && direction * (q.omega - omega) >= 0)
         least = std::min(least, q.measures.energy);
     return least;
   }

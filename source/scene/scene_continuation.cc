@@ -78,6 +78,15 @@ namespace nsm
                       "written at or beyond its Omega (in the direction of continuation) by more "
                       "than this share, or if it lies behind an earlier main point of its segment in "
                       "Omega (the back of a fold); otherwise it is on the main branch.");
+    prm.declare_entry("Main contact drop",
+                      text(d.main_contact_drop),
+                      Patterns::Double(1e-4, 1),
+                      "The main branch is the family connected to grazing, whose contact lasts "
+                      "longer as it hardens: a point whose contact fraction lies more than this "
+                      "below the most contact of that family before it in Omega belongs to "
+                      "another family (labelled other), whatever its energy. Above the truncated "
+                      "series' own error in the contact fraction (0.04 on the uniform bar at "
+                      "M = 20), below the falls of leaps onto other families (0.15 to 0.28).");
     prm.declare_entry("Tongue energy ratio",
                       text(d.tongue_energy_ratio),
                       Patterns::Double(1, 1e6),
@@ -120,9 +129,12 @@ namespace nsm
                       Patterns::Double(0, 1),
                       "Once the continuation ends (at the range's end or where the branch is "
                       "lost), every gap between main points wider than this (in Omega) is "
-                      "searched from the points inside it of the branch traced with half the "
-                      "harmonics, its main points first; a main solution found there starts a "
-                      "segment of sequential steps up to the gap's far side. 0: no filling.");
+                      "searched: Newton from the mode predicted along its trend at Omegas an "
+                      "eighth of this apart, then from the points inside it of the branch traced "
+                      "with half the harmonics; a main solution found starts a segment of "
+                      "sequential steps up to the gap's far side. Without one, the branch is "
+                      "traced back from the far side. The Result block names every gap left, "
+                      "with what the search found there. 0: no search.");
     prm.leave_subsection();
   }
 
@@ -153,6 +165,7 @@ namespace nsm
     max_steps      = get_unsigned(prm, "Max steps");
     grazing_offset = prm.get_double("Grazing offset");
     tongue_share   = prm.get_double("Tongue share");
+    main_contact_drop   = prm.get_double("Main contact drop");
     tongue_energy_ratio = prm.get_double("Tongue energy ratio");
     max_contact_change  = prm.get_double("Max contact change");
     max_solution_change = prm.get_double("Max solution change");

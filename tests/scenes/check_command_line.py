@@ -100,9 +100,12 @@ def main():
     with open("uniform/backbone.csv", newline="") as f:
         main = sorted(float(r["Omega"]) for r in csv.DictReader(f) if r["branch"] == "main")
     widest = max(b - a for a, b in zip(main, main[1:]))
-    line = [x for x in uniform.stdout.splitlines() if "widest gap between main points" in x]
-    check(line and f"points: {widest:.4g} from" in line[0] and "Continuation/Fill gaps wider than" in line[0],
-          f"Result block: {line}, expected the widest main gap {widest:.4g}")
+    # Every gap wider than Fill gaps wider than (0.02) is named with its search.
+    gaps = [(a, b) for a, b in zip(main, main[1:]) if b - a > 0.02] + ([(main[-1], 1.8)] if 1.8 - main[-1] > 0.02 else [])
+    lines = [x for x in uniform.stdout.splitlines() if x.startswith("  no main point from Omega = ")]
+    check(len(lines) == len(gaps) and all(f"from Omega = {a:.6g} to {b:.6g}: " in l and "Newton starts" in l
+                                          for (a, b), l in zip(gaps, lines)),
+          f"Result block: {lines}, expected the main gaps {gaps}")
     check(uniform.stdout.startswith("nsm-bar: scene uniform.prm\nResult\n  backbone from Omega = "),
           f"the summary does not open with the Result block: {uniform.stdout[:200]!r}")
 

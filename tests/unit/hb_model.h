@@ -19,12 +19,15 @@ namespace testing_helpers
 {
   /// The uniform bar (A = 1) or the seed bar (A = 1.5 - x), resolved far
   /// beyond the HB truncation (FE_Q(10), 10 cells: gamma exact to ~1e-10 up
-  /// to kW = 80), with the modal receptance.
+  /// to kW = 80), with the modal receptance. The continuation alone: the
+  /// gap search (on by default) is set where it is tested (test_gap_filling,
+  /// scene.main_branch), so that a trace's last point is where it ended.
   inline nsm::Scene hb_scene(const std::string &section, unsigned int harmonics)
   {
     nsm::Scene scene = bar_scene(section, 10, 10);
     scene.receptance.method          = nsm::ReceptanceMethod::modal;
     scene.harmonic_balance.harmonics = harmonics;
+    scene.continuation.fill_gaps_wider_than = 0;
     return scene;
   }
 

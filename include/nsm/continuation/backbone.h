@@ -16,12 +16,16 @@ namespace nsm
 {
   enum class Branch
   {
-    main,  ///< the nonsmooth mode: on the backbone's monotone lower envelope (main_branch.h)
-    tongue ///< above it, near W = w_j / k, where harmonic k drives mode j near its resonance
+    main,   ///< the nonsmooth mode: its family's monotone lower envelope (main_branch.h)
+    tongue, ///< above it, near W = w_j / k, where harmonic k drives mode j near its resonance
+    other   ///< another family (a leap landed on it): less contact than the mode before it
   };
 
-  /// "main" or "tongue", as the CSV files write it.
-  inline const char *branch_name(const Branch b) { return b == Branch::main ? "main" : "tongue"; }
+  /// "main", "tongue" or "other", as the CSV files write it.
+  inline const char *branch_name(const Branch b)
+  {
+    return b == Branch::main ? "main" : b == Branch::tongue ? "tongue" : "other";
+  }
 
   struct InternalResonance
   {
@@ -73,6 +77,21 @@ namespace nsm
   /// writes it.
   const char *backbone_end_name(BackboneEnd end);
 
+  /// A gap of the main branch that the gap search (gap_filling.h) tried:
+  /// what its Newton starts from the predicted mode found there, and where a
+  /// segment traced into it landed (its points may yet not be main once the
+  /// whole backbone is labelled again).
+  struct GapSearch
+  {
+    double       from, to;             ///< Omega of the main points around it, or the range's end
+    unsigned int starts          = 0;  ///< Newton solves from the predicted mode
+    unsigned int other_family    = 0;  ///< converged with less contact than the mode before the gap
+    unsigned int tongue          = 0;  ///< converged above the envelope (a tongue's flank)
+    double       most_contact    = 0;  ///< the most contact of the other families found
+    double       contact_before  = 0;  ///< the mode's most contact before the gap
+    std::optional<double> landed;      ///< where the segment traced into the gap began
+  };
+
   struct ContinuationCheckpoint;
 
   struct Backbone
@@ -82,6 +101,7 @@ namespace nsm
     NewtonCost                 newton_cost; ///< sequential method and leaps
     std::vector<std::string>   events; ///< folds, leaps, stops: for the summary
     std::vector<double>        folds;  ///< Omega of each fold turned or leapt
+    std::vector<GapSearch>     gap_searches; ///< the gaps the search left, in the order tried
     unsigned int               leaps = 0;
     BackboneEnd                end   = BackboneEnd::range;
     /// Where the continuation stood when it ended or was interrupted: what

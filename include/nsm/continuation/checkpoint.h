@@ -28,6 +28,7 @@ namespace nsm
     std::vector<BackbonePoint> points;
     std::vector<std::string>   events;
     std::vector<double>        folds;
+    std::vector<GapSearch>     gap_searches;
     unsigned int               leaps = 0;
     double                     span  = 0; ///< BranchContext::span
     /// The segment to go on with: from its last point with `step` (the

@@ -33,3 +33,19 @@ namespace nsm::continuation_constants
   /// of its parity below it.
   constexpr unsigned int first_compared_harmonic = 3;
 } // namespace nsm::continuation_constants
+
+namespace nsm::continuation_constants
+{
+  /// A tongue is named w_j / k only if its points' Omega interval lies within
+  /// this share of w_j / k: the feet of the tongues measured on the uniform,
+  /// seed, stepped and 1 + x^2 bars and the seed's mode 2 lie within 0.82 %
+  /// of their resonance, the misnamed ones 1.6 % to 6.7 % away.
+  constexpr double resonance_name_tolerance = 0.01;
+  /// The gap search's secant predictor spans this share of Omega behind the
+  /// gap's start: longer than the steps (up to 0.01) so that one step's
+  /// noise does not steer it, short enough to follow the branch's bend.
+  constexpr double trend_base = 0.01;
+  /// The gap search starts Newton at this many Omegas per Fill gaps wider
+  /// than: a landing lies at most an eighth of that width from a start.
+  constexpr unsigned int gap_starts_per_width = 8;
+} // namespace nsm::continuation_constants

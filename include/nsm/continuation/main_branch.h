@@ -1,12 +1,17 @@
-// Main branch or tongue, for every point. The nonsmooth mode hardens: along
-// the direction of continuation its energy rises. A resonance tongue is an
-// excursion above it, which the branch climbs near W = w_j / k and comes down
-// from beyond. A point whose energy is more than Tongue share above the lowest
-// energy written at or beyond its Omega (the monotone lower envelope of the
-// backbone) is therefore a tongue point; every other point is on the main
-// branch. A tongue is named after the harmonic k >= 3 that stands out most
-// of the spectrum at its highest point, and the mode j nearest to k W; an
-// excursion that names only the branch's own fundamental is main.
+// Main branch, tongue or other family, for every point. The nonsmooth mode is
+// the family connected to grazing; it hardens (along the direction of
+// continuation its energy rises) and its contact lasts longer. A resonance
+// tongue is an excursion above it, which the branch climbs near W = w_j / k
+// and comes down from beyond; a leap can land on another family, of less
+// contact. So: a point whose energy is more than Tongue share above the lowest
+// energy of the mode's family at or beyond its Omega (the monotone lower
+// envelope) is a tongue point; an envelope point whose contact fraction lies
+// more than Main contact drop below the most contact of the main points
+// before it is of another family, and leaves the envelope (main_family);
+// every other point is on the main branch. A tongue is named after the
+// harmonic k >= 3 that stands out most of the spectrum at its highest point
+// and the mode j nearest to k W, if w_j / k lies near its Omega; an excursion
+// that names only the branch's own fundamental is main.
 #pragma once
 
 #include <nsm/continuation/backbone.h>
@@ -36,11 +41,17 @@ namespace nsm
   /// whose frequency is nearest to k Omega.
   InternalResonance resonance_of(const Receptance &receptance, unsigned int k, double omega);
 
+  /// r if its w_j / k lies within resonance_name_tolerance (constants.h) of
+  /// the Omega interval [lo, hi] a tongue spans; unnamed {0, 0, 0} otherwise.
+  InternalResonance named_if_near(const InternalResonance &r, double lo, double hi);
+
   /// Per point, in order: true if its energy exceeds (1 + share) times the
   /// least energy of the points at or beyond its Omega in `direction`.
+  /// Only the points `among` count and can be above (all if it is empty).
   std::vector<bool> above_envelope(const std::vector<BackbonePoint> &points,
                                    double                            direction,
-                                   double                            share);
+                                   double                            share,
+                                   const std::vector<bool>          &among = {});
 
   /// Per point, in order: true if it is not `above` the envelope but lies
   /// behind its segment's front, the farthest Omega in `direction` of the
@@ -49,26 +60,47 @@ namespace nsm
   /// of a fold, the middle of an S) is on another branch.
   std::vector<bool> behind_front(const std::vector<BackbonePoint> &points,
                                  double                            direction,
-                                 const std::vector<bool>          &above);
+                                 const std::vector<bool>          &above,
+                                 const std::vector<bool>          &among = {});
+
+  /// Per point, in order: true if it belongs to the mode's family. In the
+  /// direction of continuation, a point whose contact fraction lies more
+  /// than `drop` below the most contact before it leaves the family; the
+  /// most contact counts the family's points that lie on their own
+  /// segment's lower envelope (a tongue's climb that comes back down within
+  /// its segment does not count), so that another family of less energy
+  /// beyond cannot hide the mode. Along the main branch (the family's
+  /// envelope points) the contact then never falls by more than `drop`.
+  std::vector<bool> main_family(const std::vector<BackbonePoint> &points, double direction, double share,
+                                double drop);
 
   /// Sets every point's branch, and the resonance of each run of tongue
   /// points from the spectrum of its most energetic point (the scene's Tongue
-  /// share, direction and Mode). Tongue points are those above the envelope
-  /// or behind the front. A run whose resonance is the fundamental at
-  /// the branch's own mode is main: nothing resonates there.
+  /// share, Main contact drop, direction and Mode). Points off the main
+  /// family are other; tongue points are the family's points above its
+  /// envelope or behind the front. A run whose resonance is the fundamental
+  /// at the branch's own mode is main: nothing resonates there. A run is
+  /// named w_j / k only within resonance_name_tolerance of its Omega.
   void label_branches(HarmonicBalance &hb, const Scene &scene, std::vector<BackbonePoint> &points);
 
   /// Labels one point solved off the backbone (a field at a given Omega) by
-  /// the same rule: a tongue point, named from its own spectrum, if its
-  /// energy exceeds (1 + Tongue share) times the least energy of `points` at
-  /// or beyond its Omega and it names an internal resonance; else main.
+  /// the same rule against the labelled `points`: other if its contact
+  /// fraction lies more than Main contact drop below most_contact_before it; a tongue point, named from its own
+  /// spectrum, if its energy exceeds (1 + Tongue share) times the least
+  /// energy of their main and tongue points at or beyond its Omega and it
+  /// names an internal resonance; else main.
   void label_point(HarmonicBalance                  &hb,
                    const Scene                      &scene,
                    const std::vector<BackbonePoint> &points,
                    BackbonePoint                    &point);
 
-  /// The envelope at omega: the least energy of `points` at omega or beyond
-  /// it in `direction` (infinity if none).
+  /// The envelope at omega: the least energy of `points` not labelled other
+  /// at omega or beyond it in `direction` (infinity if none).
+  /// The most contact fraction before omega in `direction` of the mode's
+  /// family in the labelled `points` (not other, and on their own segment's
+  /// envelope, as main_family counts it); minus infinity if none.
+  double most_contact_before(const std::vector<BackbonePoint> &points, double omega, double direction, double share);
+
   double envelope_at(const std::vector<BackbonePoint> &points, double omega, double direction);
 
   /// The intervals (from, to) between consecutive main points of `points` in

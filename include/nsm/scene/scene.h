@@ -159,13 +159,14 @@ namespace nsm
       unsigned int       max_steps      = 2000;
       double             grazing_offset = 1e-5;
       double             tongue_share   = 0.02;
+      double             main_contact_drop = 0.1; ///< main_branch.h
       double             tongue_energy_ratio = 2.0;
       double             max_contact_change  = 0.01;
       double             max_solution_change = 0.2;
       double             leap_energy_ratio   = 4.0;
       double             search_reach        = 0.05;
       bool               leap_from_fewer_harmonics = true;
-      double             fill_gaps_wider_than      = 0.0; ///< 0: no filling (gap_filling.h)
+      double             fill_gaps_wider_than      = 0.02; ///< 0: no filling (gap_filling.h)
 
       static void declare(dealii::ParameterHandler &prm);
       void        parse(dealii::ParameterHandler &prm);
