@@ -145,7 +145,9 @@ def backbone_plot(directory):
     # Internal resonances: only those whose tongue the run found, faint.
     tongues_path = os.path.join(directory, "tongues.csv")
     t = read(tongues_path) if os.path.exists(tongues_path) else {}
-    for n, omega in enumerate(t.get("omega_resonance", [])):
+    # An unnamed tongue (mode 0: no w_j / k near it) has no line and no label.
+    named = [i for i, j in enumerate(t.get("mode", [])) if int(j) > 0]
+    for n, omega in enumerate(t["omega_resonance"][i] for i in named):
         axes.axvline(omega, color="grey", linewidth=0.5, linestyle=":", zorder=0,
                      label="internal resonance $\\omega_j / k$ of a tongue found" if n == 0 else None)
     resonances = os.path.join(directory, "resonances.csv")
@@ -174,11 +176,11 @@ def backbone_plot(directory):
         top.tick_params(labelsize=7)
     # Tongue labels w_j/k at each tongue's highest point, the highest tongues
     # first, none overlapping; the axis is raised so that the top ones fit.
-    tops = [tongue_top(points, t, i) for i in range(len(t.get("points", [])))]
+    tops = {i: tongue_top(points, t, i) for i in named}
     if tops:
         low_e, high_e = axes.get_ylim()
-        axes.set_ylim(low_e, max(high_e, 3 * max(e for _, e in tops) / e_g))
-    order = sorted(range(len(tops)), key=lambda i: -tops[i][1])
+        axes.set_ylim(low_e, max(high_e, 3 * max(e for _, e in tops.values()) / e_g))
+    order = sorted(tops, key=lambda i: -tops[i][1])
     place_labels(axes, [(tops[i][0], tops[i][1] / e_g,
                          f"$\\omega_{{{int(t['mode'][i])}}}/{int(t['harmonic'][i])}$") for i in order])
     label_between_decades(axes)

@@ -113,13 +113,16 @@ namespace nsm
         return "not searched (the continuation ended before the gap search)";
       std::ostringstream s;
       s.precision(3);
-      const unsigned int failed = record->starts - record->other_family - record->tongue;
+      const unsigned int failed = record->starts - record->other_family - record->tongue - record->above_energy_max;
       s << record->starts << " Newton starts from the predicted mode: " << record->other_family
         << " converged on other families";
       if (record->other_family > 0)
         s << " (contact fraction at most " << record->most_contact << ", the mode's " << record->contact_before
           << " before the gap)";
-      s << ", " << record->tongue << " on tongues, " << failed << " did not converge";
+      s << ", " << record->tongue << " on tongues, ";
+      if (record->above_energy_max > 0)
+        s << record->above_energy_max << " above Energy max, ";
+      s << failed << " did not converge";
       if (record->landed)
         s << "; the segment traced from Omega = " << std::setprecision(6) << *record->landed
           << " is not main against the points beyond it";

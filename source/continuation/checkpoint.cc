@@ -137,7 +137,7 @@ namespace nsm
     out << "\ngaps " << c.gap_searches.size() << '\n';
     for (const GapSearch &g : c.gap_searches)
       out << exact(g.from) << ' ' << exact(g.to) << ' ' << g.starts << ' ' << g.other_family << ' ' << g.tongue
-          << ' ' << exact(g.most_contact) << ' ' << exact(g.contact_before) << ' '
+          << ' ' << g.above_energy_max << ' ' << exact(g.most_contact) << ' ' << exact(g.contact_before) << ' '
           << (g.landed ? exact(*g.landed) : std::string("-")) << '\n';
     out << "points " << c.points.size() << '\n';
     for (const BackbonePoint &p : c.points)
@@ -203,6 +203,7 @@ namespace nsm
         g.starts         = reader.count(line, 1000 * max_points);
         g.other_family   = reader.count(line, 1000 * max_points);
         g.tongue         = reader.count(line, 1000 * max_points);
+        g.above_energy_max = reader.count(line, 1000 * max_points);
         g.most_contact   = reader.number(line);
         g.contact_before = reader.number(line);
         std::string landed;

@@ -127,6 +127,11 @@ namespace nsm
             ++search.starts;
             if (!context.solve(omega, guess, segment, point, BranchContext::Newton::both))
               continue;
+            if (!(point.measures.energy <= context.scene.continuation.energy_max))
+              {
+                ++search.above_energy_max;
+                continue;
+              }
             label_point(context.hb, context.scene, labelled, point);
             if (point.branch == Branch::main)
               return true;
@@ -149,7 +154,8 @@ namespace nsm
       for (const BackbonePoint *q : guesses_in(context, gap))
         {
           if (!context.solve(q->omega, context.guess_from_fewer_harmonics(*q), segment, point,
-                             BranchContext::Newton::both))
+                             BranchContext::Newton::both) ||
+              !(point.measures.energy <= context.scene.continuation.energy_max))
             continue;
           label_point(context.hb, context.scene, labelled, point);
           if (point.branch == Branch::main)
@@ -208,7 +214,9 @@ namespace nsm
       for (const BackbonePoint &p : backbone.points)
         segment = std::max(segment, p.segment + 1);
       const Trend  trend     = trend_into(context, labelled, gap);
-      const double threshold = tongue_threshold(context, labelled, gap.second);
+      // Points above it are tongue points, or above Energy max not kept.
+      const double threshold =
+        std::min(tongue_threshold(context, labelled, gap.second), context.scene.continuation.energy_max);
       GapSearch    search{gap.first, gap.second};
       search.contact_before =
         most_contact_before(labelled, gap.second, context.direction, context.scene.continuation.tongue_share);

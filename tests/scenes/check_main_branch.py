@@ -18,6 +18,7 @@ trigonometric section, on the paper's bar's mode 2 and at M = 80 (exit 0 each):
   polynomial bar's mode rises to Energy max at 1.571, far below its automatic
   Omega max 1.789, and the search finds only other families beyond); on the
   stepped bar the search finds the mode beyond 2.2 that the leaps missed;
+- no point lies above Energy max;
 - a point labelled other has a contact fraction more than 0.1 below the most
   contact of the mode's family (main and tongue points) before it.
 A control run of the stepped bar with the envelope rule alone (Main contact drop =
@@ -76,6 +77,14 @@ for name, sets in BARS.items():
     main, drop, coverage, start, end = measures(rows)
     print(f"{name}: {len(main)} main points of {len(rows)}, coverage {coverage:.2f}, largest contact drop {drop:.3f}")
     check(len(main) > 50, f"{name}: {len(main)} main points")
+    # No point above Energy max is written (the gap search's landings and
+    # segments included); the summary says its value.
+    ceiling = [l for l in stdout.splitlines() if "Continuation/Energy max = 0: " in l]
+    check(ceiling, f"{name}: the summary does not state Energy max")
+    if ceiling:
+        energy_max = float(ceiling[0].split("Continuation/Energy max = 0: ")[1].split()[0])
+        highest = max(float(r["energy"]) for r in rows)
+        check(highest <= energy_max, f"{name}: a point at energy {highest} above Energy max {energy_max}")
     check(drop <= DROP + 1e-12, f"{name}: the contact fraction falls by {drop:.3f} between main points")
     # Omega max is written in the Result block's first line.
     last = [l for l in stdout.splitlines() if "(ended: range: Continuation/Omega max = " in l]

@@ -87,6 +87,7 @@ namespace nsm
     unsigned int starts          = 0;  ///< Newton solves from the predicted mode
     unsigned int other_family    = 0;  ///< converged with less contact than the mode before the gap
     unsigned int tongue          = 0;  ///< converged above the envelope (a tongue's flank)
+    unsigned int above_energy_max = 0; ///< converged above Energy max (not kept)
     double       most_contact    = 0;  ///< the most contact of the other families found
     double       contact_before  = 0;  ///< the mode's most contact before the gap
     std::optional<double> landed;      ///< where the segment traced into the gap began
