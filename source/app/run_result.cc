@@ -138,15 +138,14 @@ namespace nsm
       const bool reached = backbone.end == BackboneEnd::range;
       const double far   = direction > 0 ? c.omega_max : c.omega_min;
       std::vector<std::string> lines;
-      for (const auto &[from, to] : main_gaps(backbone.points, direction, reached ? std::optional<double>(far) :
-                                                                                     std::nullopt))
-        if (std::abs(to - from) > c.fill_gaps_wider_than)
-          {
-            std::ostringstream s;
-            s.precision(6);
-            s << "no main point from Omega = " << from << " to " << to << ": " << search_found(backbone, from, to);
-            lines.push_back(s.str());
-          }
+      for (const auto &[from, to] : main_gaps_wider_than(backbone.points, direction, c.fill_gaps_wider_than,
+                                                         reached ? std::optional<double>(far) : std::nullopt))
+        {
+          std::ostringstream s;
+          s.precision(6);
+          s << "no main point from Omega = " << from << " to " << to << ": " << search_found(backbone, from, to);
+          lines.push_back(s.str());
+        }
       return lines;
     }
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <optional>
 #include <set>
 #include <utility>
 
@@ -26,20 +27,6 @@ namespace nsm
           points.push_back(p);
       label_branches(context.hb, context.scene, points);
       return points;
-    }
-
-    /// The gaps wider than `width` between main points, in the direction of
-    /// continuation; the last main point's distance to the range's end too
-    /// if the branch reached it.
-    std::vector<Gap> wide_gaps(const BranchContext &context, const std::vector<BackbonePoint> &points,
-                               const double width, const bool reached_end)
-    {
-      std::vector<Gap> gaps = main_gaps(points, context.direction,
-                                        reached_end ? std::optional<double>(context.far_end) : std::nullopt);
-      gaps.erase(std::remove_if(gaps.begin(), gaps.end(),
-                                [&](const Gap &g) { return !(std::abs(g.second - g.first) > width); }),
-                 gaps.end());
-      return gaps;
     }
 
     /// The main points of the branch with half the harmonics strictly inside
@@ -256,7 +243,10 @@ namespace nsm
             backbone.points.back().omega));
         filled                                   = false;
         const std::vector<BackbonePoint> labelled = labelled_in_range(context, backbone);
-        for (const Gap &gap : wide_gaps(context, labelled, width, backbone.end == BackboneEnd::range))
+        // Up to the range's end too if the branch reached it.
+        const std::optional<double> end =
+          backbone.end == BackboneEnd::range ? std::optional<double>(context.far_end) : std::nullopt;
+        for (const Gap &gap : main_gaps_wider_than(labelled, context.direction, width, end))
           if (tried.insert(gap).second && fill(context, backbone, labelled, gap))
             {
               filled = true;

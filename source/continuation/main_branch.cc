@@ -212,6 +212,15 @@ namespace nsm
       point.resonance = branch == Branch::tongue ? r : InternalResonance{0, 0, 0};
     }
 
+    /// A point of the mode's family above its envelope whose excursion, over
+    /// Omega in [lo, hi], names r: main if r is the branch's own fundamental,
+    /// else a tongue point, named if w_j / k lies near.
+    void mark_excursion(BackbonePoint &point, const InternalResonance &r, const unsigned int mode, const double lo,
+                        const double hi)
+    {
+      is_own_fundamental(r, mode) ? mark(point, Branch::main) : mark(point, Branch::tongue, named_if_near(r, lo, hi));
+    }
+
     /// Labels the run [first, end) of the main family's points off its
     /// envelope: a tongue named from its most energetic point, or main if
     /// that names the branch's own fundamental.
@@ -227,8 +236,7 @@ namespace nsm
       });
       const InternalResonance r = tongue_resonance(hb, *top);
       for (auto p = begin; p != stop; ++p)
-        is_own_fundamental(r, mode) ? mark(*p, Branch::main) :
-                                      mark(*p, Branch::tongue, named_if_near(r, lo->omega, hi->omega));
+        mark_excursion(*p, r, mode, lo->omega, hi->omega);
     }
   } // namespace
 
@@ -279,11 +287,7 @@ namespace nsm
     else if (!exceeds_envelope(point.measures.energy, least, c.tongue_share))
       mark(point, Branch::main);
     else
-      {
-        const InternalResonance r = tongue_resonance(hb, point);
-        is_own_fundamental(r, c.mode) ? mark(point, Branch::main) :
-                                        mark(point, Branch::tongue, named_if_near(r, point.omega, point.omega));
-      }
+      mark_excursion(point, tongue_resonance(hb, point), c.mode, point.omega, point.omega);
     hb.set_omega(point.omega);
   }
 
@@ -309,6 +313,17 @@ namespace nsm
     std::vector<std::pair<double, double>> gaps;
     for (std::size_t i = 1; i < main.size(); ++i)
       gaps.emplace_back(main[i - 1], main[i]);
+    return gaps;
+  }
+
+  std::vector<std::pair<double, double>> main_gaps_wider_than(const std::vector<BackbonePoint> &points,
+                                                              const double direction, const double width,
+                                                              const std::optional<double> end)
+  {
+    std::vector<std::pair<double, double>> gaps = main_gaps(points, direction, end);
+    gaps.erase(std::remove_if(gaps.begin(), gaps.end(),
+                              [&](const auto &g) { return !(std::abs(g.second - g.first) > width); }),
+               gaps.end());
     return gaps;
   }
 

@@ -108,6 +108,12 @@ namespace nsm
   std::vector<std::pair<double, double>> main_gaps(const std::vector<BackbonePoint> &points, double direction,
                                                    std::optional<double> end = std::nullopt);
 
+  /// Those of main_gaps wider than `width`: the gaps the gap search tries
+  /// (gap_filling.h) and the Result block names.
+  std::vector<std::pair<double, double>> main_gaps_wider_than(const std::vector<BackbonePoint> &points,
+                                                              double direction, double width,
+                                                              std::optional<double> end = std::nullopt);
+
   /// The tongues of a labelled backbone: runs of tongue points of one
   /// resonance, with the Omega of the main points at their feet.
   std::vector<Tongue> collect_tongues(const std::vector<BackbonePoint> &points);
