@@ -19,7 +19,9 @@
 #include <nsm/base/progress.h>
 #include <nsm/model/receptance.h>
 #include <nsm/output/result_tables.h>
+#include <nsm/verification/harmonics_estimate.h>
 #include <nsm/verification/orbit_refinement.h>
+#include <nsm/verification/space_estimate.h>
 #include <nsm/verification/time_verification.h>
 #include <nsm/verification/refinement_checkpoint.h>
 #include <nsm/verification/verification_checkpoint.h>
@@ -286,6 +288,37 @@ namespace nsm
                                    " before the other points: --resume " + verb + " them)";
       }
 
+      /// Each point's energy error against the same motion with half the
+      /// harmonics (Output/Error estimate), summarised over the main points.
+      void estimate_errors()
+      {
+        EstimateSummary summary;
+        timed("error estimate", [&] {
+          Progress progress("error estimate", scene_.output.progress_every);
+          estimates_ = estimate_energy_errors(*hb_, scene_, backbone_, progress);
+          summary    = summarise_estimates(backbone_, estimates_);
+          report_.result.push_back(estimate_summary(summary, scene_.harmonic_balance.harmonics));
+          note_stop("estimates");
+        });
+        if (point_stop_signal() != 0)
+          return;
+        timed("band check", [&] {
+          const SpaceVerdict verdict =
+            space_verdict(space_->band(*discretisation_), space_->energy_changes(backbone_),
+                          summary.estimated > 0 ? summary.median : std::nan(""), *discretisation_);
+          report_.result.push_back(verdict.summary);
+          if (!verdict.warning.empty())
+            report_.result.push_back("warning: " + verdict.warning);
+        });
+      }
+
+      /// The model of a degree more that the band check compares against,
+      /// made before the harmonic balance.
+      void set_up_band_check()
+      {
+        timed("band check set-up", [&] { space_ = std::make_unique<SpaceReference>(*discretisation_, scene_); });
+      }
+
       void verify_in_time()
       {
         timed("verification in time", [&] {
@@ -351,7 +384,7 @@ namespace nsm
 
       void backbone_tables()
       {
-        tables_.push_back(backbone_table(backbone_, verifications_, orbits_, bar_amplitudes_));
+        tables_.push_back(backbone_table(backbone_, estimates_, verifications_, orbits_, bar_amplitudes_));
         if (scene_.output.harmonics_table)
           tables_.push_back(harmonics_table(*hb_, backbone_));
         tables_.push_back(tongue_table(backbone_));
@@ -511,9 +544,12 @@ namespace nsm
       std::string backbone_note() const
       {
         std::ostringstream s;
+        const auto other = std::count_if(backbone_.points.begin(), backbone_.points.end(),
+                                         [](const BackbonePoint &p) { return p.branch == Branch::other; });
         s << "backbone: " << backbone_.points.size() << " points (" << backbone_.main_points() << " main, "
-          << backbone_.points.size() - backbone_.main_points() << " on " << backbone_.tongues.size()
-          << " tongues), " << backbone_.leaps << " leaps, " << backbone_.folds.size() << " folds, "
+          << backbone_.points.size() - backbone_.main_points() - other << " on " << backbone_.tongues.size()
+          << " tongues, " << other << " on other families), " << backbone_.leaps << " leaps, "
+          << backbone_.folds.size() << " folds, "
           << hb_->n_unknowns() << " unknowns";
         return s.str();
       }
@@ -531,6 +567,8 @@ namespace nsm
       Verifications                   verifications_;
       RefinedOrbits                   orbits_;
       std::vector<double>             bar_amplitudes_;
+      std::vector<double>             estimates_; ///< per point; empty without Output/Error estimate
+      std::unique_ptr<SpaceReference> space_;     ///< the band check's model (Output/Error estimate)
       std::vector<PeriodicField>      fields_;
       CheckpointCompanions            companions_; ///< of the checkpoint resumed from
     };
@@ -595,6 +633,9 @@ namespace nsm
       run.set_up_receptance();
     if (needs_receptance)
       run.receptance();
+    const bool estimates = scene.output.backbone && scene.output.error_estimate;
+    if (estimates)
+      run.set_up_band_check();
     if (needs_backbone)
       run.harmonic_balance();
     // A stop asked for (SIGINT, SIGTERM) ends the continuation, the
@@ -610,6 +651,7 @@ namespace nsm
       else
         work();
     };
+    stage(estimates, "error estimate", [&] { run.estimate_errors(); });
     stage(scene.output.verify_in_time, "verification in time", [&] { run.verify_in_time(); });
     stage(scene.output.refine_in_time, "refinement in time", [&] { run.refine_in_time(); });
     stage(scene.output.bar_amplitude, "bar amplitude", [&] { run.bar_amplitudes(); });

@@ -204,7 +204,9 @@ namespace nsm
       // Points above it are tongue points, or above Energy max not kept.
       const double threshold =
         std::min(tongue_threshold(context, labelled, gap.second), context.scene.continuation.energy_max);
-      GapSearch    search{gap.first, gap.second};
+      GapSearch    search;
+      search.from = gap.first;
+      search.to   = gap.second;
       search.contact_before =
         most_contact_before(labelled, gap.second, context.direction, context.scene.continuation.tongue_share);
       BackbonePoint     point;

@@ -32,7 +32,8 @@ namespace nsm
   }
 
   Discretisation::Discretisation(const Discretisation &other,
-                                 const unsigned int    degree)
+                                 const unsigned int    degree,
+                                 const unsigned int    halvings)
     : bar_(other.bar_)
     , quadrature_points_(other.quadrature_points_ + degree - other.fe_.degree)
     , contact_mass_(other.contact_mass_)
@@ -40,6 +41,7 @@ namespace nsm
     , dof_handler_(triangulation_)
   {
     triangulation_.copy_triangulation(other.triangulation_);
+    triangulation_.refine_global(halvings);
     setup_and_assemble();
   }
 

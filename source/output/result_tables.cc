@@ -60,7 +60,8 @@ namespace nsm
     return table;
   }
 
-  CsvTable backbone_table(const Backbone &backbone, const Verifications &verifications, const RefinedOrbits &orbits,
+  CsvTable backbone_table(const Backbone &backbone, const std::vector<double> &estimates,
+                          const Verifications &verifications, const RefinedOrbits &orbits,
                           const std::vector<double> &bar_amplitudes)
   {
     CsvTable table{"backbone.csv",
@@ -68,6 +69,8 @@ namespace nsm
                     "contact_fraction", "newton_iterations", "residual", "branch",
                     "resonance_mode", "resonance_harmonic"},
                    {}};
+    if (!estimates.empty())
+      table.columns.push_back("energy_error_estimate");
     if (!bar_amplitudes.empty())
       table.columns.push_back("max_displacement");
     if (!verifications.empty())
@@ -87,6 +90,8 @@ namespace nsm
                               p.measures.contact_fraction, double(p.newton_iterations),
                               p.residual, branch_name(p.branch),
                               double(p.resonance.mode), double(p.resonance.harmonic)});
+        if (!estimates.empty())
+          table.rows.back().push_back(std::isfinite(estimates[i]) ? CsvCell(estimates[i]) : CsvCell(std::string()));
         if (!bar_amplitudes.empty())
           table.rows.back().push_back(bar_amplitudes[i]);
         if (!verifications.empty())

@@ -41,6 +41,12 @@ namespace nsm
                       Patterns::Bool(),
                       "Write harmonics.csv: every backbone point's harmonic coefficients of the "
                       "contact force and the contact-end displacement; needs Backbone = true.");
+    prm.declare_entry("Error estimate",
+                      text(d.error_estimate),
+                      Patterns::Bool(),
+                      "Add backbone.csv's energy_error_estimate: each point's |E(M / 2) / E(M) - 1|, "
+                      "E(M / 2) solved with half the harmonics at its Omega (about a tenth of the "
+                      "continuation's time); the summary gives its median over the main points.");
     prm.declare_entry("Bar amplitude",
                       text(d.bar_amplitude),
                       Patterns::Bool(),
@@ -132,6 +138,7 @@ namespace nsm
     backbone     = prm.get_bool("Backbone");
     harmonics_table = prm.get_bool("Harmonics table");
     bar_amplitude   = prm.get_bool("Bar amplitude");
+    error_estimate  = prm.get_bool("Error estimate");
     fields_at    = parse_frequency_list(prm.get("Fields at"), "Output/Fields at");
     fields_every = get_unsigned(prm, "Fields every");
     field_time_samples = get_unsigned(prm, "Field time samples");

@@ -191,6 +191,17 @@ MUTATIONS = [
     ("a checkpoint read whatever its checksum", "source/base/checkpoint_reader.cc",
      "intact_                = text.compare(body, std::string::npos, checksum_line(text.substr(0, body))) == 0;",
      "intact_                = true;"),
+    ("the error estimate against a quarter of the harmonics", "source/verification/harmonics_estimate.cc",
+     "fewer.harmonic_balance.harmonics = scene.harmonic_balance.harmonics / 2;",
+     "fewer.harmonic_balance.harmonics = scene.harmonic_balance.harmonics / 4;"),
+    ("the error estimate relative to the energy with fewer harmonics", "source/verification/harmonics_estimate.cc",
+     "return std::abs(m.energy / point.measures.energy - 1);",
+     "return std::abs(point.measures.energy / m.energy - 1);"),
+    ("the band check warns on the largest change, not the median", "source/verification/space_estimate.cc",
+     "const double median = changes[changes.size() / 2];", "const double median = changes.back();"),
+    ("the band check's reference mesh not refined", "source/verification/space_estimate.cc",
+     "std::make_unique<Discretisation>(model, model.fe().degree, 1)",
+     "std::make_unique<Discretisation>(model, model.fe().degree, 0)"),
 ]
 
 

@@ -94,9 +94,11 @@ def stop_and_resume(executable, name, text, room_pages, failures, stopped_in):
 
 
 def verification_room(stderr):
-    """Pages for every continuation line and one more: the run then waits
-    in its verification's lines (checked: they fill more than two pages)."""
-    continuation = sum(len(l) + 1 for l in stderr.splitlines() if l.startswith("nsm-bar: continuation"))
+    """Pages for every line of the continuation and of the error estimate
+    (the stage between) and one more: the run then waits in its
+    verification's lines (checked: they fill more than two pages)."""
+    continuation = sum(len(l) + 1 for l in stderr.splitlines()
+                       if l.startswith(("nsm-bar: continuation", "nsm-bar: error estimate")))
     verification = sum(len(l) + 1 for l in stderr.splitlines() if l.startswith("nsm-bar: verification"))
     assert verification > 2 * PAGE, f"the verification writes only {verification} bytes of progress"
     return continuation // PAGE + 2

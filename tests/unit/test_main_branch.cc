@@ -227,7 +227,9 @@ namespace
             // their energy can be within 1 % of the exact (the uniform bar's
             // motions form a family).
             if (p.branch == nsm::Branch::other)
-              EXPECT_LT(p.measures.contact_fraction, (4 - period) / period - 0.05) << p.omega;
+              {
+                EXPECT_LT(p.measures.contact_fraction, (4 - period) / period - 0.05) << p.omega;
+              }
             if (p.branch == nsm::Branch::other || p.resonance.harmonic == 0)
               {
                 ++unnamed;

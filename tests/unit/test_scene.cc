@@ -266,7 +266,7 @@ TEST(Scene, AutomaticNewtonIterationsGrowWithTheHarmonicsBeyond207)
   // carries the seed bar's branch to 2.2 where 12 lose it); a set value wins.
   nsm::Scene::HarmonicBalance hb;
   EXPECT_EQ(hb.max_iterations, 0u);
-  for (const auto [m, expected] : {std::pair{1u, 12u}, {160u, 12u}, {207u, 12u}, {208u, 13u}, {320u, 20u}, {1000u, 62u}})
+  for (const auto &[m, expected] : {std::pair{1u, 12u}, {160u, 12u}, {207u, 12u}, {208u, 13u}, {320u, 20u}, {1000u, 62u}})
     {
       hb.harmonics = m;
       EXPECT_EQ(hb.iterations(), expected) << m;

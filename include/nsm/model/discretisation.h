@@ -22,8 +22,9 @@ namespace nsm
     Discretisation(const BarModel &bar, const Scene::Discretisation &params);
 
     /// The same mesh with another FE degree (the adaptive error estimate
-    /// compares degrees p and p + 1).
-    Discretisation(const Discretisation &other, unsigned int degree);
+    /// compares degrees p and p + 1), each cell split `halvings` times (the
+    /// band check's reference has every cell halved once).
+    Discretisation(const Discretisation &other, unsigned int degree, unsigned int halvings = 0);
 
     /// Refines the cells with the largest indicators (a fraction of them)
     /// and reassembles.

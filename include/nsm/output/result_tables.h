@@ -28,11 +28,13 @@ namespace nsm
   /// frequencies.
   CsvTable receptance_table(const Receptance &receptance, const Scene::Output &output);
 
-  /// backbone.csv: one row per point; the verification columns if
+  /// backbone.csv: one row per point; energy_error_estimate if `estimates`
+  /// (one per point, NaN: an empty cell) is not empty; the verification columns if
   /// `verifications` is not empty, the orbit columns if `orbits` is not empty
   /// (empty cells for a point not refined or whose orbit was not found), and
   /// max_displacement if `bar_amplitudes` (one per point) is not empty.
-  CsvTable backbone_table(const Backbone &backbone, const Verifications &verifications, const RefinedOrbits &orbits,
+  CsvTable backbone_table(const Backbone &backbone, const std::vector<double> &estimates,
+                          const Verifications &verifications, const RefinedOrbits &orbits,
                           const std::vector<double> &bar_amplitudes = {});
 
   /// harmonics.csv: per backbone point (its row in backbone.csv from 0) and

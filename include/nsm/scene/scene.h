@@ -191,6 +191,7 @@ namespace nsm
       bool                backbone       = false;
       bool                harmonics_table = false; ///< harmonics.csv: every point's coefficients
       bool                bar_amplitude   = false; ///< backbone.csv's max_displacement column
+      bool                error_estimate  = true;  ///< backbone.csv's energy_error_estimate column
       std::vector<double> fields_at;              ///< Omega of each field
       unsigned int        fields_every       = 0; ///< every n-th backbone point; 0 = none
       unsigned int        field_time_samples = 0; ///< 0: 2 (2 M + 1)

@@ -1,0 +1,64 @@
+// Each backbone point's energy error, estimated from the same motion with
+// half the harmonics at the same Omega (doc/method.md, "The error estimate").
+#pragma once
+
+#include <nsm/continuation/backbone.h>
+#include <nsm/harmonic_balance/harmonic_balance.h>
+#include <nsm/harmonic_balance/newton_solver.h>
+#include <nsm/scene/scene.h>
+
+#include <string>
+#include <vector>
+
+namespace nsm
+{
+  class Progress;
+
+  /// A solution on another model whose contact fraction differs from the
+  /// point's by more than this is another motion, not the same one solved
+  /// again: the families a leap lands on have 0.15 to 0.24 less contact than
+  /// the mode (doc/method.md, "Main branch, tongues and other families"),
+  /// while the seed bar's main points change theirs by a median of 0.003 from
+  /// M = 40 to M = 20 (doc/method.md, "The error estimate").
+  constexpr double same_motion_contact_change = 0.1;
+
+  /// A backbone point solved again on another model (fewer harmonics, a
+  /// finer space) at its Omega: Newton from a guess, full steps and, where
+  /// they fail, a line search with twice the iterations (the guess lies off
+  /// that model's solution by what the models differ in).
+  class SameMotionSolve
+  {
+  public:
+    SameMotionSolve(HarmonicBalance &model, const Scene::HarmonicBalance &params);
+
+    /// |E / E_point - 1| of the solution found, NaN if Newton finds no
+    /// contact motion or one more than same_motion_contact_change away.
+    double energy_change(const BackbonePoint &point, const std::vector<double> &guess);
+
+  private:
+    HarmonicBalance &model_;
+    double           tolerance_;
+    NewtonSolver     full_steps_, searching_;
+  };
+
+  /// Per backbone point, |E(M / 2) / E(M) - 1|: E(M / 2) the energy of the
+  /// harmonic balance with half the harmonics at the point's Omega, Newton
+  /// from the point's own unknowns cut to M / 2. NaN where M < 2, where that
+  /// Newton finds no contact motion, where it lands on another motion (its
+  /// contact fraction more than same_motion_contact_change away), and for the
+  /// points a stop signal left.
+  std::vector<double> estimate_energy_errors(const HarmonicBalance &hb, const Scene &scene,
+                                             const Backbone &backbone, Progress &progress);
+
+  /// The median and 90th percentile of the estimates over the main points,
+  /// and on how many of them one was found.
+  struct EstimateSummary
+  {
+    std::size_t main = 0, estimated = 0;
+    double      median = 0, p90 = 0;
+  };
+  EstimateSummary summarise_estimates(const Backbone &backbone, const std::vector<double> &estimates);
+
+  /// "estimated energy error ..." for the run summary.
+  std::string estimate_summary(const EstimateSummary &summary, unsigned int harmonics);
+} // namespace nsm

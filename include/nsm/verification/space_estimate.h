@@ -1,0 +1,59 @@
+// The spatial model's error over the band the harmonic balance evaluates,
+// [0, M Omega max]: the FE model against the same degree on its mesh with
+// every cell halved (doc/method.md, "The band check"). Its eigenfrequencies in the band are
+// compared before the harmonic balance; after it, the energies of sampled
+// main points solved again on that model, in the units of the harmonic
+// balance's own estimate (harmonics_estimate.h).
+#pragma once
+
+#include <nsm/continuation/backbone.h>
+#include <nsm/harmonic_balance/harmonic_balance.h>
+#include <nsm/model/discretisation.h>
+#include <nsm/model/receptance.h>
+#include <nsm/scene/scene.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace nsm
+{
+  class SpaceReference
+  {
+  public:
+    /// FE_Q(p) on the model's mesh with every cell halved, and its
+    /// receptance up to the band.
+    SpaceReference(const Discretisation &model, const Scene &scene);
+
+    /// The clamped-free modes of the reference with w_j <= M Omega max, and
+    /// the largest |w_j / w_j,ref - 1| of the model's among them.
+    struct Band
+    {
+      double       top = 0;
+      unsigned int modes = 0;
+      double       eigenfrequency_error = 0;
+    };
+    Band band(const Discretisation &model) const;
+
+    /// Per sampled main point (space_samples, evenly spread over the main
+    /// points), |E_ref / E - 1|: E_ref solved at its Omega on the reference
+    /// from its own unknowns; NaN where that Newton finds no contact motion
+    /// or lands on another motion.
+    std::vector<double> energy_changes(const Backbone &backbone) const;
+
+  private:
+    const Scene                     &scene_;
+    std::unique_ptr<Discretisation> reference_;
+    std::unique_ptr<Receptance>     receptance_;
+  };
+
+  /// "spatial error ..." for the run summary, and the warning naming
+  /// Discretisation where the median energy change exceeds the harmonic
+  /// balance's median estimate (empty otherwise).
+  struct SpaceVerdict
+  {
+    std::string summary, warning;
+  };
+  SpaceVerdict space_verdict(const SpaceReference::Band &band, const std::vector<double> &energy_changes,
+                             double harmonics_estimate, const Discretisation &model);
+} // namespace nsm

@@ -1,0 +1,102 @@
+#include <nsm/base/interruption.h>
+#include <nsm/base/progress.h>
+#include <nsm/continuation/constants.h>
+#include <nsm/harmonic_balance/newton_solver.h>
+#include <nsm/verification/harmonics_estimate.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace nsm
+{
+  namespace
+  {
+    /// The 90th percentile the summary gives besides the median.
+    constexpr double upper_share = 0.9;
+
+    /// Newton with a line search and the leaps' iterations, for a guess
+    /// further from the solution than a continuation step's.
+    Scene::HarmonicBalance line_search(Scene::HarmonicBalance params)
+    {
+      params.line_search    = "Polynomial";
+      params.max_iterations = params.iterations() * continuation_constants::leap_iteration_factor;
+      return params;
+    }
+  } // namespace
+
+  SameMotionSolve::SameMotionSolve(HarmonicBalance &model, const Scene::HarmonicBalance &params)
+    : model_(model)
+    , tolerance_(params.tolerance)
+    , full_steps_(model, params)
+    , searching_(model, line_search(params))
+  {}
+
+  double SameMotionSolve::energy_change(const BackbonePoint &point, const std::vector<double> &guess)
+  {
+    NewtonResult r = full_steps_.solve(point.omega, guess);
+    if (!r.converged)
+      r = searching_.solve(point.omega, guess);
+    if (!r.converged || !(r.residual <= tolerance_))
+      return std::numeric_limits<double>::quiet_NaN();
+    model_.set_omega(point.omega);
+    const PeriodicSolutionMeasures m = model_.measure(r.x);
+    if (!(m.energy > 0 && m.contact_fraction > 0 &&
+          std::abs(m.contact_fraction - point.measures.contact_fraction) <= same_motion_contact_change))
+      return std::numeric_limits<double>::quiet_NaN();
+    return std::abs(m.energy / point.measures.energy - 1);
+  }
+
+  std::vector<double> estimate_energy_errors(const HarmonicBalance &hb, const Scene &scene,
+                                             const Backbone &backbone, Progress &progress)
+  {
+    std::vector<double> estimates(backbone.points.size(), std::numeric_limits<double>::quiet_NaN());
+    if (scene.harmonic_balance.harmonics < 2)
+      return estimates;
+    Scene fewer                      = scene;
+    fewer.harmonic_balance.harmonics = scene.harmonic_balance.harmonics / 2;
+    HarmonicBalance model(fewer, hb.receptance());
+    SameMotionSolve solve(model, fewer.harmonic_balance);
+    for (std::size_t i = 0; i < estimates.size() && point_stop_signal() == 0; ++i)
+      {
+        const BackbonePoint &p = backbone.points[i];
+        estimates[i] = solve.energy_change(p, std::vector<double>(p.x.begin(), p.x.begin() + model.n_unknowns()));
+        progress.update([&] { return "point " + std::to_string(i + 1) + " of " + std::to_string(estimates.size()); });
+      }
+    return estimates;
+  }
+
+  EstimateSummary summarise_estimates(const Backbone &backbone, const std::vector<double> &estimates)
+  {
+    EstimateSummary     s;
+    std::vector<double> found;
+    for (std::size_t i = 0; i < backbone.points.size(); ++i)
+      if (backbone.points[i].branch == Branch::main)
+        {
+          ++s.main;
+          if (i < estimates.size() && std::isfinite(estimates[i]))
+            found.push_back(estimates[i]);
+        }
+    s.estimated = found.size();
+    if (found.empty())
+      return s;
+    std::sort(found.begin(), found.end());
+    s.median = found[found.size() / 2];
+    s.p90    = found[std::min(found.size() - 1, std::size_t(upper_share * found.size()))];
+    return s;
+  }
+
+  std::string estimate_summary(const EstimateSummary &summary, const unsigned int harmonics)
+  {
+    std::ostringstream s;
+    s.precision(2);
+    s << "estimated energy error (against M = " << harmonics / 2 << " at the same Omega): ";
+    if (summary.estimated == 0)
+      s << "none of " << summary.main << " main points";
+    else
+      s << "median " << 100 * summary.median << " %, 90th percentile " << 100 * summary.p90 << " % over "
+        << summary.estimated << " of " << summary.main << " main points";
+    return s.str();
+  }
+} // namespace nsm

@@ -1,0 +1,113 @@
+#include <nsm/base/text.h>
+#include <nsm/model/banded_pencil.h>
+#include <nsm/model/spectrum.h>
+#include <nsm/verification/harmonics_estimate.h>
+#include <nsm/verification/space_estimate.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace nsm
+{
+  namespace
+  {
+    /// Main points solved again on the reference: evenly spread, enough for
+    /// a median that one point near a tongue (whose resonance the reference
+    /// moves) does not decide, few enough to cost under a tenth of the run.
+    constexpr unsigned int space_samples = 15;
+    /// The model's eigenfrequencies are sought up to this many times the
+    /// band's top; a band mode with none there differs by more than
+    /// band_reach - 1 (a lower bound, written as such).
+    constexpr double band_reach = 2;
+  } // namespace
+
+  SpaceReference::SpaceReference(const Discretisation &model, const Scene &scene)
+    : scene_(scene)
+    , reference_(std::make_unique<Discretisation>(model, model.fe().degree, 1))
+    , receptance_(std::make_unique<Receptance>(*reference_, scene.receptance,
+                                               scene.harmonic_balance.harmonics * scene.continuation.omega_max))
+  {}
+
+  SpaceReference::Band SpaceReference::band(const Discretisation &model) const
+  {
+    Band b;
+    b.top = scene_.harmonic_balance.harmonics * scene_.continuation.omega_max;
+    const std::vector<double> theirs =
+      eigenvalues_below(BandedPencil(*reference_, EndCondition::clamped_free), b.top);
+    // A coarse mesh's eigenfrequencies lie above the fine one's: its
+    // counterparts of the band's modes are sought up to twice the band.
+    const std::vector<double> ours =
+      eigenvalues_below(BandedPencil(model, EndCondition::clamped_free), band_reach * b.top);
+    b.modes = theirs.size();
+    for (std::size_t j = 0; j < theirs.size(); ++j)
+      b.eigenfrequency_error =
+        std::max(b.eigenfrequency_error,
+                 j < ours.size() ? std::abs(std::sqrt(ours[j] / theirs[j]) - 1) : band_reach * b.top / std::sqrt(theirs[j]) - 1);
+    return b;
+  }
+
+  std::vector<double> SpaceReference::energy_changes(const Backbone &backbone) const
+  {
+    std::vector<const BackbonePoint *> main;
+    for (const BackbonePoint &p : backbone.points)
+      if (p.branch == Branch::main)
+        main.push_back(&p);
+    std::vector<double> changes;
+    if (main.empty())
+      return changes;
+    HarmonicBalance    model(scene_, *receptance_);
+    SameMotionSolve    solve(model, scene_.harmonic_balance);
+    const std::size_t  count = std::min<std::size_t>(space_samples, main.size());
+    for (std::size_t i = 0; i < count; ++i)
+      {
+        const BackbonePoint &p = *main[count == 1 ? 0 : i * (main.size() - 1) / (count - 1)];
+        changes.push_back(solve.energy_change(p, p.x));
+      }
+    return changes;
+  }
+
+  SpaceVerdict space_verdict(const SpaceReference::Band &band, const std::vector<double> &energy_changes,
+                             const double harmonics_estimate, const Discretisation &model)
+  {
+    // A point the finer mesh does not find again from its own unknowns has
+    // moved beyond Newton's reach: it counts as beyond any bound.
+    std::vector<double> changes = energy_changes;
+    for (double &c : changes)
+      if (!std::isfinite(c))
+        c = std::numeric_limits<double>::infinity();
+    std::sort(changes.begin(), changes.end());
+    const auto lost = std::count(changes.begin(), changes.end(), std::numeric_limits<double>::infinity());
+    const std::string ours = "FE_Q(" + std::to_string(model.fe().degree) + ") x " + std::to_string(model.n_cells());
+    std::ostringstream s;
+    s.precision(2);
+    s << "spatial error (" << ours << " against " << 2 * model.n_cells()
+      << " cells): eigenfrequencies up to M Omega max = " << significant(band.top, 4) << " (" << band.modes
+      << " modes) agree to " << band.eigenfrequency_error;
+    if (changes.empty())
+      return {s.str(), ""};
+    const double median = changes[changes.size() / 2];
+    s << "; main points' energy changed by a median ";
+    if (std::isfinite(median))
+      s << 100 * median << " %";
+    else
+      s << "beyond reach";
+    s << " (" << changes.size() - lost << " of " << changes.size() << " found again)";
+    SpaceVerdict verdict{s.str(), ""};
+    if (std::isfinite(harmonics_estimate) && median > harmonics_estimate)
+      {
+        std::ostringstream w;
+        w.precision(2);
+        w << "the mesh limits the accuracy: halving its cells moves the main points' energy by a median ";
+        if (std::isfinite(median))
+          w << 100 * median << " %";
+        else
+          w << "beyond reach (more than half not found again)";
+        w << ", more than the harmonic balance's estimated " << 100 * harmonics_estimate
+          << " %: raise Discretisation/Cells or Degree (now " << ours << ")";
+        verdict.warning = w.str();
+      }
+    return verdict;
+  }
+} // namespace nsm
