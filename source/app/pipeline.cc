@@ -1,5 +1,6 @@
 #include <nsm/model/adaptive_refinement.h>
 #include <nsm/model/automatic_range.h>
+#include <nsm/model/band_cells.h>
 #include <nsm/model/bar_model.h>
 #include <nsm/continuation/checkpoint.h>
 #include <nsm/continuation/continuation.h>
@@ -152,6 +153,14 @@ namespace nsm
       void mesh(const BarModel &bar)
       {
         bar_ = &bar;
+        if (scene_.discretisation.cells == 0)
+          timed("cells for the band", [&] {
+            const BandCells choice       = cells_for_band(bar, scene_);
+            scene_.discretisation.cells = choice.cells;
+            scene_.discretisation.check_cells();
+            scene_.check_consistency(false);
+            report_.notes.push_back(describe(choice, scene_.discretisation.degree));
+          });
         timed("mesh and assembly", [&] {
           discretisation_ = std::make_unique<Discretisation>(bar, scene_.discretisation);
         });

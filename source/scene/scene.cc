@@ -284,8 +284,16 @@ namespace nsm
               format_value(w));
     // The clamped-free problem has one mode per DoF but the clamped one; an
     // adaptive mesh adds DoFs, so its modes are checked once it is made.
+    require(discretisation.cells != 0 || (discretisation.refinement != Refinement::adaptive && !is_study),
+            "Discretisation/Cells",
+            std::string("an integer in [1, 1000000] ") +
+              (is_study ? "in a study (0 chooses a run's cells for its band)" :
+                          "with Refinement = adaptive (which refines for the band itself)"),
+            "0");
+    // Cells = 0: checked once chosen (model/band_cells.h).
+    const bool         known = discretisation.refinement != Refinement::adaptive && discretisation.cells != 0;
     const unsigned int modes = discretisation.cells * discretisation.degree;
-    require(discretisation.refinement == Refinement::adaptive || output.spectrum_modes < modes,
+    require(!known || output.spectrum_modes < modes,
             "Output/Spectrum modes",
             "an integer in [0, Cells x Degree - 1] = [0, " + std::to_string(modes - 1) +
               "] (spectrum.csv pairs each clamped-free frequency with a clamped-clamped one, and the "
@@ -295,7 +303,7 @@ namespace nsm
     const bool         redistributed = discretisation.contact_mass == ContactMass::redistributed;
     const unsigned int free_modes    = redistributed ? modes - 1 : modes;
     require((!output.backbone && !output.fields()) ||
-              discretisation.refinement == Refinement::adaptive || continuation.mode <= free_modes,
+              !known || continuation.mode <= free_modes,
             "Continuation/Mode",
             "an integer in [1, " + std::string(redistributed ? "Cells x Degree - 1" : "Cells x Degree") + "] = [1, " +
               std::to_string(free_modes) + "] (the modes of the mesh)",

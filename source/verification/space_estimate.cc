@@ -1,6 +1,5 @@
 #include <nsm/base/text.h>
-#include <nsm/model/banded_pencil.h>
-#include <nsm/model/spectrum.h>
+#include <nsm/model/band_cells.h>
 #include <nsm/verification/harmonics_estimate.h>
 #include <nsm/verification/space_estimate.h>
 
@@ -17,10 +16,6 @@ namespace nsm
     /// a median that one point near a tongue (whose resonance the reference
     /// moves) does not decide, few enough to cost under a tenth of the run.
     constexpr unsigned int space_samples = 15;
-    /// The model's eigenfrequencies are sought up to this many times the
-    /// band's top; a band mode with none there differs by more than
-    /// band_reach - 1 (a lower bound, written as such).
-    constexpr double band_reach = 2;
   } // namespace
 
   SpaceReference::SpaceReference(const Discretisation &model, const Scene &scene)
@@ -30,22 +25,9 @@ namespace nsm
                                                scene.harmonic_balance.harmonics * scene.continuation.omega_max))
   {}
 
-  SpaceReference::Band SpaceReference::band(const Discretisation &model) const
+  BandAgreement SpaceReference::band(const Discretisation &model) const
   {
-    Band b;
-    b.top = scene_.harmonic_balance.harmonics * scene_.continuation.omega_max;
-    const std::vector<double> theirs =
-      eigenvalues_below(BandedPencil(*reference_, EndCondition::clamped_free), b.top);
-    // A coarse mesh's eigenfrequencies lie above the fine one's: its
-    // counterparts of the band's modes are sought up to twice the band.
-    const std::vector<double> ours =
-      eigenvalues_below(BandedPencil(model, EndCondition::clamped_free), band_reach * b.top);
-    b.modes = theirs.size();
-    for (std::size_t j = 0; j < theirs.size(); ++j)
-      b.eigenfrequency_error =
-        std::max(b.eigenfrequency_error,
-                 j < ours.size() ? std::abs(std::sqrt(ours[j] / theirs[j]) - 1) : band_reach * b.top / std::sqrt(theirs[j]) - 1);
-    return b;
+    return band_agreement(model, *reference_, scene_.harmonic_balance.harmonics * scene_.continuation.omega_max);
   }
 
   std::vector<double> SpaceReference::energy_changes(const Backbone &backbone) const
@@ -68,7 +50,7 @@ namespace nsm
     return changes;
   }
 
-  SpaceVerdict space_verdict(const SpaceReference::Band &band, const std::vector<double> &energy_changes,
+  SpaceVerdict space_verdict(const BandAgreement &band, const std::vector<double> &energy_changes,
                              const double harmonics_estimate, const Discretisation &model)
   {
     // A point the finer mesh does not find again from its own unknowns has
@@ -84,7 +66,7 @@ namespace nsm
     s.precision(2);
     s << "spatial error (" << ours << " against " << 2 * model.n_cells()
       << " cells): eigenfrequencies up to M Omega max = " << significant(band.top, 4) << " (" << band.modes
-      << " modes) agree to " << band.eigenfrequency_error;
+      << " modes) agree to " << band.error;
     if (changes.empty())
       return {s.str(), ""};
     const double median = changes[changes.size() / 2];

@@ -3,6 +3,7 @@
 // with half the harmonics, checked against the uniform bar's exact energy, and
 // the band check's verdict.
 #include <nsm/base/progress.h>
+#include <nsm/model/band_cells.h>
 #include <nsm/model/exact_references.h>
 #include <nsm/verification/harmonics_estimate.h>
 #include <nsm/verification/space_estimate.h>
@@ -99,7 +100,7 @@ TEST(ErrorEstimate, OnTheUniformBarItIsTheSizeOfTheErrorAgainstTheExactMode)
 TEST(BandCheck, WarnsWhenTheMeshMovesTheEnergyMoreThanTheHarmonicsDo)
 {
   testing_helpers::HbModel  model(uniform_scene(20));
-  const nsm::SpaceReference::Band band{40, 12, 1e-3};
+  const nsm::BandAgreement band{40, 12, 1e-3};
   const double              nan = std::numeric_limits<double>::quiet_NaN();
   const auto verdict = [&](const std::vector<double> &changes, const double estimate) {
     return nsm::space_verdict(band, changes, estimate, model.discretisation);
@@ -125,11 +126,40 @@ TEST(BandCheck, FindsTheEigenfrequenciesAMeshDoesNotResolve)
   testing_helpers::HbModel resolved(scene);
   const auto               fine = nsm::SpaceReference(resolved.discretisation, scene).band(resolved.discretisation);
   EXPECT_EQ(fine.modes, 25u);
-  EXPECT_LT(fine.eigenfrequency_error, 1e-6);
+  EXPECT_LT(fine.error, 1e-6);
   scene.discretisation.degree = 2;
   scene.discretisation.cells  = 20;
   testing_helpers::HbModel coarse(scene);
   const auto               rough = nsm::SpaceReference(coarse.discretisation, scene).band(coarse.discretisation);
   EXPECT_EQ(rough.modes, 25u);
-  EXPECT_GT(rough.eigenfrequency_error, 1e-2);
+  EXPECT_GT(rough.error, 1e-2);
+}
+
+// Cells = 0 on the uniform bar, whose eigenfrequencies (j - 1/2) pi are exact:
+// the chosen mesh's agree with them to band_tolerance (its agreement with
+// twice the cells is its error times 1 - 2^-2p, 0.996 for p = 4), and the mesh
+// with half its cells does not.
+TEST(BandCheck, CellsZeroChoosesTheFewestCellsThatResolveTheBand)
+{
+  nsm::Scene scene              = uniform_scene(40);
+  scene.discretisation.degree   = 4;
+  scene.discretisation.cells    = 0;
+  scene.output.backbone         = true;
+  const nsm::BarModel  bar(scene.bar);
+  const nsm::BandCells choice = nsm::cells_for_band(bar, scene);
+  EXPECT_EQ(choice.agreement.top, 80);
+  EXPECT_EQ(choice.agreement.modes, 25u);
+  ASSERT_GE(choice.tried.size(), 2u);
+  EXPECT_EQ(choice.tried.back(), choice.cells);
+  const auto exact_error = [&](const unsigned int cells) {
+    scene.discretisation.cells = cells;
+    const nsm::Discretisation d(bar, scene.discretisation);
+    const auto modes = nsm::compute_spectrum(d, nsm::EndCondition::clamped_free, 25, false);
+    double error = 0;
+    for (unsigned int j = 0; j < 25; ++j)
+      error = std::max(error, std::abs(std::sqrt(modes.eigenvalues[j]) / ((j + 0.5) * M_PI) - 1));
+    return error;
+  };
+  EXPECT_LE(exact_error(choice.cells), nsm::band_tolerance / (1 - std::pow(2.0, -8)) * 1.01);
+  EXPECT_GT(exact_error(choice.cells / 2), nsm::band_tolerance);
 }

@@ -42,7 +42,7 @@ namespace
       {"sign_unknown", "subsection Contact\n set Force sign = attractive\nend\n", "Contact/Force sign", "one of physical, seed-eq5"},
       {"degree_zero", "subsection Discretisation\n set Degree = 0\nend\n", "Discretisation/Degree", "[1, 20]"},
       {"degree_large", "subsection Discretisation\n set Degree = 21\nend\n", "Discretisation/Degree", "[1, 20]"},
-      {"cells_zero", "subsection Discretisation\n set Cells = 0\nend\n", "Discretisation/Cells", "[1, 1000000]"},
+      {"cells_zero_adaptive", "subsection Discretisation\n set Cells = 0\n set Refinement = adaptive\nend\n", "Discretisation/Cells", "[1, 1000000] with Refinement = adaptive"},
       {"ratio_large", "subsection Discretisation\n subsection Graded\n  set Ratio = 1.5\n end\nend\n", "Graded/Ratio", "a number in [1e-06, 1]"},
       {"layers_too_many", "subsection Discretisation\n set Cells = 4\n subsection Graded\n  set Layers = 5\n end\nend\n", "Graded/Layers", "[0, 4]"},
       {"graded_no_layers", "subsection Discretisation\n set Cells = 4\n set Refinement = graded\nend\n", "Graded/Layers", "[1, 4] with Refinement = graded"},

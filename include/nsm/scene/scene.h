@@ -99,7 +99,7 @@ namespace nsm
     struct Discretisation
     {
       unsigned int degree             = 1;
-      unsigned int cells              = 4000;
+      unsigned int cells              = 4000; ///< 0: chosen for the band (model/band_cells.h)
       unsigned int quadrature_points  = 0; ///< 0: degree + 2
       double       roundoff_limit     = 1e-7;
       Refinement   refinement         = Refinement::none;
@@ -114,6 +114,11 @@ namespace nsm
       /// Smallest cell size, relative to L, that keeps the round-off floor
       /// eps p^2 L / h_min of the stiffness matrix within `roundoff_limit`.
       double smallest_cell() const;
+
+      /// The checks that need Cells (Graded/Layers within it, the round-off
+      /// floor of the graded layer): at parsing, or once Cells = 0 is chosen
+      /// (model/band_cells.h).
+      void check_cells() const;
 
       static void declare(dealii::ParameterHandler &prm);
       void        parse(dealii::ParameterHandler &prm);
@@ -254,8 +259,8 @@ namespace nsm
     /// The band over which adaptive refinement resolves the receptance.
     double refinement_band() const;
 
-  private:
-    /// Checks between subsections.
+    /// Checks between subsections: when the scene is read, and again once
+    /// Discretisation/Cells = 0 is chosen (model/band_cells.h).
     void check_consistency(bool is_study) const;
   };
 

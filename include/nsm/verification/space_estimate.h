@@ -8,6 +8,7 @@
 
 #include <nsm/continuation/backbone.h>
 #include <nsm/harmonic_balance/harmonic_balance.h>
+#include <nsm/model/band_cells.h>
 #include <nsm/model/discretisation.h>
 #include <nsm/model/receptance.h>
 #include <nsm/scene/scene.h>
@@ -25,15 +26,8 @@ namespace nsm
     /// receptance up to the band.
     SpaceReference(const Discretisation &model, const Scene &scene);
 
-    /// The clamped-free modes of the reference with w_j <= M Omega max, and
-    /// the largest |w_j / w_j,ref - 1| of the model's among them.
-    struct Band
-    {
-      double       top = 0;
-      unsigned int modes = 0;
-      double       eigenfrequency_error = 0;
-    };
-    Band band(const Discretisation &model) const;
+    /// The model's eigenfrequencies up to M Omega max against the reference's.
+    BandAgreement band(const Discretisation &model) const;
 
     /// Per sampled main point (space_samples, evenly spread over the main
     /// points), |E_ref / E - 1|: E_ref solved at its Omega on the reference
@@ -54,6 +48,6 @@ namespace nsm
   {
     std::string summary, warning;
   };
-  SpaceVerdict space_verdict(const SpaceReference::Band &band, const std::vector<double> &energy_changes,
+  SpaceVerdict space_verdict(const BandAgreement &band, const std::vector<double> &energy_changes,
                              double harmonics_estimate, const Discretisation &model);
 } // namespace nsm
