@@ -89,6 +89,11 @@ namespace nsm
         << ", within " << 100 * summary_energy_error << " %: " << within << " of " << errors.size() << " (" << std::lround(100.0 * within / shot)
         << " % of the main points shot); stable (|multiplier| <= 1 + "
         << output.stability_margin << "): " << stable << " of " << errors.size();
+    // What an unstable orbit means (doc/method.md, "What the instability
+    // belongs to"): measured on the seed bar, not re-derived per run.
+    if (stable < errors.size())
+      s << " (unstable as motions of this FE bar with its wall: on the seed bar the largest |multiplier| "
+           "does not fall with h or p, so it is not the mesh's)";
     return s.str();
   }
 } // namespace nsm
