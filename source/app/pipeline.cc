@@ -321,8 +321,8 @@ namespace nsm
         });
       }
 
-      /// The model of a degree more that the band check compares against,
-      /// made before the harmonic balance.
+      /// The mesh with every cell halved that the band check compares
+      /// against, made before the harmonic balance.
       void set_up_band_check()
       {
         timed("band check set-up", [&] { space_ = std::make_unique<SpaceReference>(*discretisation_, scene_); });
@@ -553,8 +553,7 @@ namespace nsm
       std::string backbone_note() const
       {
         std::ostringstream s;
-        const auto other = std::count_if(backbone_.points.begin(), backbone_.points.end(),
-                                         [](const BackbonePoint &p) { return p.branch == Branch::other; });
+        const unsigned int other = backbone_.points_on(Branch::other);
         s << "backbone: " << backbone_.points.size() << " points (" << backbone_.main_points() << " main, "
           << backbone_.points.size() - backbone_.main_points() - other << " on " << backbone_.tongues.size()
           << " tongues, " << other << " on other families), " << backbone_.leaps << " leaps, "

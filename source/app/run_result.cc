@@ -60,8 +60,7 @@ namespace nsm
       std::ostringstream s;
       s.precision(6);
       const double reached = *backbone.omega_reached(direction);
-      const auto   other   = std::count_if(backbone.points.begin(), backbone.points.end(),
-                                           [](const BackbonePoint &p) { return p.branch == Branch::other; });
+      const auto   other   = backbone.points_on(Branch::other);
       s << "backbone from Omega = " << backbone.points.front().omega << " to " << reached
         << " (ended: " << ending(backbone, reached, c) << "): " << main << " main points, "
         << backbone.points.size() - main - other << " points on " << backbone.tongues.size() << " tongues, "

@@ -57,10 +57,9 @@ namespace nsm
     return furthest->omega;
   }
 
-  unsigned int Backbone::main_points() const
+  unsigned int Backbone::points_on(const Branch branch) const
   {
-    return std::count_if(points.begin(), points.end(),
-                         [](const BackbonePoint &p) { return p.branch == Branch::main; });
+    return std::count_if(points.begin(), points.end(), [&](const BackbonePoint &p) { return p.branch == branch; });
   }
 
   const InternalResonance &nearest_resonance(const std::vector<InternalResonance> &resonances,

@@ -61,17 +61,12 @@ namespace nsm
     return guess;
   }
 
-  namespace
+  Scene::HarmonicBalance leap_parameters(Scene::HarmonicBalance params)
   {
-    /// A leap starts far from the solution: Newton with a line search and
-    /// twice the iterations.
-    Scene::HarmonicBalance leap_parameters(Scene::HarmonicBalance params)
-    {
-      params.line_search    = "Polynomial";
-      params.max_iterations = params.iterations() * continuation_constants::leap_iteration_factor;
-      return params;
-    }
-  } // namespace
+    params.line_search    = "Polynomial";
+    params.max_iterations = params.iterations() * continuation_constants::leap_iteration_factor;
+    return params;
+  }
 
   BranchContext::BranchContext(HarmonicBalance               &hb,
                                const Scene                   &scene,

@@ -45,8 +45,9 @@ namespace nsm
                       text(d.error_estimate),
                       Patterns::Bool(),
                       "Add backbone.csv's energy_error_estimate: each point's |E(M / 2) / E(M) - 1|, "
-                      "E(M / 2) solved with half the harmonics at its Omega (about a tenth of the "
-                      "continuation's time); the summary gives its median over the main points.");
+                      "E(M / 2) solved with half the harmonics at its Omega; the summary gives its median "
+                      "over the main points and the band check (the mesh against its cells halved). "
+                      "Both cost about half the harmonic balance's time on the seed scene.");
     prm.declare_entry("Bar amplitude",
                       text(d.bar_amplitude),
                       Patterns::Bool(),

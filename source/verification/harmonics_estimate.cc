@@ -1,6 +1,6 @@
 #include <nsm/base/interruption.h>
 #include <nsm/base/progress.h>
-#include <nsm/continuation/constants.h>
+#include <nsm/continuation/branch_context.h>
 #include <nsm/harmonic_balance/newton_solver.h>
 #include <nsm/verification/harmonics_estimate.h>
 
@@ -15,22 +15,13 @@ namespace nsm
   {
     /// The 90th percentile the summary gives besides the median.
     constexpr double upper_share = 0.9;
-
-    /// Newton with a line search and the leaps' iterations, for a guess
-    /// further from the solution than a continuation step's.
-    Scene::HarmonicBalance line_search(Scene::HarmonicBalance params)
-    {
-      params.line_search    = "Polynomial";
-      params.max_iterations = params.iterations() * continuation_constants::leap_iteration_factor;
-      return params;
-    }
   } // namespace
 
   SameMotionSolve::SameMotionSolve(HarmonicBalance &model, const Scene::HarmonicBalance &params)
     : model_(model)
     , tolerance_(params.tolerance)
     , full_steps_(model, params)
-    , searching_(model, line_search(params))
+    , searching_(model, leap_parameters(params))
   {}
 
   double SameMotionSolve::energy_change(const BackbonePoint &point, const std::vector<double> &guess)

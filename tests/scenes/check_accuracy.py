@@ -23,6 +23,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from estimates import estimate_statement  # noqa: E402
 from failures import report  # noqa: E402
 
 EXE, SEED = sys.argv[1], sys.argv[2]
@@ -40,11 +41,6 @@ def run(name, *sets):
         return result.stdout, list(csv.DictReader(f))
 
 
-def percentiles(values):
-    values = sorted(values)
-    return values[len(values) // 2], values[min(len(values) - 1, int(0.9 * len(values)))]
-
-
 def check_seed():
     stdout, rows = run("seed")
     main = [r for r in rows if r["branch"] == "main"]
@@ -52,8 +48,7 @@ def check_seed():
     if len(found) < 0.8 * len(main) or any(not (math.isfinite(e) and e >= 0) for e in found):
         failures.append(f"seed: an estimate on {len(found)} of {len(main)} main points")
         return
-    median, p90 = percentiles(found)
-    expected = f"median {100 * median:.2g} %, 90th percentile {100 * p90:.2g} % over {len(found)} of {len(main)}"
+    expected = estimate_statement(found, len(main))
     line = [l for l in stdout.splitlines() if "estimated energy error (against M = 20" in l]
     if not line or expected not in line[0]:
         failures.append(f"seed: the Result block's estimate {line} is not the column's: {expected}")

@@ -109,7 +109,9 @@ namespace nsm
     /// a run stopped by a signal writes for --resume (checkpoint.h).
     std::shared_ptr<const ContinuationCheckpoint> checkpoint;
 
-    unsigned int main_points() const;
+    /// The points labelled `branch`.
+    unsigned int points_on(Branch branch) const;
+    unsigned int main_points() const { return points_on(Branch::main); }
 
     /// The Omega of the written point furthest in the branch's `direction`
     /// (branch_direction); none if no point was written.

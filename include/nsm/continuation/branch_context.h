@@ -38,6 +38,11 @@ namespace nsm
   /// (a's unknowns if both share one Omega): a Newton guess between points.
   std::vector<double> interpolated_guess(const BackbonePoint &a, const BackbonePoint &b, double omega);
 
+  /// Newton for a guess far from the solution (a leap's, or a point solved
+  /// again on another model): a line search and leap_iteration_factor times
+  /// the iterations.
+  Scene::HarmonicBalance leap_parameters(Scene::HarmonicBalance params);
+
   /// The first point of the segment the backbone's last point belongs to.
   std::size_t last_segment_start(const Backbone &backbone);
 

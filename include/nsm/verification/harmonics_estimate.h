@@ -24,8 +24,8 @@ namespace nsm
 
   /// A backbone point solved again on another model (fewer harmonics, a
   /// finer space) at its Omega: Newton from a guess, full steps and, where
-  /// they fail, a line search with twice the iterations (the guess lies off
-  /// that model's solution by what the models differ in).
+  /// they fail, the leaps' Newton (leap_parameters: the guess lies off that
+  /// model's solution by what the models differ in).
   class SameMotionSolve
   {
   public:

@@ -1,9 +1,9 @@
 // The spatial model's error over the band the harmonic balance evaluates,
 // [0, M Omega max]: the FE model against the same degree on its mesh with
-// every cell halved (doc/method.md, "The band check"). Its eigenfrequencies in the band are
-// compared before the harmonic balance; after it, the energies of sampled
-// main points solved again on that model, in the units of the harmonic
-// balance's own estimate (harmonics_estimate.h).
+// every cell halved (doc/method.md, "The band check"). That model is made
+// before the harmonic balance; after it, its eigenfrequencies in the band are
+// compared, and the energies of sampled main points solved again on it, in
+// the units of the harmonic balance's own estimate (harmonics_estimate.h).
 #pragma once
 
 #include <nsm/continuation/backbone.h>
