@@ -19,9 +19,9 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"
 fi
 
-# The targets to build: NSM_BUILD_TARGETS (run.sh: the program alone), or all
-# of them (test.sh: the unit tests and the benchmark programs too). Progress
-# is shown one line per step; the whole log is in build.log.
+# The targets to build: NSM_BUILD_TARGETS (run.sh: the program; test.sh: the
+# program and the unit tests), or all of them (the benchmark programs too).
+# Progress is shown one line per step; the whole log is in build.log.
 targets=()
 for target in ${NSM_BUILD_TARGETS:-}; do targets+=(--target "$target"); done
 echo "building ${NSM_BUILD_TARGETS:-everything} in build/ (a first build takes minutes; log in build.log)"

@@ -1,6 +1,7 @@
 // nsm-bar SCENE.prm [--set ...] [--output DIR] [--resume] [--verbose]: argument handling
 // only; the work is in run_scene(), or in run_study() for a scene that is a
 // study.
+#include <nsm/app/exit_codes.h>
 #include <nsm/app/pipeline.h>
 #include <nsm/app/run_record.h>
 #include <nsm/scene/scene.h>
@@ -11,6 +12,7 @@
 #include <nsm/base/text.h>
 #include <nsm/study/study.h>
 
+#include <nsm/base/assertions.h>
 #include <nsm/base/errors.h>
 
 #include <deal.II/base/exceptions.h>
@@ -56,13 +58,6 @@ namespace
   long launcher_rank() { return std::max(0L, launcher_number({"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})); }
   long launcher_size() { return std::max(1L, launcher_number({"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})); }
 
-  /// A one-line message on stderr, its text printable: a control character
-  /// or a byte that is not UTF-8 from the user's input is escaped.
-  void print_error(const std::string &kind, const std::string &what)
-  {
-    std::cerr << "nsm-bar: " << kind << nsm::printable(what) << '\n';
-  }
-
   /// The command line's overrides, for the summary's first line.
   std::string overrides_note()
   {
@@ -78,8 +73,8 @@ namespace
   {
     if (report.plot_failure.empty())
       return 0;
-    print_error("output error: ", "the plots were not drawn, every other file is written: " + report.plot_failure);
-    return 5;
+    nsm::print_error("output error: ", "the plots were not drawn, every other file is written: " + report.plot_failure);
+    return nsm::exit_codes::output;
   }
 
   /// Runs the scene (a study over the MPI ranks, if any); returns the exit
@@ -120,8 +115,8 @@ namespace
               }
             if (!report.failure.empty())
               {
-                print_error("numerical failure: ", report.failure);
-                return 3;
+                nsm::print_error("numerical failure: ", report.failure);
+                return nsm::exit_codes::numerical;
               }
             return plot_failure_code(report);
           }
@@ -158,48 +153,10 @@ namespace
                     << "; study.csv holds the rows done, a rerun computes the others\n";
         return nsm::stop_exit_code(report.stopped_by);
       }
-    catch (const nsm::InputError &e)
-      {
-        // Bad input is the same on every rank: rank 0 says it.
-        if (launcher_rank() == 0)
-          print_error("input error: ", e.what());
-        return 2;
-      }
-    catch (const nsm::OutputError &e)
-      {
-        print_error("output error: ", e.what());
-        return 5;
-      }
-    catch (const nsm::NumericalError &e)
-      {
-        print_error("numerical failure: ", e.what());
-        return 3;
-      }
-    catch (const std::bad_alloc &)
-      {
-        std::cerr << "nsm-bar: output error: out of memory (the machine's, or a limit on the process): "
-                     "reduce Discretisation/Cells or Degree, Harmonic balance/Harmonics, or the outputs\n";
-        return 5;
-      }
-    catch (const dealii::ExceptionBase &e)
-      {
-        print_error("error: ", nsm::one_line_message(e));
-        return 4;
-      }
-    catch (const std::exception &e)
-      {
-        print_error("error: ", e.what());
-        return 4;
-      }
-    catch (const char *message) // NOX throws these
-      {
-        print_error("numerical failure: ", message);
-        return 3;
-      }
     catch (...)
       {
-        std::cerr << "nsm-bar: error: an exception of unknown type\n";
-        return 4;
+        // Bad input is the same on every rank: rank 0 says it.
+        return nsm::report_failure(std::current_exception(), launcher_rank() == 0);
       }
   }
 
@@ -285,7 +242,7 @@ int main(int argc, char **argv)
                    "                              nsm-bar DIR --resume takes the scene from DIR's record (parameters.prm)\n"
                    "--verbose                     print the continuation's events in the summary too\n"
                    "exit codes: 0 done, 2 bad input, 3 numerical failure, 4 other error, 5 a file could "
-                   "not be written whole, 130 / 143 stopped by SIGINT / SIGTERM (a run writes what it computed, a study "
+                   "not be written whole, 6 a bug in nsm-bar, 130 / 143 stopped by SIGINT / SIGTERM (a run writes what it computed, a study "
                    "keeps its rows done)\n";
       return 0;
     }
@@ -303,7 +260,7 @@ int main(int argc, char **argv)
   if (arguments.empty())
     {
       std::cerr << usage;
-      return 2;
+      return nsm::exit_codes::input;
     }
   CommandLine line;
   try
@@ -313,10 +270,13 @@ int main(int argc, char **argv)
   catch (const nsm::InputError &e)
     {
       if (launcher_rank() == 0)
-        print_error("input error: ", e.what());
-      return 2;
+        nsm::print_error("input error: ", e.what());
+      return nsm::exit_codes::input;
     }
   nsm::set_parameter_overrides(line.overrides);
+#ifdef DEBUG
+  nsm::throw_on_failed_asserts();
+#endif
   // Past a file size limit a write fails (an output error, exit 5) instead of
   // the kernel killing the run half-way.
   std::signal(SIGXFSZ, SIG_IGN);
@@ -325,7 +285,7 @@ int main(int argc, char **argv)
   const int code = run(argc, argv, line.scene, line.verbose, line.resume, mpi);
   // A rank that failed alone would leave the others waiting in a collective;
   // bad input fails on every rank alike.
-  if (code != 0 && code != 2 && code < 128 && mpi && dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+  if (code != 0 && code != nsm::exit_codes::input && code < 128 && mpi && dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
     MPI_Abort(MPI_COMM_WORLD, code);
   return code;
 }

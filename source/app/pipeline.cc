@@ -171,16 +171,21 @@ namespace nsm
             // and again off the refined one for the run.
             Scene initial = scene_;
             if (traces_branch())
-              resolve_automatic_range(initial, *discretisation_);
+              resolve_automatic_range(initial.continuation, initial.contact.gap, initial.output.fields_at,
+                                      *discretisation_);
             for (std::string &note :
                  refine_adaptively(*discretisation_, scene_.discretisation, initial.refinement_band(), &progress))
               report_.notes.push_back(std::move(note));
           });
         report_.notes.push_back(describe(*discretisation_));
         if (traces_branch())
-          for (std::string &note : resolve_automatic_range(scene_, *discretisation_))
+          for (std::string &note : resolve_automatic_range(scene_.continuation, scene_.contact.gap,
+                                                           scene_.output.fields_at, *discretisation_))
             report_.notes.push_back(std::move(note));
       }
+
+      /// What the continuation reads of the scene (its automatic range set).
+      BranchParameters branch() const { return BranchParameters(scene_); }
 
       /// The run follows the branch: for the backbone or for fields.
       bool traces_branch() const { return scene_.output.backbone || scene_.output.fields(); }
@@ -213,18 +218,18 @@ namespace nsm
       void harmonic_balance()
       {
         timed("harmonic balance", [&] {
-          hb_         = std::make_unique<HarmonicBalance>(scene_, *receptance_);
-          resonances_ = internal_resonances(*receptance_, scene_);
+          hb_         = std::make_unique<HarmonicBalance>(scene_.harmonic_balance, scene_.contact, *receptance_);
+          resonances_ = internal_resonances(*receptance_, branch());
           std::optional<ContinuationCheckpoint> checkpoint;
           if (resume_)
             {
-              checkpoint  = read_checkpoint(scene_.output.directory + "/" + checkpoint_file, scene_, *hb_);
+              checkpoint  = read_checkpoint(scene_.output.directory + "/" + checkpoint_file, branch(), *hb_);
               companions_ = checkpoint->companions;
               check_companion(verification_checkpoint_file);
               check_companion(refinement_checkpoint_file);
               report_.notes.push_back(resume_note(*checkpoint));
             }
-          backbone_ = compute_backbone(*hb_, scene_, resonances_, checkpoint ? &*checkpoint : nullptr);
+          backbone_ = compute_backbone(*hb_, branch(), resonances_, checkpoint ? &*checkpoint : nullptr);
           report_.notes.push_back(backbone_note());
           report_.events = backbone_.events;
           report_.result = backbone_result(backbone_, *bar_, scene_.contact, scene_.continuation);
@@ -304,7 +309,7 @@ namespace nsm
         EstimateSummary summary;
         timed("error estimate", [&] {
           Progress progress("error estimate", scene_.output.progress_every);
-          estimates_ = estimate_energy_errors(*hb_, scene_, backbone_, progress);
+          estimates_ = estimate_energy_errors(*hb_, branch(), backbone_, progress);
           summary    = summarise_estimates(backbone_, estimates_);
           report_.result.push_back(estimate_summary(summary, scene_.harmonic_balance.harmonics));
           note_stop("estimates");
@@ -325,7 +330,7 @@ namespace nsm
       /// against, made before the harmonic balance.
       void set_up_band_check()
       {
-        timed("band check set-up", [&] { space_ = std::make_unique<SpaceReference>(*discretisation_, scene_); });
+        timed("band check set-up", [&] { space_ = std::make_unique<SpaceReference>(*discretisation_, scene_.receptance, branch()); });
       }
 
       void verify_in_time()
@@ -495,7 +500,7 @@ namespace nsm
           return nearest_main_point(omega, why);
         try
           {
-            return solve_on_branch(*hb_, scene_, backbone_, omega);
+            return solve_on_branch(*hb_, branch(), backbone_, omega);
           }
         catch (const NumericalError &e)
           {
@@ -625,12 +630,13 @@ namespace nsm
       }
 
     // Checked before any work: an unwritable directory is known now.
-    check_memory(scene);
+    const std::size_t memory = estimated_memory(scene);
+    check_memory(memory, scene.resources, scene.discretisation);
     if (!resume && std::ifstream(scene.output.directory + "/" + checkpoint_file).good())
       report.notes.push_back("Output/Directory held a stopped run's " + std::string(checkpoint_file) +
                              ": this run started again and replaces it (--resume goes on from one)");
     OutputDirectory output(scene.output.directory);
-    report.notes.push_back(memory_note(scene));
+    report.notes.push_back(memory_note(memory, scene.resources));
     SceneRun        run(scene, report, resume);
     run.mesh(bar);
     if (scene.output.refine_in_time)

@@ -1,6 +1,8 @@
 #include <nsm/base/band_cholesky.h>
 #include <nsm/base/errors.h>
 
+#include <nsm/base/assertions.h>
+
 #include <algorithm>
 #include <cstdlib>
 
@@ -35,6 +37,7 @@ namespace nsm
   {
     const int ld = bandwidth_ + 1, one = 1;
     int       info = 0;
+    AssertDimension(x.size(), static_cast<unsigned int>(n_));
     dpbtrs_("U", &n_, &bandwidth_, &one, factor_.data(), &ld, x.data(), &n_, &info, 1);
   }
 } // namespace nsm

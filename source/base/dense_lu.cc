@@ -1,6 +1,8 @@
 #include <nsm/base/dense_lu.h>
 #include <nsm/base/vector_clones.h>
 
+#include <nsm/base/assertions.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -220,6 +222,8 @@ namespace nsm
 
   bool lu_factor(const int n, double *a, int *pivots)
   {
+    Assert(n >= 1, dealii::ExcLowerRange(n, 1));
+    Assert(a != nullptr && pivots != nullptr, ExcPrecondition("lu_factor: a null matrix or pivot array"));
     if (n < blocked_from)
       return factor_unblocked(n, a, pivots);
     for (int k0 = 0; k0 < n; k0 += block)
@@ -237,7 +241,11 @@ namespace nsm
     auto at = [a, n](const int i, const int j) { return a[i + std::size_t(j) * n]; };
     // Whole rows were swapped (the multipliers too): P A = L U, so P x first.
     for (int k = 0; k < n; ++k)
-      std::swap(x[k], x[pivots[k]]);
+      {
+        // Partial pivoting swaps row k with a row at or below it.
+        Assert(pivots[k] >= k && pivots[k] < n, dealii::ExcIndexRangeType<int>(pivots[k], k, n));
+        std::swap(x[k], x[pivots[k]]);
+      }
     for (int k = 0; k < n; ++k)
       for (int i = k + 1; i < n; ++i)
         x[i] -= at(i, k) * x[k];

@@ -28,7 +28,7 @@ namespace nsm
         // A copy: accepting steps grows backbone.points and moves its elements.
         const BackbonePoint start = backbone_.points.back();
         const bool          finished =
-          run_arclength(context_.hb, context_.scene, start, initial_step,
+          run_arclength(context_.hb, context_.params, start, initial_step,
                         [&](const BackbonePoint &candidate) { return accept(candidate); });
         return finished && end_ == SegmentEnd::fold ? SegmentEnd::range : end_;
       }
@@ -37,7 +37,7 @@ namespace nsm
       /// Keeps a converged step or stops LOCA, setting how the segment ends.
       bool accept(const BackbonePoint &candidate)
       {
-        const auto   &c = context_.scene.continuation;
+        const auto   &c = context_.params.continuation;
         BackbonePoint point;
         if (!context_.make_point(candidate.x, candidate.omega, candidate.residual, 0, segment_, point))
           return stop(SegmentEnd::refused, refusal(candidate));
@@ -83,7 +83,7 @@ namespace nsm
       /// Omega by more than its length, at most Max step.
       bool stays(const BackbonePoint &from, const BackbonePoint &to) const
       {
-        const auto &c = context_.scene.continuation;
+        const auto &c = context_.params.continuation;
         return stays_on_branch(from, to, c) && std::abs(to.omega - from.omega) <= c.max_step;
       }
 
@@ -93,7 +93,7 @@ namespace nsm
       bool climbed_tongue(const BackbonePoint &point) const
       {
         return context_.first_fold &&
-               point.measures.energy > context_.scene.continuation.tongue_energy_ratio *
+               point.measures.energy > context_.params.continuation.tongue_energy_ratio *
                                          backbone_.points[*context_.first_fold].measures.energy;
       }
 
@@ -143,7 +143,7 @@ namespace nsm
 
   SegmentEnd arclength_segment(BranchContext &context, Backbone &backbone, const unsigned int segment)
   {
-    const auto &c = context.scene.continuation;
+    const auto &c = context.params.continuation;
     for (double step = std::min(c.initial_step, context.max_step()); step >= c.min_step;
          step /= continuation_constants::step_shrink)
       if (const SegmentEnd end = ArclengthRun(context, backbone, segment).run(step); end != SegmentEnd::jump)

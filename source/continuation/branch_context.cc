@@ -3,6 +3,8 @@
 #include <nsm/continuation/branch_context.h>
 #include <nsm/continuation/continuation.h>
 
+#include <nsm/base/assertions.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -55,6 +57,7 @@ namespace nsm
   {
     const double        run = b.omega - a.omega;
     const double        t   = run == 0 ? 0 : (omega - a.omega) / run;
+    AssertDimension(a.x.size(), b.x.size());
     std::vector<double> guess(a.x.size());
     for (std::size_t i = 0; i < guess.size(); ++i)
       guess[i] = (1 - t) * a.x[i] + t * b.x[i];
@@ -69,24 +72,24 @@ namespace nsm
   }
 
   BranchContext::BranchContext(HarmonicBalance               &hb,
-                               const Scene                   &scene,
+                               const BranchParameters        &params,
                                std::vector<InternalResonance> resonances)
     : hb(hb)
-    , scene(scene)
+    , params(params)
     , resonances(std::move(resonances))
-    , direction(branch_direction(scene.contact))
-    , near_end(direction > 0 ? scene.continuation.omega_min : scene.continuation.omega_max)
-    , far_end(direction > 0 ? scene.continuation.omega_max : scene.continuation.omega_min)
-    , newton_(hb, scene.harmonic_balance)
-    , leap_newton_(hb, leap_parameters(scene.harmonic_balance))
-    , progress_("continuation", scene.output.progress_every)
+    , direction(branch_direction(params.contact))
+    , near_end(direction > 0 ? params.continuation.omega_min : params.continuation.omega_max)
+    , far_end(direction > 0 ? params.continuation.omega_max : params.continuation.omega_min)
+    , newton_(hb, params.harmonic_balance)
+    , leap_newton_(hb, leap_parameters(params.harmonic_balance))
+    , progress_("continuation", params.progress_every)
   {}
 
   bool BranchContext::make_point(const std::vector<double> &x, const double omega, const double residual,
                                  const unsigned int iterations, const unsigned int segment,
                                  BackbonePoint &point)
   {
-    if (!(residual <= scene.harmonic_balance.tolerance))
+    if (!(residual <= params.harmonic_balance.tolerance))
       return false;
     hb.set_omega(omega);
     const PeriodicSolutionMeasures m = hb.measure(x);
@@ -95,7 +98,7 @@ namespace nsm
       return false;
     // mu is added to a residual row: beyond the residual's tolerance it is a
     // forcing the motion needs, not round-off (at most 2e-13 measured).
-    if (hb.has_unfolding() && std::abs(x[1]) > scene.harmonic_balance.tolerance)
+    if (hb.has_unfolding() && std::abs(x[1]) > params.harmonic_balance.tolerance)
       return false;
     point = {segment, omega, m, iterations, residual, x};
     return true;
@@ -125,17 +128,17 @@ namespace nsm
     progress_.update([&] {
       std::ostringstream s;
       // M tells the branch with half the harmonics (leap.h) from the run's own.
-      s << "M = " << scene.harmonic_balance.harmonics << ", " << backbone.points.size()
+      s << "M = " << params.harmonic_balance.harmonics << ", " << backbone.points.size()
         << " points, Omega = " << backbone.points.back().omega << " (range " << near_end << " to " << far_end
         << "), " << backbone.leaps << " leaps";
       return s.str();
     });
-    return backbone.points.size() >= scene.continuation.max_steps || point_stop_signal() != 0;
+    return backbone.points.size() >= params.continuation.max_steps || point_stop_signal() != 0;
   }
 
   double BranchContext::max_step() const
   {
-    return std::min(scene.continuation.max_step, span / continuation_constants::steps_per_span);
+    return std::min(params.continuation.max_step, span / continuation_constants::steps_per_span);
   }
 
   NewtonCost BranchContext::newton_cost() const
@@ -149,20 +152,20 @@ namespace nsm
 
   const Backbone *BranchContext::fewer_harmonics()
   {
-    const unsigned int harmonics = scene.harmonic_balance.harmonics;
+    const unsigned int harmonics = params.harmonic_balance.harmonics;
     if (harmonics < 2)
       return nullptr;
     if (!fewer_harmonics_)
       {
-        Scene fewer                       = scene;
+        BranchParameters fewer            = params;
         fewer.harmonic_balance.harmonics = harmonics / 2;
         // The run's own Newton iterations (Max iterations = 0 would give the
         // M / 2 run fewer): at M = 320 the seed bar's M / 2 branch with 12 lets
         // the run be lost at 2.19991, with 20 it carries it to 2.2.
-        fewer.harmonic_balance.max_iterations = scene.harmonic_balance.iterations();
+        fewer.harmonic_balance.max_iterations = params.harmonic_balance.iterations();
         // Unfilled, so that a run's leaps do not depend on whether it fills its gaps.
         fewer.continuation.fill_gaps_wider_than = 0;
-        HarmonicBalance          model(fewer, hb.receptance());
+        HarmonicBalance          model(fewer.harmonic_balance, fewer.contact, hb.receptance());
         const PointStopsDeferred whole;
         fewer_harmonics_ = std::make_unique<Backbone>(compute_backbone(model, fewer, resonances));
       }

@@ -160,7 +160,7 @@ namespace nsm
     file << out.str() << "model " << fingerprint(out.str(), points_hash) << "\nend\n";
   }
 
-  ContinuationCheckpoint read_checkpoint(const std::string &path, const Scene &scene, HarmonicBalance &hb)
+  ContinuationCheckpoint read_checkpoint(const std::string &path, const BranchParameters &params, HarmonicBalance &hb)
   {
     CheckpointReader reader(path);
     if (!reader.opened())
@@ -168,9 +168,9 @@ namespace nsm
                        " in Output/Directory, and '" + printable(path) +
                        "' cannot be read: run the scene without --resume");
     reader.expect(format_line);
-    check_entries(reader, scene.computation_entries);
+    check_entries(reader, params.computation_entries);
     ContinuationCheckpoint c;
-    const std::size_t      max_points = scene.continuation.max_steps + 1;
+    const std::size_t      max_points = params.continuation.max_steps + 1;
     std::istringstream     state      = reader.next("state ");
     c.segment                         = reader.count(state, max_points);
     c.leaps                           = reader.count(state, max_points);

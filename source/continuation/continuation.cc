@@ -17,10 +17,10 @@
 namespace nsm
 {
   std::vector<InternalResonance> internal_resonances(const Receptance &receptance,
-                                                     const Scene      &scene)
+                                                     const BranchParameters      &params)
   {
-    const auto                    &c   = scene.continuation;
-    const unsigned int             top = scene.harmonic_balance.harmonics;
+    const auto                    &c   = params.continuation;
+    const unsigned int             top = params.harmonic_balance.harmonics;
     std::vector<InternalResonance> found;
     for (unsigned int j = 0; j < receptance.poles().size(); ++j)
       for (unsigned int k = 1; k <= top; ++k)
@@ -81,7 +81,7 @@ namespace nsm
     /// the gaps behind are filled if the scene asks (gap_filling.h).
     void trace(BranchContext &context, Backbone &backbone, unsigned int segment)
     {
-      const std::unique_ptr<SegmentTracer> method = make_segment_tracer(context.scene.continuation.method);
+      const std::unique_ptr<SegmentTracer> method = make_segment_tracer(context.params.continuation.method);
       for (;; ++segment)
         {
           const Counts start = counts(backbone);
@@ -107,7 +107,7 @@ namespace nsm
             {
               backbone.end = BackboneEnd::max_steps;
               return backbone.events.push_back(event_message(
-                "Continuation/Max steps = " + std::to_string(context.scene.continuation.max_steps) +
+                "Continuation/Max steps = " + std::to_string(context.params.continuation.max_steps) +
                   " points reached (raise it to go on)",
                 omega));
             }
@@ -154,12 +154,12 @@ namespace nsm
   } // namespace
 
   Backbone compute_backbone(HarmonicBalance                      &hb,
-                            const Scene                          &scene,
+                            const BranchParameters                          &params,
                             const std::vector<InternalResonance> &resonances,
                             const ContinuationCheckpoint         *resume)
   {
     Backbone      backbone;
-    BranchContext context(hb, scene, resonances);
+    BranchContext context(hb, params, resonances);
     if (resume)
       restore(*resume, context, backbone);
     else
@@ -175,9 +175,9 @@ namespace nsm
     // Points traced on the way from grazing to the range are not written.
     auto &p = backbone.points;
     p.erase(std::remove_if(p.begin(), p.end(),
-                           [&](const BackbonePoint &q) { return !in_omega_range(scene.continuation, q.omega); }),
+                           [&](const BackbonePoint &q) { return !in_omega_range(params.continuation, q.omega); }),
             p.end());
-    label_branches(hb, scene, p);
+    label_branches(hb, params, p);
     backbone.tongues = collect_tongues(p);
     return backbone;
   }
@@ -187,16 +187,16 @@ namespace nsm
 {
 
   BackbonePoint solve_on_branch(HarmonicBalance &hb,
-                                const Scene     &scene,
+                                const BranchParameters     &params,
                                 const Backbone  &backbone,
                                 const double     omega,
                                 const bool       main_only)
   {
     const auto   &p = backbone.points;
-    BranchContext context(hb, scene, {});
+    BranchContext context(hb, params, {});
     BackbonePoint point;
     const auto    labelled = [&]() -> BackbonePoint & {
-      label_point(hb, scene, p, point);
+      label_point(hb, params, p, point);
       return point;
     };
     // Between two points of one segment, the solution must continue the branch
@@ -204,7 +204,7 @@ namespace nsm
     // another branch.
     const auto between = [&](const BackbonePoint &a, const BackbonePoint &b) {
       return context.solve(omega, interpolated_guess(a, b, omega), a.segment, point) &&
-             stays_on_branch(a, point, scene.continuation) && stays_on_branch(b, point, scene.continuation);
+             stays_on_branch(a, point, params.continuation) && stays_on_branch(b, point, params.continuation);
     };
     // Pairs of main points first, then (unless main_only) the others: a
     // filled gap's segment is stored after the tongue it fills (gap_filling.h).

@@ -25,7 +25,7 @@ namespace nsm
       for (const BackbonePoint &p : backbone.points)
         if (context.in_range(p.omega))
           points.push_back(p);
-      label_branches(context.hb, context.scene, points);
+      label_branches(context.hb, context.params, points);
       return points;
     }
 
@@ -52,7 +52,7 @@ namespace nsm
     double tongue_threshold(const BranchContext &context, const std::vector<BackbonePoint> &points,
                             const double far_side)
     {
-      return (1 + context.scene.continuation.tongue_share) * envelope_at(points, far_side, context.direction);
+      return (1 + context.params.continuation.tongue_share) * envelope_at(points, far_side, context.direction);
     }
 
     /// The main points that predict the mode in a gap: the one at its start,
@@ -106,7 +106,7 @@ namespace nsm
                            const Trend &trend, const unsigned int segment, BackbonePoint &point, GapSearch &search)
     {
       const double spacing =
-        context.scene.continuation.fill_gaps_wider_than / continuation_constants::gap_starts_per_width;
+        context.params.continuation.fill_gaps_wider_than / continuation_constants::gap_starts_per_width;
       for (double omega = gap.first + context.direction * spacing; context.beyond(gap.second, omega);
            omega += context.direction * spacing)
         for (const std::vector<double> &guess : predicted_guesses(trend, omega))
@@ -114,12 +114,12 @@ namespace nsm
             ++search.starts;
             if (!context.solve(omega, guess, segment, point, BranchContext::Newton::both))
               continue;
-            if (!(point.measures.energy <= context.scene.continuation.energy_max))
+            if (!(point.measures.energy <= context.params.continuation.energy_max))
               {
                 ++search.above_energy_max;
                 continue;
               }
-            label_point(context.hb, context.scene, labelled, point);
+            label_point(context.hb, context.params, labelled, point);
             if (point.branch == Branch::main)
               return true;
             if (point.branch == Branch::other)
@@ -142,9 +142,9 @@ namespace nsm
         {
           if (!context.solve(q->omega, context.guess_from_fewer_harmonics(*q), segment, point,
                              BranchContext::Newton::both) ||
-              !(point.measures.energy <= context.scene.continuation.energy_max))
+              !(point.measures.energy <= context.params.continuation.energy_max))
             continue;
-          label_point(context.hb, context.scene, labelled, point);
+          label_point(context.hb, context.params, labelled, point);
           if (point.branch == Branch::main)
             return true;
         }
@@ -159,7 +159,7 @@ namespace nsm
     bool traced_back(BranchContext &context, Backbone &backbone, const Trend &trend, const Gap &gap,
                      const unsigned int segment, const double tongue_above)
     {
-      const auto                &c = context.scene.continuation;
+      const auto                &c = context.params.continuation;
       std::vector<BackbonePoint> back{*trend.far};
       double                     step = c.initial_step;
       while (step >= c.min_step && backbone.points.size() + back.size() <= c.max_steps)
@@ -203,12 +203,12 @@ namespace nsm
       const Trend  trend     = trend_into(context, labelled, gap);
       // Points above it are tongue points, or above Energy max not kept.
       const double threshold =
-        std::min(tongue_threshold(context, labelled, gap.second), context.scene.continuation.energy_max);
+        std::min(tongue_threshold(context, labelled, gap.second), context.params.continuation.energy_max);
       GapSearch    search;
       search.from = gap.first;
       search.to   = gap.second;
       search.contact_before =
-        most_contact_before(labelled, gap.second, context.direction, context.scene.continuation.tongue_share);
+        most_contact_before(labelled, gap.second, context.direction, context.params.continuation.tongue_share);
       BackbonePoint     point;
       const std::size_t before = backbone.points.size();
       const bool predicted = trend.start && predicted_landing(context, labelled, gap, trend, segment, point, search);
@@ -231,7 +231,7 @@ namespace nsm
 
   void fill_gaps(BranchContext &context, Backbone &backbone)
   {
-    const double width = context.scene.continuation.fill_gaps_wider_than;
+    const double width = context.params.continuation.fill_gaps_wider_than;
     if (width <= 0)
       return;
     const PointStopsDeferred            whole;
@@ -240,7 +240,7 @@ namespace nsm
       {
         if (context.full(backbone))
           return backbone.events.push_back(event_message(
-            "Continuation/Max steps = " + std::to_string(context.scene.continuation.max_steps) +
+            "Continuation/Max steps = " + std::to_string(context.params.continuation.max_steps) +
               " points reached while filling the main branch's gaps",
             backbone.points.back().omega));
         filled                                   = false;

@@ -30,10 +30,10 @@ namespace nsm
     {
       std::ostringstream s;
       s << "no converged non-trivial solution within Continuation/Search reach = "
-        << text(context.scene.continuation.search_reach) << " (relative) of grazing of clamped-free mode " << mode
+        << text(context.params.continuation.search_reach) << " (relative) of grazing of clamped-free mode " << mode
         << " (w = " << w << ") and before the end of Continuation/Omega min..max"
-        << "; Contact/Alpha = " << context.scene.contact.alpha << " gives alpha gamma(0) = "
-        << context.scene.contact.alpha * context.hb.receptance()(0.0).gamma
+        << "; Contact/Alpha = " << context.params.contact.alpha << " gives alpha gamma(0) = "
+        << context.params.contact.alpha * context.hb.receptance()(0.0).gamma
         << " (the contact law's switch lambda - alpha g balances force and gap for alpha "
            "gamma(0) near 1, where the start converges most easily)";
       throw NumericalError(s.str());
@@ -42,13 +42,13 @@ namespace nsm
 
   BackbonePoint start_at_grazing(BranchContext &context, Backbone &backbone)
   {
-    const auto                &c     = context.scene.continuation;
+    const auto                &c     = context.params.continuation;
     const unsigned int         mode  = c.mode;
     const std::vector<double> &poles = context.hb.receptance().poles();
     if (mode > poles.size())
       {
         const std::string band = "Harmonics x Omega max = " +
-                                 text(context.scene.harmonic_balance.harmonics * c.omega_max);
+                                 text(context.params.harmonic_balance.harmonics * c.omega_max);
         throw InputError("parameter 'Continuation/Mode' = " + std::to_string(mode) + " is out of range: " +
                          (poles.empty() ? "no clamped-free mode lies below " + band + "; allowed: a larger Omega max" :
                                           "allowed 1 to " + std::to_string(poles.size()) +

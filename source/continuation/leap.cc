@@ -78,7 +78,7 @@ namespace nsm
       Leap(BranchContext &context, Backbone &backbone, const unsigned int segment)
         : context_(context)
         , backbone_(backbone)
-        , c_(context.scene.continuation)
+        , c_(context.params.continuation)
         , segment_(segment)
         , first_(last_segment_start(backbone))
         , front_(backbone.points[leap_front(context, backbone, first_)])
@@ -230,7 +230,7 @@ namespace nsm
           event_message(above ? "branch goes on only above Energy max after the fold" : "branch lost after the fold",
                         front_.omega) +
           tally_.text(least_ / c_.leap_energy_ratio, c_.leap_energy_ratio * front_.measures.energy, c_.energy_max,
-                      context_.scene.harmonic_balance.iterations()));
+                      context_.params.harmonic_balance.iterations()));
       }
 
       BranchContext                &context_;

@@ -156,10 +156,10 @@ namespace nsm
     /// scene's range and step bounds, Newton as at fixed Omega, and LOCA's
     /// own messages discarded.
     Teuchos::RCP<Teuchos::ParameterList>
-    arclength_parameters(const Scene &scene, const BackbonePoint &start, const double initial_step)
+    arclength_parameters(const BranchParameters &branch, const BackbonePoint &start, const double initial_step)
     {
-      const auto  &c         = scene.continuation;
-      const double direction = branch_direction(scene.contact);
+      const auto  &c         = branch.continuation;
+      const double direction = branch_direction(branch.contact);
       auto         params    = Teuchos::rcp(new Teuchos::ParameterList);
       auto        &stepper   = params->sublist("LOCA").sublist("Stepper");
       stepper.set("Continuation Method", "Arc Length");
@@ -168,7 +168,7 @@ namespace nsm
       stepper.set("Max Value", c.omega_max);
       stepper.set("Min Value", c.omega_min);
       stepper.set("Max Steps", static_cast<int>(c.max_steps));
-      stepper.set("Max Nonlinear Iterations", static_cast<int>(scene.harmonic_balance.iterations()));
+      stepper.set("Max Nonlinear Iterations", static_cast<int>(branch.harmonic_balance.iterations()));
       stepper.set("Compute Eigenvalues", false);
       params->sublist("LOCA").sublist("Predictor").set("Method", "Tangent");
       // Unscaled arclength: a step of length ds changes Omega by at most ds,
@@ -180,7 +180,7 @@ namespace nsm
       step.set("Initial Step Size", direction * initial_step);
       step.set("Min Step Size", c.min_step);
       step.set("Max Step Size", c.max_step);
-      set_newton_parameters(params->sublist("NOX"), scene.harmonic_balance);
+      set_newton_parameters(params->sublist("NOX"), branch.harmonic_balance);
       params->sublist("NOX").sublist("Printing").set("Output Information", NOX::Utils::Error);
       params->sublist("LOCA").sublist("Utilities").set("Output Information", NOX::Utils::Error);
       // LOCA always writes a failed step (Min step reached) to its error stream;
@@ -192,12 +192,12 @@ namespace nsm
   } // namespace
 
   bool run_arclength(HarmonicBalance                                  &hb,
-                     const Scene                                      &scene,
+                     const BranchParameters                                      &branch,
                      const BackbonePoint                              &start,
                      const double                                      initial_step,
                      const std::function<bool(const BackbonePoint &)> &accept)
   {
-    const auto params   = arclength_parameters(scene, start, initial_step);
+    const auto params   = arclength_parameters(branch, start, initial_step);
     auto       data     = LOCA::createGlobalData(params);
     bool       finished = true;
     {
@@ -225,7 +225,7 @@ namespace nsm
           throw Stop();
       };
       auto status = Teuchos::rcp(new NOX::StatusTest::Combo(NOX::StatusTest::Combo::OR));
-      status->addStatusTest(newton_status(scene.harmonic_balance, continuation_constants::loca_corrector_tolerance_factor));
+      status->addStatusTest(newton_status(branch.harmonic_balance, continuation_constants::loca_corrector_tolerance_factor));
       status->addStatusTest(Teuchos::rcp(new StaysInContact(hb)));
       LOCA::Stepper locaStepper(data, group, status, params);
       try

@@ -240,10 +240,10 @@ namespace nsm
     }
   } // namespace
 
-  void label_branches(HarmonicBalance &hb, const Scene &scene, std::vector<BackbonePoint> &points)
+  void label_branches(HarmonicBalance &hb, const BranchParameters &params, std::vector<BackbonePoint> &points)
   {
-    const auto             &c         = scene.continuation;
-    const double            direction = branch_direction(scene.contact);
+    const auto             &c         = params.continuation;
+    const double            direction = branch_direction(params.contact);
     const std::vector<bool> family    = main_family(points, direction, c.tongue_share, c.main_contact_drop);
     const std::vector<bool> on        = on_envelope(points, direction, c.tongue_share, family);
     for (std::size_t first = 0; first < points.size();)
@@ -274,12 +274,12 @@ namespace nsm
   }
 
   void label_point(HarmonicBalance                  &hb,
-                   const Scene                      &scene,
+                   const BranchParameters                      &params,
                    const std::vector<BackbonePoint> &points,
                    BackbonePoint                    &point)
   {
-    const auto  &c         = scene.continuation;
-    const double direction = branch_direction(scene.contact);
+    const auto  &c         = params.continuation;
+    const double direction = branch_direction(params.contact);
     const double least     = std::min(point.measures.energy, envelope_at(points, point.omega, direction));
     if (point.measures.contact_fraction <
         most_contact_before(points, point.omega, direction, c.tongue_share) - c.main_contact_drop)

@@ -16,7 +16,7 @@ namespace nsm
                                                     const std::size_t first, const double reach)
     {
       const std::vector<BackbonePoint> &p = backbone.points;
-      const std::vector<bool> above = above_envelope(p, context.direction, context.scene.continuation.tongue_share);
+      const std::vector<bool> above = above_envelope(p, context.direction, context.params.continuation.tongue_share);
       context.hb.set_omega(p.back().omega);
       std::vector<std::vector<double>> guesses{p[first].x, context.hb.grazing_guess()};
       if (first > 0)
@@ -35,7 +35,7 @@ namespace nsm
     bool climbed_with_less_contact(const BranchContext &context, const Backbone &backbone,
                                    const BackbonePoint &bottom, const double reach)
     {
-      const auto          &c    = context.scene.continuation;
+      const auto          &c    = context.params.continuation;
       const BackbonePoint &last = backbone.points.back();
       if (!(last.measures.energy > (1 + c.tongue_share) * bottom.measures.energy))
         return false;
@@ -49,7 +49,7 @@ namespace nsm
 
   bool find_branch_below_at_end(BranchContext &context, Backbone &backbone, const unsigned int segment)
   {
-    const auto         &c     = context.scene.continuation;
+    const auto         &c     = context.params.continuation;
     const BackbonePoint last  = backbone.points.back();
     const std::size_t   first = last_segment_start(backbone);
     const double        reach = c.search_reach * last.omega;

@@ -43,7 +43,7 @@ namespace nsm
     SegmentEnd steps(BranchContext &context, Backbone &backbone, const unsigned int segment, const bool hand_over,
                      const std::optional<StepLimits> &limits)
     {
-      const auto &c    = context.scene.continuation;
+      const auto &c    = context.params.continuation;
       double step = std::min(c.initial_step, context.max_step());
       if (context.resume_step)
         step = *std::exchange(context.resume_step, std::nullopt);

@@ -1,6 +1,8 @@
 #include <nsm/harmonic_balance/constants.h>
 #include <nsm/harmonic_balance/active_set.h>
 
+#include <nsm/base/assertions.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -168,6 +170,7 @@ namespace nsm
 
   const StructuredGram &ActiveSet::gram(const std::vector<double> &v) const
   {
+    AssertDimension(v.size(), basis_.size());
     if (v != cached_coefficients_)
       {
         if (integration_ == Integration::exact)

@@ -2,6 +2,8 @@
 #include <nsm/harmonic_balance/harmonic_balance.h>
 #include <nsm/harmonic_balance/trigonometric.h>
 
+#include <nsm/base/assertions.h>
+
 #include <chrono>
 #include <cmath>
 
@@ -28,23 +30,23 @@ namespace nsm
     };
 
     /// The sampled rule's Time samples, or the exact rule's bracketing grid.
-    unsigned int samples_of(const Scene &scene)
+    unsigned int samples_of(const Scene::HarmonicBalance &params)
     {
       constexpr unsigned int per_harmonic = harmonic_balance_constants::bracketing_samples_per_harmonic;
-      return scene.harmonic_balance.integration == Integration::sampled ?
-               scene.time_samples() :
-               per_harmonic * scene.harmonic_balance.harmonics + per_harmonic;
+      return params.integration == Integration::sampled ? params.samples() :
+                                                          per_harmonic * params.harmonics + per_harmonic;
     }
   } // namespace
 
-  HarmonicBalance::HarmonicBalance(const Scene &scene, const Receptance &receptance)
+  HarmonicBalance::HarmonicBalance(const Scene::HarmonicBalance &params, const Scene::Contact &contact,
+                                   const Receptance &receptance)
     : receptance_(receptance)
-    , harmonics_(scene.harmonic_balance.harmonics)
-    , basis_(scene.harmonic_balance.basis)
-    , integration_(scene.harmonic_balance.integration)
-    , law_(scene.contact)
+    , harmonics_(params.harmonics)
+    , basis_(params.basis)
+    , integration_(params.integration)
+    , law_(contact)
     , functions_(harmonic_basis(harmonics_, basis_ == HarmonicBasis::full))
-    , active_set_(functions_, integration_, samples_of(scene))
+    , active_set_(functions_, integration_, samples_of(params))
     , measures_(harmonics_)
   {
     gamma0_       = receptance(0.0).gamma;
@@ -87,6 +89,9 @@ namespace nsm
 
   std::vector<double> HarmonicBalance::contact_coefficients(const std::vector<double> &x) const
   {
+    AssertDimension(x.size(), n_unknowns());
+    Assert(phases_.size() == harmonics_ + 1,
+           ExcPrecondition("HarmonicBalance: set_omega() before a solution is evaluated"));
     std::vector<double> v(n_unknowns());
     for (unsigned int i = 0; i < n_unknowns(); ++i)
       {
@@ -105,6 +110,7 @@ namespace nsm
                                  std::vector<double>       *domega) const
   {
     const unsigned int n = n_unknowns();
+    Assert(residual || jacobian || domega, ExcPrecondition("HarmonicBalance::evaluate: nothing asked"));
     const ScopedTimer  timer(jacobian || domega ? cost_.jacobian_seconds : cost_.residual_seconds);
     ++(jacobian || domega ? cost_.jacobians : cost_.residuals);
     const std::vector<double> v    = contact_coefficients(x);
@@ -176,6 +182,7 @@ namespace nsm
 
   FourierCoefficients HarmonicBalance::coefficients(const std::vector<double> &x) const
   {
+    AssertDimension(x.size(), n_unknowns());
     FourierCoefficients result;
     for (unsigned int i = 0; i < n_unknowns(); ++i)
       {
@@ -191,6 +198,7 @@ namespace nsm
 
   std::vector<double> HarmonicBalance::coefficients_only(const std::vector<double> &x) const
   {
+    AssertDimension(x.size(), n_unknowns());
     std::vector<double> coefficient(x);
     if (has_unfolding())
       coefficient[1] = 0;

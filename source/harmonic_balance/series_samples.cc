@@ -1,5 +1,7 @@
 #include <nsm/harmonic_balance/series_samples.h>
 
+#include <nsm/base/assertions.h>
+
 #include <fftw3.h>
 
 #include <cstring>
@@ -54,6 +56,7 @@ namespace nsm
 
   void SeriesSamples::operator()(const std::vector<double> &v, std::vector<double> &q) const
   {
+    AssertDimension(v.size(), basis_.size());
     fftw_complex *c = plan_->spectrum;
     std::memset(c, 0, sizeof(fftw_complex) * (samples_ / 2 + 1));
     for (unsigned int i = 0; i < basis_.size(); ++i)

@@ -1,5 +1,7 @@
 #include <nsm/harmonic_balance/structured_gram.h>
 
+#include <nsm/base/assertions.h>
+
 namespace nsm
 {
   StructuredGram::StructuredGram(const TrigonometricBasis &basis)
@@ -130,6 +132,7 @@ namespace nsm
   void StructuredGram::multiply(const std::vector<double> &v, std::vector<double> &out) const
   {
     const unsigned int         n = basis_.size();
+    AssertDimension(v.size(), n);
     const std::vector<double> &g = dense();
     out.resize(n);
     for (unsigned int i = 0; i < n; ++i)

@@ -1,10 +1,13 @@
 #include <nsm/harmonic_balance/trigonometric_series.h>
 #include <nsm/base/vector_clones.h>
 
+#include <nsm/base/assertions.h>
+
 namespace nsm
 {
   TrigonometricSeries::TrigonometricSeries(const TrigonometricBasis &basis, const std::vector<double> &v)
   {
+    AssertDimension(v.size(), basis.size());
     const unsigned int harmonics = basis.order.empty() ? 0 : basis.order.back();
     const unsigned int size      = (harmonics / lanes + 1) * lanes;
     cos_.assign(size, 0.0);

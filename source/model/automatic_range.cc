@@ -42,12 +42,12 @@ namespace nsm
     std::string number(const double value) { return significant(value, 10); }
   } // namespace
 
-  std::vector<std::string> resolve_automatic_range(Scene &scene, const Discretisation &d)
+  std::vector<std::string> resolve_automatic_range(Scene::Continuation &c, const double gap,
+                                                   const std::vector<double> &fields_at, const Discretisation &d)
   {
-    auto &c = scene.continuation;
     if (c.omega_max > 0 && c.energy_max > 0)
       return {};
-    const ModeFrequencies    f = mode_frequencies(d, c.mode, scene.contact.gap);
+    const ModeFrequencies    f = mode_frequencies(d, c.mode, gap);
     std::vector<std::string> notes;
     if (c.omega_max == 0)
       {
@@ -59,7 +59,7 @@ namespace nsm
           throw InputError("parameter 'Continuation/Omega min' = " + number(c.omega_min) +
                            " is out of range: allowed below the automatic Omega max = " + number(c.omega_max) +
                            " (Continuation/Omega max = 0); set Omega max");
-        for (const double w : scene.output.fields_at)
+        for (const double w : fields_at)
           if (w < c.omega_min || w > c.omega_max)
             throw InputError("parameter 'Output/Fields at' = " + number(w) +
                              " is out of range: allowed frequencies in [Omega min, Omega max] = [" +

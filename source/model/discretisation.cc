@@ -61,11 +61,17 @@ namespace nsm
       total += s;
     for (double &s : sizes)
       s *= bar_.length() / total;
+    // The vertices are the sums of the sizes from 0: the last lies within
+    // round-off (cells eps relative) of L, where deal.II's debug library
+    // requires the end point it is given to be their sum.
+    double end = 0;
+    for (const double s : sizes)
+      end += s;
     dealii::GridGenerator::subdivided_hyper_rectangle(
       triangulation_,
       {sizes},
       dealii::Point<1>(0.0),
-      dealii::Point<1>(bar_.length()),
+      dealii::Point<1>(end),
       /*colorize=*/true);
   }
 

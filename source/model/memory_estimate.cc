@@ -53,7 +53,7 @@ namespace nsm
       {
         const double m = scene.harmonic_balance.harmonics + 1;
         const double n = scene.harmonic_balance.basis == HarmonicBasis::full ? 2 * m - 1 : m;
-        const double samples = std::max<double>(scene.time_samples(), 8 * m);
+        const double samples = std::max<double>(scene.harmonic_balance.samples(), 8 * m);
         bytes += 8 * (6 * n * n + 4 * n * samples);
         // Each field keeps one nodal vector per basis function, and its
         // space-time samples.
@@ -79,29 +79,28 @@ namespace nsm
     return available > 0 ? static_cast<std::size_t>(available) : 0;
   }
 
-  void check_memory(const Scene &scene)
+  void check_memory(const std::size_t bytes, const Scene::Resources &resources, const Scene::Discretisation &d)
   {
-    const double need = estimated_memory(scene), have = available_memory(scene.resources);
+    const double need = bytes, have = available_memory(resources);
     if (need <= have)
       return;
     std::ostringstream s;
     s.precision(3);
     s << "the scene needs about " << need / (1 << 20) << " MiB of memory (an estimate from "
-      << "Discretisation/Cells = " << scene.discretisation.cells << " and Discretisation/Degree = "
-      << scene.discretisation.degree << ", Harmonic balance/Harmonics and the fields asked for), more than the "
+      << "Discretisation/Cells = " << d.cells << " and Discretisation/Degree = " << d.degree << ", Harmonic balance/Harmonics and the fields asked for), more than the "
       << have / (1 << 20) << " MiB "
-      << (scene.resources.memory_limit > 0 ? "of Resources/Memory limit" :
+      << (resources.memory_limit > 0 ? "of Resources/Memory limit" :
                                              "the machine has available (or the process's address-space limit allows)")
       << ": reduce Discretisation/Cells or Discretisation/Degree";
     throw InputError(s.str());
   }
 
-  std::string memory_note(const Scene &scene)
+  std::string memory_note(const std::size_t need, const Scene::Resources &resources)
   {
     std::ostringstream s;
     s.precision(3);
-    s << "memory: about " << estimated_memory(scene) / double(1 << 20) << " MiB estimated at the peak, "
-      << available_memory(scene.resources) / double(1 << 20) << " MiB available";
+    s << "memory: about " << need / double(1 << 20) << " MiB estimated at the peak, "
+      << available_memory(resources) / double(1 << 20) << " MiB available";
     return s.str();
   }
 } // namespace nsm

@@ -1,5 +1,7 @@
 #include <nsm/model/shifted_factor.h>
 
+#include <nsm/base/assertions.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -45,6 +47,7 @@ namespace nsm
   template <typename Scalar>
   void ShiftedFactor<Scalar>::solve(std::vector<Scalar> &x) const
   {
+    AssertDimension(x.size(), static_cast<std::size_t>(n_));
     for (int j = 0; j < n_; ++j)
       {
         std::swap(x[j], x[pivots_[j]]);

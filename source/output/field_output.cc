@@ -94,11 +94,16 @@ namespace nsm
       return write_atomically(path, [&](std::ostream &s) { s << vtu; });
     }
 
-    dealii::DataOutBase::VtkFlags vtk_flags(double time)
+    /// The VTU flags at `time`. The space-time field's cells are Lagrange
+    /// quadrilaterals of the degree; the 1D snapshots' are each cell's p
+    /// linear segments (deal.II 9.4 does not number the points of a Lagrange
+    /// curve: its debug library refuses them, its release library writes
+    /// cells whose points repeat).
+    dealii::DataOutBase::VtkFlags vtk_flags(double time, bool higher_order_cells)
     {
       dealii::DataOutBase::VtkFlags flags;
       flags.time                     = time;
-      flags.write_higher_order_cells = true;
+      flags.write_higher_order_cells = higher_order_cells;
       flags.print_date_and_time      = false;
       return flags;
     }
@@ -191,7 +196,7 @@ namespace nsm
       out.add_data_vector(v, "velocity");
       out.add_data_vector(u, derived);
       out.build_patches(p);
-      out.set_flags(vtk_flags(field.omega()));
+      out.set_flags(vtk_flags(field.omega(), true));
       return write_vtu(directory + "/" + name(index, ".vtu"), out, true);
     }
 
@@ -220,7 +225,7 @@ namespace nsm
           out.add_data_vector(v, "velocity");
           out.add_data_vector(u, derived);
           out.build_patches(d.fe().degree);
-          out.set_flags(vtk_flags(t / unit));
+          out.set_flags(vtk_flags(t / unit, false));
           std::ostringstream file;
           file << folder << "/snapshot_" << std::setw(4) << std::setfill('0') << j << ".vtu";
           write_vtu(directory + "/" + file.str(), out, false);

@@ -397,12 +397,12 @@ namespace nsm
                                             2 * (2 * harmonic_balance.harmonics + 1);
   }
 
-  unsigned int Scene::time_samples() const
+  unsigned int Scene::HarmonicBalance::samples() const
   {
-    if (harmonic_balance.time_samples != 0)
-      return harmonic_balance.time_samples;
+    if (time_samples != 0)
+      return time_samples;
     unsigned int n = 1;
-    while (n < 16 * harmonic_balance.harmonics)
+    while (n < 16 * harmonics)
       n *= 2;
     return n;
   }

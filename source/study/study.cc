@@ -28,6 +28,12 @@ namespace nsm
 {
   namespace
   {
+    /// Throws InputError if the run of `scene` needs more memory than is available.
+    void check_scene_memory(const Scene &scene)
+    {
+      check_memory(estimated_memory(scene), scene.resources, scene.discretisation);
+    }
+
     namespace fs = std::filesystem;
 
     std::string file_text(const std::string &path)
@@ -318,7 +324,7 @@ namespace nsm
       void check_memory() const
       {
         for (const StudyCombination &c : combinations_)
-          nsm::check_memory(c.scene.scene);
+          check_scene_memory(c.scene.scene);
       }
 
       const std::string &directory() const { return base_.scene.output.directory; }
@@ -528,7 +534,7 @@ namespace nsm
       {
         study.check_memory();
         for (const StudyScene &level : reference_levels(path, base))
-          check_memory(level.scene);
+          check_scene_memory(level.scene);
         study.prepare_directory();
       }
     catch (const InputError &e)

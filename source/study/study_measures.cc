@@ -61,7 +61,7 @@ namespace nsm
         try
           {
             const double        omega = row.study.backbone_omega_values[i];
-            const BackbonePoint p     = solve_on_branch(hb, scene, backbone, omega, true);
+            const BackbonePoint p     = solve_on_branch(hb, BranchParameters(scene), backbone, omega, true);
             ++m.energy_points;
             m.points[i] = MainBranchPoint{p.measures.energy, p.measures.max_contact_force,
                                           p.measures.contact_fraction};
@@ -227,11 +227,12 @@ namespace nsm
       }
     if (study.backbone_omega_values.empty())
       return m;
-    HarmonicBalance hb(scene, *receptance);
+    HarmonicBalance        hb(scene.harmonic_balance, scene.contact, *receptance);
+    const BranchParameters branch(scene);
     Backbone        backbone;
     {
       Scope scope(timer, "harmonic balance");
-      backbone = compute_backbone(hb, scene, internal_resonances(*receptance, scene));
+      backbone = compute_backbone(hb, branch, internal_resonances(*receptance, branch));
     }
     m.hb_unknowns       = hb.n_unknowns();
     m.time_samples      = hb.n_samples();

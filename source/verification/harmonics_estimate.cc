@@ -39,16 +39,16 @@ namespace nsm
     return std::abs(m.energy / point.measures.energy - 1);
   }
 
-  std::vector<double> estimate_energy_errors(const HarmonicBalance &hb, const Scene &scene,
+  std::vector<double> estimate_energy_errors(const HarmonicBalance &hb, const BranchParameters &branch,
                                              const Backbone &backbone, Progress &progress)
   {
     std::vector<double> estimates(backbone.points.size(), std::numeric_limits<double>::quiet_NaN());
-    if (scene.harmonic_balance.harmonics < 2)
+    if (branch.harmonic_balance.harmonics < 2)
       return estimates;
-    Scene fewer                      = scene;
-    fewer.harmonic_balance.harmonics = scene.harmonic_balance.harmonics / 2;
-    HarmonicBalance model(fewer, hb.receptance());
-    SameMotionSolve solve(model, fewer.harmonic_balance);
+    Scene::HarmonicBalance fewer = branch.harmonic_balance;
+    fewer.harmonics              = branch.harmonic_balance.harmonics / 2;
+    HarmonicBalance model(fewer, branch.contact, hb.receptance());
+    SameMotionSolve solve(model, fewer);
     for (std::size_t i = 0; i < estimates.size() && point_stop_signal() == 0; ++i)
       {
         const BackbonePoint &p = backbone.points[i];

@@ -18,16 +18,17 @@ namespace nsm
     constexpr unsigned int space_samples = 15;
   } // namespace
 
-  SpaceReference::SpaceReference(const Discretisation &model, const Scene &scene)
-    : scene_(scene)
+  SpaceReference::SpaceReference(const Discretisation &model, const Scene::Receptance &receptance,
+                                 const BranchParameters &branch)
+    : branch_(branch)
     , reference_(std::make_unique<Discretisation>(model, model.fe().degree, 1))
-    , receptance_(std::make_unique<Receptance>(*reference_, scene.receptance,
-                                               scene.harmonic_balance.harmonics * scene.continuation.omega_max))
+    , receptance_(std::make_unique<Receptance>(*reference_, receptance,
+                                               branch.harmonic_balance.harmonics * branch.continuation.omega_max))
   {}
 
   BandAgreement SpaceReference::band(const Discretisation &model) const
   {
-    return band_agreement(model, *reference_, scene_.harmonic_balance.harmonics * scene_.continuation.omega_max);
+    return band_agreement(model, *reference_, branch_.harmonic_balance.harmonics * branch_.continuation.omega_max);
   }
 
   std::vector<double> SpaceReference::energy_changes(const Backbone &backbone) const
@@ -39,8 +40,8 @@ namespace nsm
     std::vector<double> changes;
     if (main.empty())
       return changes;
-    HarmonicBalance    model(scene_, *receptance_);
-    SameMotionSolve    solve(model, scene_.harmonic_balance);
+    HarmonicBalance    model(branch_.harmonic_balance, branch_.contact, *receptance_);
+    SameMotionSolve    solve(model, branch_.harmonic_balance);
     const std::size_t  count = std::min<std::size_t>(space_samples, main.size());
     for (std::size_t i = 0; i < count; ++i)
       {

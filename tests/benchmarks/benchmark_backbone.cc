@@ -35,10 +35,10 @@ namespace
     const nsm::Discretisation d(bar, scene.discretisation);
     const nsm::Receptance     r(d, scene.receptance, 40 * scene.continuation.omega_max);
     const double              setup = since(start);
-    nsm::HarmonicBalance      hb(scene, r);
-    const auto                resonances = nsm::internal_resonances(r, scene);
+    nsm::HarmonicBalance      hb(scene.harmonic_balance, scene.contact, r);
+    const auto                resonances = nsm::internal_resonances(r, nsm::BranchParameters(scene));
     const auto                traced = std::chrono::steady_clock::now();
-    const nsm::Backbone       backbone = nsm::compute_backbone(hb, scene, resonances);
+    const nsm::Backbone       backbone = nsm::compute_backbone(hb, nsm::BranchParameters(scene), resonances);
     const double              tracing = since(traced), total = since(start);
     const auto               &cost = hb.cost();
     const double other = tracing - cost.receptance_seconds - cost.residual_seconds -
@@ -69,9 +69,9 @@ namespace
     const nsm::BarModel       bar(scene.bar);
     const nsm::Discretisation d(bar, scene.discretisation);
     const nsm::Receptance     r(d, scene.receptance, harmonics * scene.continuation.omega_max);
-    nsm::HarmonicBalance      hb(scene, r);
+    nsm::HarmonicBalance      hb(scene.harmonic_balance, scene.contact, r);
     const auto                start    = std::chrono::steady_clock::now();
-    const nsm::Backbone       backbone = nsm::compute_backbone(hb, scene, nsm::internal_resonances(r, scene));
+    const nsm::Backbone       backbone = nsm::compute_backbone(hb, nsm::BranchParameters(scene), nsm::internal_resonances(r, nsm::BranchParameters(scene)));
     const double              tracing  = since(start);
     const auto               &cost     = hb.cost();
     const auto               &newton   = backbone.newton_cost;

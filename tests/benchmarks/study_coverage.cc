@@ -54,13 +54,13 @@ namespace
   void search_from(testing_helpers::HbModel &model, const nsm::Backbone &b, const nsm::BackbonePoint &q,
                    Tally &tally, std::vector<double> &found)
   {
-    nsm::BranchContext context(model.hb, model.scene, {});
+    nsm::BranchContext context(model.hb, model.branch, {});
     nsm::BackbonePoint point;
     ++tally.guesses;
     if (!context.solve(q.omega, context.guess_from_fewer_harmonics(q), 0, point, nsm::BranchContext::Newton::both))
       return;
     ++tally.converged;
-    nsm::label_point(model.hb, model.scene, b.points, point);
+    nsm::label_point(model.hb, model.branch, b.points, point);
     const double ratio = point.measures.energy / nsm::envelope_at(b.points, point.omega, 1);
     tally.lowest_ratio = tally.converged == 1 ? ratio : std::min(tally.lowest_ratio, ratio);
     if (point.branch == nsm::Branch::main)

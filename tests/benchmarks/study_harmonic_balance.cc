@@ -50,7 +50,7 @@ void uniform_convergence()
           const double exact  = g0 * g0 / (2 * (period - 3) * (period - 3));
           try
             {
-              const auto p = nsm::solve_on_branch(model.hb, scene, backbone, omega).measures;
+              const auto p = nsm::solve_on_branch(model.hb, nsm::BranchParameters(scene), backbone, omega).measures;
               std::printf("| %u | %g | %.6e | %.6e | %+.2e | %.4f | %.4f | %.4f |\n", m, omega, p.energy, exact,
                           p.energy / exact - 1, p.min_gap, p.min_force, p.max_complementarity);
             }
@@ -80,7 +80,7 @@ int main()
       scene.continuation.omega_max  = c.omega_max;
       scene.continuation.energy_max = c.energy_max;
       testing_helpers::HbModel exact(scene);
-      const auto point = nsm::solve_on_branch(exact.hb, scene, exact.backbone(), c.omega);
+      const auto point = nsm::solve_on_branch(exact.hb, nsm::BranchParameters(scene), exact.backbone(), c.omega);
       std::printf("\n%s, Omega = %g: exact integration E = %.10e, %.4f ms per evaluation\n\n",
                   c.name, c.omega, point.measures.energy, evaluation_ms(exact.hb, c.omega, point.x));
       std::printf("| time samples | relative energy difference to exact | ms per evaluation | Newton iterations from the exact solution |\n|---|---|---|---|\n");

@@ -156,7 +156,7 @@ int main(int argc, char **argv)
               omegas.push_back(listed.empty() ? grazing + (end - grazing) * (i + 0.5) / count : listed[i]);
               try
                 {
-                  last[i] = nsm::solve_on_branch(model.hb, model.scene, backbone, omegas[i], true);
+                  last[i] = nsm::solve_on_branch(model.hb, model.branch, backbone, omegas[i], true);
                 }
               catch (const nsm::NumericalError &)
                 {}

@@ -227,6 +227,15 @@ def read_vtu(path):
                            for i in range(fields.GetNumberOfArrays())}
     for key, values in arrays.items():
         assert all(math.isfinite(v) for v in values), f"{path}: non-finite {key}"
+    # The cells hold the points: each cell's points distinct, and every point
+    # in a cell (a cell whose points repeat draws a wrong shape in ParaView).
+    used = set()
+    for i in range(grid.GetNumberOfCells()):
+        cell = grid.GetCell(i)
+        ids = [cell.GetPointId(j) for j in range(cell.GetNumberOfPoints())]
+        assert len(set(ids)) == len(ids), f"{path}: cell {i} repeats a point: {ids}"
+        used.update(ids)
+    assert len(used) == grid.GetNumberOfPoints(), f"{path}: {grid.GetNumberOfPoints() - len(used)} points in no cell"
     return vtk_to_numpy(grid.GetPoints().GetData()), arrays
 
 

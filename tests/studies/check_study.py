@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Study runs (issue 8), checked from their study.csv.
+"""Study runs, checked from their study.csv.
 
 usage: check_study.py NSM_BAR STUDIES_DIR {rates|ranks|resume|reference|harmonics|unused}
   rates   space.prm: the eigenfrequency error falls like h^(2p) (rate within

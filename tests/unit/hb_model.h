@@ -63,15 +63,16 @@ namespace testing_helpers
   {
     explicit HbModel(const nsm::Scene &s)
       : scene(s)
+      , branch(scene)
       , bar(scene.bar)
       , discretisation(bar, scene.discretisation)
       , receptance(discretisation, scene.receptance,
                    scene.harmonic_balance.harmonics * scene.continuation.omega_max)
-      , hb(scene, receptance)
-      , resonances(nsm::internal_resonances(receptance, scene))
+      , hb(scene.harmonic_balance, scene.contact, receptance)
+      , resonances(nsm::internal_resonances(receptance, branch))
     {}
 
-    nsm::Backbone backbone() { return nsm::compute_backbone(hb, scene, resonances); }
+    nsm::Backbone backbone() { return nsm::compute_backbone(hb, branch, resonances); }
 
     /// w_j^2 (1-based mode j) and the energy of that linear mode with u(L) =
     /// g0, w_j^2 g0^2 / (2 phi_j(L)^2): the motion at grazing, whatever the
@@ -84,6 +85,7 @@ namespace testing_helpers
     }
 
     nsm::Scene                          scene;
+    nsm::BranchParameters               branch; ///< the continuation's part of `scene`
     nsm::BarModel                       bar;
     nsm::Discretisation                 discretisation;
     nsm::Receptance                     receptance;
@@ -96,7 +98,7 @@ namespace testing_helpers
   /// higher harmonics zero. Following one solution from M to 2 M and on.
   inline std::optional<nsm::BackbonePoint> with_more_harmonics(HbModel &model, const nsm::BackbonePoint &fewer)
   {
-    nsm::BranchContext context(model.hb, model.scene, {});
+    nsm::BranchContext context(model.hb, model.branch, {});
     nsm::BackbonePoint point;
     if (!context.solve(fewer.omega, context.guess_from_fewer_harmonics(fewer), 0, point,
                        nsm::BranchContext::Newton::both))

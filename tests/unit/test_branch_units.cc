@@ -37,7 +37,7 @@ namespace
   {
     explicit Tracing(const nsm::Scene &scene)
       : model(scene)
-      , context(model.hb, model.scene, model.resonances)
+      , context(model.hb, model.branch, model.resonances)
     {
       backbone.points.push_back(nsm::start_at_grazing(context, backbone));
     }
@@ -295,7 +295,7 @@ namespace
       if (p.branch == nsm::Branch::main && p.omega > omega)
         try
           {
-            const nsm::BackbonePoint q = nsm::solve_on_branch(low.hb, low.scene, low_backbone, p.omega, true);
+            const nsm::BackbonePoint q = nsm::solve_on_branch(low.hb, low.branch, low_backbone, p.omega, true);
             moves.push_back(std::abs(p.measures.energy / q.measures.energy - 1));
           }
         catch (const nsm::NumericalError &)

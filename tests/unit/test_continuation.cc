@@ -33,7 +33,7 @@ namespace
   {
     HbModel    model(uniform_scene(harmonics));
     const auto backbone = model.backbone();
-    const auto point    = nsm::solve_on_branch(model.hb, model.scene, backbone, omega);
+    const auto point    = nsm::solve_on_branch(model.hb, model.branch, backbone, omega);
     return point.measures.energy / exact_uniform_energy(omega, model.scene.contact.gap) - 1;
   }
 } // namespace
@@ -71,7 +71,7 @@ TEST(Backbone, SignoriniViolationShrinksWithHarmonics)
     {
       HbModel    model(uniform_scene(b.m));
       const auto backbone = model.backbone();
-      const auto p = nsm::solve_on_branch(model.hb, model.scene, backbone, 1.6).measures;
+      const auto p = nsm::solve_on_branch(model.hb, model.branch, backbone, 1.6).measures;
       EXPECT_GT(p.min_gap, -b.gap) << "M = " << b.m;
       EXPECT_GT(p.min_force, -b.force) << "M = " << b.m;
       EXPECT_LT(p.max_complementarity, b.complementarity) << "M = " << b.m;
@@ -116,7 +116,7 @@ TEST(Backbone, SeedEq5BranchPassesThePapersFrequencyBelowW1)
   // w1 here) with the first linear mode at u(L) = g0, of energy
   // w1^2 g0^2 / (2 phi_1(L)^2), to 1 % as on the physical side.
   EXPECT_NEAR(backbone.points.front().measures.energy / model.grazing(1).second, 1.0, 1e-2);
-  const auto at_figure = nsm::solve_on_branch(model.hb, model.scene, backbone, 1.907);
+  const auto at_figure = nsm::solve_on_branch(model.hb, model.branch, backbone, 1.907);
   // 0.6 % below w1 the eq. (5) motion is still the first linear mode with
   // u(L) = g0, whose energy g0^2 (w1^2 + W^2) / (4 phi_1(L)^2) is the grazing
   // energy to 0.6 %: within 10 % of it (measured 4 % above, 0.69 g0^2).
@@ -154,8 +154,8 @@ TEST(Backbone, SequentialAndArclengthAgree)
   ASSERT_GT(ba.points.size(), 10u);
   for (const double omega : {1.6, 1.65})
     {
-      const auto ps = nsm::solve_on_branch(sequential.hb, scene, bs, omega);
-      const auto pa = nsm::solve_on_branch(arclength.hb, scene, ba, omega);
+      const auto ps = nsm::solve_on_branch(sequential.hb, nsm::BranchParameters(scene), bs, omega);
+      const auto pa = nsm::solve_on_branch(arclength.hb, nsm::BranchParameters(scene), ba, omega);
       EXPECT_NEAR(pa.measures.energy / ps.measures.energy, 1.0, 1e-9) << "W = " << omega;
     }
   // LOCA's own points, as it wrote them: each is the sequential branch's
@@ -165,7 +165,7 @@ TEST(Backbone, SequentialAndArclengthAgree)
   for (const auto &pa : ba.points)
     if (pa.segment == 0 && pa.omega > bs.points.front().omega && pa.omega < 1.69)
       {
-        const auto ps = nsm::solve_on_branch(sequential.hb, scene, bs, pa.omega);
+        const auto ps = nsm::solve_on_branch(sequential.hb, nsm::BranchParameters(scene), bs, pa.omega);
         EXPECT_NEAR(pa.measures.energy / ps.measures.energy, 1.0, 1e-8) << "W = " << pa.omega;
         ++compared;
       }
@@ -447,7 +447,7 @@ TEST(Backbone, SampledApproachesExactIntegrationAsSamplesGrow)
   auto scene = uniform_scene(10);
   HbModel    exact(scene);
   const auto reference =
-    nsm::solve_on_branch(exact.hb, scene, exact.backbone(), 1.6).measures.energy;
+    nsm::solve_on_branch(exact.hb, nsm::BranchParameters(scene), exact.backbone(), 1.6).measures.energy;
   // The sampled rule's error falls like Nt^-2 in envelope (measured: 4.8e-3,
   // 4.2e-4, 8.6e-6, 5.0e-8 for Nt = 32, 128, 1024, 8192); some Nt in between
   // land closer by symmetry of the samples with the contact interval.
@@ -458,7 +458,7 @@ TEST(Backbone, SampledApproachesExactIntegrationAsSamplesGrow)
       scene.harmonic_balance.time_samples = samples;
       HbModel    model(scene);
       const auto energy =
-        nsm::solve_on_branch(model.hb, scene, model.backbone(), 1.6).measures.energy;
+        nsm::solve_on_branch(model.hb, nsm::BranchParameters(scene), model.backbone(), 1.6).measures.energy;
       const double difference = std::abs(energy / reference - 1);
       EXPECT_LT(difference, previous / 8) << samples << " samples";
       previous = difference;
@@ -543,7 +543,7 @@ TEST(Backbone, RangeAboveGrazingIsReachedFromGrazing)
   auto scene = uniform_scene(20);
   scene.continuation.omega_max = 1.7;
   HbModel    full(scene);
-  const auto reference = nsm::solve_on_branch(full.hb, scene, full.backbone(), 1.65);
+  const auto reference = nsm::solve_on_branch(full.hb, nsm::BranchParameters(scene), full.backbone(), 1.65);
   scene.continuation.omega_min = 1.65;
   HbModel    part(scene);
   const auto backbone = part.backbone();
@@ -579,7 +579,7 @@ TEST(Backbone, SolvesInTheGapALeapLeft)
   for (std::size_t i = 0; i + 1 < p.size(); ++i)
     ASSERT_FALSE(p[i].segment == p[i + 1].segment && (p[i].omega - omega) * (p[i + 1].omega - omega) <= 0)
       << "a segment brackets the gap";
-  const auto point = nsm::solve_on_branch(model.hb, model.scene, backbone, omega);
+  const auto point = nsm::solve_on_branch(model.hb, model.branch, backbone, omega);
   EXPECT_EQ(point.omega, omega);
   EXPECT_LE(point.residual, model.scene.harmonic_balance.tolerance);
   // Between the fold and the landing, at the energies on either side.
@@ -587,5 +587,5 @@ TEST(Backbone, SolvesInTheGapALeapLeft)
   EXPECT_GT(point.measures.energy, low / 4);
   EXPECT_LT(point.measures.energy, high * 4);
   // Studies ask for the main branch between main points only.
-  EXPECT_THROW(nsm::solve_on_branch(model.hb, model.scene, backbone, omega, true), nsm::NumericalError);
+  EXPECT_THROW(nsm::solve_on_branch(model.hb, model.branch, backbone, omega, true), nsm::NumericalError);
 }

@@ -42,9 +42,9 @@ TEST(ErrorEstimate, IsTheEnergyChangeToTheSolutionWithHalfTheHarmonics)
   testing_helpers::HbModel model(uniform_scene(20)), fewer(uniform_scene(10));
   const nsm::Backbone      backbone = model.backbone();
   nsm::Progress            quiet("test", 0);
-  const std::vector<double> estimates = nsm::estimate_energy_errors(model.hb, model.scene, backbone, quiet);
+  const std::vector<double> estimates = nsm::estimate_energy_errors(model.hb, model.branch, backbone, quiet);
   ASSERT_EQ(estimates.size(), backbone.points.size());
-  nsm::BranchContext context(fewer.hb, fewer.scene, {});
+  nsm::BranchContext context(fewer.hb, fewer.branch, {});
   unsigned int       compared = 0;
   for (std::size_t i = 0; i < backbone.points.size(); i += 7)
     {
@@ -73,7 +73,7 @@ TEST(ErrorEstimate, OnTheUniformBarItIsTheSizeOfTheErrorAgainstTheExactMode)
       testing_helpers::HbModel model(uniform_scene(harmonics));
       const nsm::Backbone      backbone = model.backbone();
       nsm::Progress            quiet("test", 0);
-      const std::vector<double> estimates = nsm::estimate_energy_errors(model.hb, model.scene, backbone, quiet);
+      const std::vector<double> estimates = nsm::estimate_energy_errors(model.hb, model.branch, backbone, quiet);
       const auto               exact     = nsm::ExactBar::of(model.bar);
       ASSERT_TRUE(exact);
       std::vector<double> ratios;
@@ -124,13 +124,13 @@ TEST(BandCheck, FindsTheEigenfrequenciesAMeshDoesNotResolve)
 {
   nsm::Scene scene = uniform_scene(40);
   testing_helpers::HbModel resolved(scene);
-  const auto               fine = nsm::SpaceReference(resolved.discretisation, scene).band(resolved.discretisation);
+  const auto               fine = nsm::SpaceReference(resolved.discretisation, scene.receptance, nsm::BranchParameters(scene)).band(resolved.discretisation);
   EXPECT_EQ(fine.modes, 25u);
   EXPECT_LT(fine.error, 1e-6);
   scene.discretisation.degree = 2;
   scene.discretisation.cells  = 20;
   testing_helpers::HbModel coarse(scene);
-  const auto               rough = nsm::SpaceReference(coarse.discretisation, scene).band(coarse.discretisation);
+  const auto               rough = nsm::SpaceReference(coarse.discretisation, scene.receptance, nsm::BranchParameters(scene)).band(coarse.discretisation);
   EXPECT_EQ(rough.modes, 25u);
   EXPECT_GT(rough.error, 1e-2);
 }

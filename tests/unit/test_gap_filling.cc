@@ -83,7 +83,7 @@ TEST(GapFilling, FillsTheMainBranchWhereNewtonFindsItAndKeepsTheTracedPoints)
 
   // What is left: Newton at M = 80 from every point of the M = 40 branch
   // inside a remaining gap finds no solution the labels put on the main branch.
-  nsm::BranchContext  run(filled_model.hb, filled_model.scene, filled_model.resonances);
+  nsm::BranchContext  run(filled_model.hb, filled_model.branch, filled_model.resonances);
   const nsm::Backbone &fewer = *run.fewer_harmonics(); // the guesses the filling had
   unsigned int         tried = 0, converged = 0;
   for (const auto &g : filled_gaps)
@@ -95,7 +95,7 @@ TEST(GapFilling, FillsTheMainBranchWhereNewtonFindsItAndKeepsTheTracedPoints)
           if (!run.solve(q.omega, run.guess_from_fewer_harmonics(q), 0, point, nsm::BranchContext::Newton::both))
             continue;
           ++converged;
-          nsm::label_point(filled_model.hb, filled_model.scene, filled.points, point);
+          nsm::label_point(filled_model.hb, filled_model.branch, filled.points, point);
           EXPECT_NE(point.branch, nsm::Branch::main) << "a main solution in a remaining gap at " << q.omega;
         }
   // The search is not empty: the remaining gaps hold guesses, and some converge (on tongues).

@@ -258,7 +258,7 @@ namespace
     // The tongues are the inaccurate points, far beyond the HB's accuracy.
     EXPECT_GE(median(tongue_errors), 0.2);
     // The main branch spans the range: at most 3 of the 50 windows without a
-    // main point (issue 7). Measured 2026-11-26: 50 and 47 (sequential, M = 20
+    // main point. Measured: 50 and 47 (sequential, M = 20
     // and 40), 50 and 49 (arclength).
     EXPECT_GE(windows.size(), windows_min) << windows.size();
     // Tongues far from every w_j / k and other families' points carry no
@@ -285,7 +285,7 @@ TEST(MainBranch, UniformBarMainPointsAreCloseToTheExactEnergyAtM40)
 }
 
 // Arclength climbs each tongue up to Tongue energy ratio and leaps from the
-// furthest point of the segment. Measured (2026-11-26, with the front): M = 20,
+// furthest point of the segment. Measured (with the front): M = 20,
 // 727 points, 237 main, main median 5.3 %, 50 windows, tongue median 47 %;
 // M = 40, 2098 points, 312 main, main median 3.6 %, 49 windows, tongue median
 // 50 %. Before leaps started from the furthest point, a segment that

@@ -86,7 +86,7 @@ TEST(Scene, DefaultsParse)
   const nsm::Scene  scene = nsm::Scene::from_file(path);
   EXPECT_EQ(scene.bar.cross_section, "1.5 - x");
   EXPECT_EQ(scene.discretisation.cells, 4000u);
-  EXPECT_EQ(scene.time_samples(), 1024u); // smallest power of 2 >= 16 * 40
+  EXPECT_EQ(scene.harmonic_balance.samples(), 1024u); // smallest power of 2 >= 16 * 40
 }
 
 TEST(Scene, DeclaredDefaultsAreTheStructDefaults)

@@ -124,7 +124,7 @@ TEST(Spectrum, ConvergesExponentiallyInP)
 
 TEST(Spectrum, StronglyGradedMeshesKeepTheBesselFrequencies)
 {
-  // The hostile scenes of issue 9: FE_Q(1) on 4000 cells whose last 50 or 60
+  // The hostile scenes of tests/scenes/hostile_inputs.py: FE_Q(1) on 4000 cells whose last 50 or 60
   // shrink by 0.8, so the smallest cell is 3.6e-9 L or 3.9e-10 L. The
   // round-off floor eps p^2 L / h_min is 6e-8 or 5.7e-7 (the second scene
   // needs Round-off limit >= 5.7e-7). Linear elements resolve w_j to

@@ -156,7 +156,7 @@ namespace
     testing_helpers::HbModel  model(scene);
     const auto                backbone = model.backbone();
     const nsm::PeriodicField field(model.hb, model.discretisation,
-                                    nsm::solve_on_branch(model.hb, scene, backbone, omega));
+                                    nsm::solve_on_branch(model.hb, nsm::BranchParameters(scene), backbone, omega));
     return nsm::verify_in_time(field, model.discretisation, model.hb.law(), scene.output);
   }
 } // namespace

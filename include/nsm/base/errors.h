@@ -1,5 +1,6 @@
-// The three kinds of failure a run reports, each with its own exit code
-// (app/main.cc): bad input (2), a numerical failure (3), an output error (5).
+// The kinds of failure a run reports, each with its own exit code
+// (app/exit_codes.h): bad input (2), a numerical failure (3), an output
+// error (5), a bug in nsm-bar itself (6).
 #pragma once
 
 #include <stdexcept>
@@ -31,6 +32,14 @@ namespace nsm
   {
   public:
     using std::runtime_error::runtime_error;
+  };
+
+  /// A broken invariant of nsm-bar's own logic: a bug, not the scene's or
+  /// the numerics' fault (base/assertions.h).
+  class LogicError : public std::logic_error
+  {
+  public:
+    using std::logic_error::logic_error;
   };
 
   /// A deal.II exception's own message (without its banner) on one line.

@@ -1,11 +1,12 @@
 // What the stages of tracing one branch share (continuation.h has the
-// overview): the model and the scene, the Newton solvers, the direction and
+// overview): the model and its parameters, the Newton solvers, the direction and
 // ends of the Omega range, and when a converged solve becomes a point. The
 // stages are separate units: grazing_start, sequential_steps,
 // arclength_steps, leap and gap_filling.
 #pragma once
 
 #include <nsm/continuation/backbone.h>
+#include <nsm/continuation/branch_parameters.h>
 #include <nsm/base/progress.h>
 
 #include <memory>
@@ -49,7 +50,7 @@ namespace nsm
   class BranchContext
   {
   public:
-    BranchContext(HarmonicBalance &hb, const Scene &scene, std::vector<InternalResonance> resonances);
+    BranchContext(HarmonicBalance &hb, const BranchParameters &params, std::vector<InternalResonance> resonances);
 
     /// A converged solve becomes a point only if it is a genuine contact
     /// motion: the trivial solution (no contact) and, in the full basis, a
@@ -85,7 +86,7 @@ namespace nsm
     /// Called after each point: Max steps reached? Also reports progress.
     bool full(const Backbone &backbone);
 
-    bool in_range(double omega) const { return in_omega_range(scene.continuation, omega); }
+    bool in_range(double omega) const { return in_omega_range(params.continuation, omega); }
 
     /// a lies beyond b in the direction of continuation.
     bool beyond(double a, double b) const { return direction * (a - b) > 0; }
@@ -109,7 +110,7 @@ namespace nsm
     std::vector<double> guess_from_fewer_harmonics(const BackbonePoint &fewer) const;
 
     HarmonicBalance                     &hb;
-    const Scene                         &scene;
+    const BranchParameters               params;
     const std::vector<InternalResonance> resonances;
     const double                         direction;
     const double                         near_end, far_end; ///< the range's ends, first met and last

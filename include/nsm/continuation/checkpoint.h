@@ -4,6 +4,7 @@
 #pragma once
 
 #include <nsm/continuation/backbone.h>
+#include <nsm/continuation/branch_parameters.h>
 
 #include <cstdint>
 #include <iosfwd>
@@ -67,5 +68,5 @@ namespace nsm
   /// a scene entry that differs from the interrupted run's (every one named
   /// with both values), or points that the model does not reproduce bit for
   /// bit (its fingerprint).
-  ContinuationCheckpoint read_checkpoint(const std::string &path, const Scene &scene, HarmonicBalance &hb);
+  ContinuationCheckpoint read_checkpoint(const std::string &path, const BranchParameters &params, HarmonicBalance &hb);
 } // namespace nsm

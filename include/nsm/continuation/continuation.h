@@ -8,7 +8,7 @@
 
 #include <nsm/continuation/backbone.h>
 #include <nsm/harmonic_balance/harmonic_balance.h>
-#include <nsm/scene/scene.h>
+#include <nsm/continuation/branch_parameters.h>
 
 #include <optional>
 #include <string>
@@ -19,7 +19,7 @@ namespace nsm
   /// Every W = w_j / k in [Omega min, Omega max] with k <= M, w_j from the
   /// FE clamped-free spectrum up to Harmonics x Omega max; sorted by W.
   std::vector<InternalResonance> internal_resonances(const Receptance &receptance,
-                                                     const Scene      &scene);
+                                                     const BranchParameters      &params);
 
   struct ContinuationCheckpoint;
 
@@ -28,7 +28,7 @@ namespace nsm
   /// with the scene's method. Only converged, non-trivial points are kept.
   /// A resumed continuation computes the points an uninterrupted one does.
   Backbone compute_backbone(HarmonicBalance                      &hb,
-                            const Scene                          &scene,
+                            const BranchParameters                          &params,
                             const std::vector<InternalResonance> &resonances,
                             const ContinuationCheckpoint         *resume = nullptr);
 
@@ -42,7 +42,7 @@ namespace nsm
   /// backbone's envelope (label_point). Throws NumericalError if nothing
   /// converges.
   BackbonePoint solve_on_branch(HarmonicBalance &hb,
-                                const Scene     &scene,
+                                const BranchParameters     &params,
                                 const Backbone  &backbone,
                                 double           omega,
                                 bool             main_only = false);

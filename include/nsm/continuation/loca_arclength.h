@@ -3,6 +3,7 @@
 #pragma once
 
 #include <nsm/continuation/backbone.h>
+#include <nsm/continuation/branch_parameters.h>
 
 #include <functional>
 
@@ -14,7 +15,7 @@ namespace nsm
   /// Returns true if LOCA finished its run (it reached Omega min or max, or
   /// accept stopped it), false if it failed to converge a step.
   bool run_arclength(HarmonicBalance                                &hb,
-                     const Scene                                    &scene,
+                     const BranchParameters                                    &params,
                      const BackbonePoint                            &start,
                      double                                          initial_step,
                      const std::function<bool(const BackbonePoint &)> &accept);

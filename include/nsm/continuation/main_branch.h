@@ -15,6 +15,7 @@
 #pragma once
 
 #include <nsm/continuation/backbone.h>
+#include <nsm/continuation/branch_parameters.h>
 
 #include <optional>
 #include <utility>
@@ -81,7 +82,7 @@ namespace nsm
   /// envelope or behind the front. A run whose resonance is the fundamental
   /// at the branch's own mode is main: nothing resonates there. A run is
   /// named w_j / k only within resonance_name_tolerance of its Omega.
-  void label_branches(HarmonicBalance &hb, const Scene &scene, std::vector<BackbonePoint> &points);
+  void label_branches(HarmonicBalance &hb, const BranchParameters &params, std::vector<BackbonePoint> &points);
 
   /// Labels one point solved off the backbone (a field at a given Omega) by
   /// the same rule against the labelled `points`: other if its contact
@@ -90,7 +91,7 @@ namespace nsm
   /// energy of their main and tongue points at or beyond its Omega and it
   /// names an internal resonance; else main.
   void label_point(HarmonicBalance                  &hb,
-                   const Scene                      &scene,
+                   const BranchParameters                      &params,
                    const std::vector<BackbonePoint> &points,
                    BackbonePoint                    &point);
 

@@ -51,7 +51,8 @@ namespace nsm
   class HarmonicBalance
   {
   public:
-    HarmonicBalance(const Scene &scene, const Receptance &receptance);
+    HarmonicBalance(const Scene::HarmonicBalance &params, const Scene::Contact &contact,
+                    const Receptance &receptance);
 
     /// Unknowns: x_0 (mean), then per harmonic k cos (cosine basis) or sin
     /// and cos (full basis). In the full basis slot 1 (sin W t) holds the

@@ -35,10 +35,11 @@ namespace nsm
   /// limit, where the branch's energy grows without bound.
   constexpr double automatic_range_share = 0.8;
 
-  /// Where Continuation/Omega max or Energy max is 0, sets it from `d`:
-  /// Omega max = w_j + automatic_range_share (w_bilinear - w_j), Energy max =
-  /// Energy max over grazing x E_g. Returns a summary note for each value
-  /// set. Throws InputError naming the parameter when Omega min or a field
-  /// frequency lies beyond the automatic Omega max.
-  std::vector<std::string> resolve_automatic_range(Scene &scene, const Discretisation &d);
+  /// Where Continuation/Omega max or Energy max is 0, sets it from `d` and
+  /// the gap g0: Omega max = w_j + automatic_range_share (w_bilinear - w_j),
+  /// Energy max = Energy max over grazing x E_g. Returns a summary note for
+  /// each value set. Throws InputError naming the parameter when Omega min or
+  /// a field frequency (Output/Fields at) lies beyond the automatic Omega max.
+  std::vector<std::string> resolve_automatic_range(Scene::Continuation &c, double gap,
+                                                   const std::vector<double> &fields_at, const Discretisation &d);
 } // namespace nsm

@@ -21,11 +21,11 @@ namespace nsm
   /// process's address-space limit leaves.
   std::size_t available_memory(const Scene::Resources &resources);
 
-  /// Throws InputError, naming the entries that drive the estimate, if the
-  /// scene needs more than is available.
-  void check_memory(const Scene &scene);
+  /// Throws InputError, naming the entries that drive the estimate (`d`'s
+  /// Cells and Degree), if `need` bytes are more than is available.
+  void check_memory(std::size_t need, const Scene::Resources &resources, const Scene::Discretisation &d);
 
   /// "memory: about N MiB estimated at the peak, M MiB available", for the
   /// run summary.
-  std::string memory_note(const Scene &scene);
+  std::string memory_note(std::size_t need, const Scene::Resources &resources);
 } // namespace nsm

@@ -148,6 +148,9 @@ namespace nsm
       /// Newton iterations per solve: Max iterations, or where it is 0,
       /// max(12, M / 16).
       unsigned int iterations() const;
+      /// Time samples of the sampled rule: Time samples, or where it is 0,
+      /// the smallest power of 2 not below 16 M.
+      unsigned int samples() const;
     } harmonic_balance;
 
     struct Continuation
@@ -245,9 +248,6 @@ namespace nsm
 
     /// Declares every parameter with its default, bounds and documentation.
     static void declare(dealii::ParameterHandler &prm);
-
-    /// Time samples actually used by the harmonic balance.
-    unsigned int time_samples() const;
 
     /// Time samples per period of the fields (CSV, snapshots, plots).
     unsigned int field_time_samples() const;

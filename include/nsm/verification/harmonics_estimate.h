@@ -3,6 +3,7 @@
 #pragma once
 
 #include <nsm/continuation/backbone.h>
+#include <nsm/continuation/branch_parameters.h>
 #include <nsm/harmonic_balance/harmonic_balance.h>
 #include <nsm/harmonic_balance/newton_solver.h>
 #include <nsm/scene/scene.h>
@@ -47,7 +48,7 @@ namespace nsm
   /// Newton finds no contact motion, where it lands on another motion (its
   /// contact fraction more than same_motion_contact_change away), and for the
   /// points a stop signal left.
-  std::vector<double> estimate_energy_errors(const HarmonicBalance &hb, const Scene &scene,
+  std::vector<double> estimate_energy_errors(const HarmonicBalance &hb, const BranchParameters &branch,
                                              const Backbone &backbone, Progress &progress);
 
   /// The median and 90th percentile of the estimates over the main points,

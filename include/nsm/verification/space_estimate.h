@@ -7,6 +7,7 @@
 #pragma once
 
 #include <nsm/continuation/backbone.h>
+#include <nsm/continuation/branch_parameters.h>
 #include <nsm/harmonic_balance/harmonic_balance.h>
 #include <nsm/model/band_cells.h>
 #include <nsm/model/discretisation.h>
@@ -23,8 +24,9 @@ namespace nsm
   {
   public:
     /// FE_Q(p) on the model's mesh with every cell halved, and its
-    /// receptance up to the band.
-    SpaceReference(const Discretisation &model, const Scene &scene);
+    /// receptance up to the band M Omega max of `branch`.
+    SpaceReference(const Discretisation &model, const Scene::Receptance &receptance,
+                   const BranchParameters &branch);
 
     /// The model's eigenfrequencies up to M Omega max against the reference's.
     BandAgreement band(const Discretisation &model) const;
@@ -36,7 +38,7 @@ namespace nsm
     std::vector<double> energy_changes(const Backbone &backbone) const;
 
   private:
-    const Scene                     &scene_;
+    const BranchParameters          branch_;
     std::unique_ptr<Discretisation> reference_;
     std::unique_ptr<Receptance>     receptance_;
   };

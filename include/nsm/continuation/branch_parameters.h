@@ -1,0 +1,26 @@
+// What tracing a branch reads of a scene: the Continuation subsection, the
+// harmonic balance's Newton settings (and its harmonics, for the branch with
+// half of them), the contact law's sign (the direction of continuation) and
+// how often progress is reported. The continuation's units take this, not
+// the whole scene.
+#pragma once
+
+#include <nsm/scene/scene.h>
+
+#include <string>
+#include <vector>
+
+namespace nsm
+{
+  struct BranchParameters
+  {
+    explicit BranchParameters(const Scene &scene);
+
+    Scene::Contact          contact;
+    Scene::HarmonicBalance  harmonic_balance;
+    Scene::Continuation     continuation;
+    double                  progress_every; ///< seconds; 0 = never (Output/Progress every)
+    /// Scene::computation_entries: a resumed run must share them (checkpoint.h).
+    std::vector<std::string> computation_entries;
+  };
+} // namespace nsm

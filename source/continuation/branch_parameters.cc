@@ -1,0 +1,12 @@
+#include <nsm/continuation/branch_parameters.h>
+
+namespace nsm
+{
+  BranchParameters::BranchParameters(const Scene &scene)
+    : contact(scene.contact)
+    , harmonic_balance(scene.harmonic_balance)
+    , continuation(scene.continuation)
+    , progress_every(scene.output.progress_every)
+    , computation_entries(scene.computation_entries)
+  {}
+} // namespace nsm
