@@ -53,7 +53,7 @@ namespace nsm
         note_fold(point);
         backbone_.points.push_back(point);
         if (context_.full(backbone_))
-          return stop(SegmentEnd::max_steps);
+          return stop(context_.full_end());
         if (!context_.in_range(point.omega + context_.direction * c.min_step) &&
             (point.omega >= c.omega_max || point.omega <= c.omega_min))
           return stop(SegmentEnd::range);

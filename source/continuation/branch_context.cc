@@ -136,6 +136,11 @@ namespace nsm
     return backbone.points.size() >= params.continuation.max_steps || point_stop_signal() != 0;
   }
 
+  SegmentEnd BranchContext::full_end() const
+  {
+    return point_stop_signal() != 0 ? SegmentEnd::interrupted : SegmentEnd::max_steps;
+  }
+
   double BranchContext::max_step() const
   {
     return std::min(params.continuation.max_step, span / continuation_constants::steps_per_span);

@@ -96,7 +96,7 @@ namespace nsm
                 find_branch_below_at_end(context, backbone, segment);
               return fill_gaps(context, backbone);
             }
-          if (end == SegmentEnd::max_steps && point_stop_signal() != 0)
+          if (end == SegmentEnd::interrupted)
             {
               backbone.checkpoint = interrupted_checkpoint(context, backbone, segment, start);
               backbone.end        = BackboneEnd::interrupted;

@@ -79,7 +79,7 @@ namespace nsm
             return SegmentEnd::fold;
         }
       context.next_step = step;
-      return SegmentEnd::max_steps;
+      return context.full_end();
     }
   } // namespace
 

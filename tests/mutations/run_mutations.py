@@ -3,6 +3,7 @@
 
 usage: run_mutations.py [WORK_DIRECTORY] [--only REGEX] [--sample N]
        run_mutations.py --in-place [--only REGEX] [--sample N]
+       run_mutations.py --check-texts
 Copies the tracked sources of this repository into WORK_DIRECTORY/src
 (default /tmp/nsm-mutations), builds them once and checks that the unmutated
 suite passes; with --in-place (CI, on a disposable clone) it mutates this
@@ -11,7 +12,10 @@ Then for each mutation: applies it, rebuilds nsm-bar and the unit tests,
 runs CTest, and restores the file. Fails unless every mutation makes at least
 one test fail. --only runs the mutations whose name matches REGEX; --sample N
 runs an N-th of them, those whose index is the commit count modulo N, so that
-N consecutive commits run every one. Not part of CTest.
+N consecutive commits run every one. Not part of CTest, but for
+--check-texts (CTest mutations.texts): each mutation's text occurs exactly once
+in its file, so that a change of the code it plants into is noticed by the
+suite, not by the next mutation run.
 """
 import argparse
 import signal
@@ -289,13 +293,29 @@ def try_mutation(mutation, src, build, work):
             f.write(original)
 
 
+def check_texts():
+    """Fails unless each mutation's text occurs exactly once in its file."""
+    wrong = []
+    for name, path, text, _ in MUTATIONS:
+        with open(os.path.join(ROOT, path)) as f:
+            count = f.read().count(text)
+        if count != 1:
+            wrong.append(f"{name}: {path} holds its text {count} times")
+    if wrong:
+        sys.exit("mutations to match again:\n" + "\n".join(wrong))
+    print(f"each of the {len(MUTATIONS)} mutations' texts occurs once")
+
+
 def main():
     parser = argparse.ArgumentParser(description="Plants bugs and checks that the suite catches each.")
     parser.add_argument("work", nargs="?", default="/tmp/nsm-mutations")
     parser.add_argument("--in-place", action="store_true")
     parser.add_argument("--only")
     parser.add_argument("--sample", type=int)
+    parser.add_argument("--check-texts", action="store_true")
     args = parser.parse_args()
+    if args.check_texts:
+        return check_texts()
     mutations = selected(args)
     # A stop restores the mutated file (try_mutation's finally) before exiting.
     signal.signal(signal.SIGTERM, lambda *_: sys.exit("stopped"))

@@ -24,6 +24,7 @@ namespace nsm
     fold,      ///< no convergence below Min step, or LOCA gave up
     tongue,    ///< energy above Energy max (climbing a resonance tongue)
     max_steps, ///< Max steps points in all
+    interrupted, ///< a stop signal ended it at a point (interruption.h)
     refused,   ///< arclength reached a point that is not a contact motion
     jump,      ///< an arclength step left the branch (shortened and retried)
     joined     ///< a segment filling a gap reached its far side (gap_filling.h)
@@ -83,8 +84,13 @@ namespace nsm
     };
     SolveFailure last_failure() const { return last_failure_; }
 
-    /// Called after each point: Max steps reached? Also reports progress.
+    /// Called after each point: Max steps reached, or a stop signal? Also
+    /// reports progress.
     bool full(const Backbone &backbone);
+
+    /// How a segment that full() ended ends: interrupted if a stop signal
+    /// came, else max_steps.
+    SegmentEnd full_end() const;
 
     bool in_range(double omega) const { return in_omega_range(params.continuation, omega); }
 
@@ -117,7 +123,7 @@ namespace nsm
     double                               span = 0; ///< of the range covered from the start
     std::optional<std::size_t>           first_fold; ///< in the current segment (arclength)
     /// The sequential method's next step: where a segment was interrupted
-    /// (it stopped at Max steps with a stop signal), and where a resumed
+    /// (SegmentEnd::interrupted), and where a resumed
     /// segment starts (checkpoint.h).
     std::optional<double>                next_step, resume_step;
 
