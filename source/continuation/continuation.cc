@@ -16,8 +16,8 @@
 
 namespace nsm
 {
-  std::vector<InternalResonance> internal_resonances(const Receptance &receptance,
-                                                     const BranchParameters      &params)
+  std::vector<InternalResonance> internal_resonances(const Receptance       &receptance,
+                                                     const BranchParameters &params)
   {
     const auto                    &c   = params.continuation;
     const unsigned int             top = params.harmonic_balance.harmonics;
@@ -154,7 +154,7 @@ namespace nsm
   } // namespace
 
   Backbone compute_backbone(HarmonicBalance                      &hb,
-                            const BranchParameters                          &params,
+                            const BranchParameters               &params,
                             const std::vector<InternalResonance> &resonances,
                             const ContinuationCheckpoint         *resume)
   {
@@ -186,11 +186,11 @@ namespace nsm
 namespace nsm
 {
 
-  BackbonePoint solve_on_branch(HarmonicBalance &hb,
-                                const BranchParameters     &params,
-                                const Backbone  &backbone,
-                                const double     omega,
-                                const bool       main_only)
+  BackbonePoint solve_on_branch(HarmonicBalance        &hb,
+                                const BranchParameters &params,
+                                const Backbone         &backbone,
+                                const double            omega,
+                                const bool              main_only)
   {
     const auto   &p = backbone.points;
     BranchContext context(hb, params, {});

@@ -192,7 +192,7 @@ namespace nsm
   } // namespace
 
   bool run_arclength(HarmonicBalance                                  &hb,
-                     const BranchParameters                                      &branch,
+                     const BranchParameters                           &branch,
                      const BackbonePoint                              &start,
                      const double                                      initial_step,
                      const std::function<bool(const BackbonePoint &)> &accept)

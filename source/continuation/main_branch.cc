@@ -274,7 +274,7 @@ namespace nsm
   }
 
   void label_point(HarmonicBalance                  &hb,
-                   const BranchParameters                      &params,
+                   const BranchParameters           &params,
                    const std::vector<BackbonePoint> &points,
                    BackbonePoint                    &point)
   {

@@ -18,8 +18,8 @@ namespace nsm
 {
   /// Every W = w_j / k in [Omega min, Omega max] with k <= M, w_j from the
   /// FE clamped-free spectrum up to Harmonics x Omega max; sorted by W.
-  std::vector<InternalResonance> internal_resonances(const Receptance &receptance,
-                                                     const BranchParameters      &params);
+  std::vector<InternalResonance> internal_resonances(const Receptance       &receptance,
+                                                     const BranchParameters &params);
 
   struct ContinuationCheckpoint;
 
@@ -28,7 +28,7 @@ namespace nsm
   /// with the scene's method. Only converged, non-trivial points are kept.
   /// A resumed continuation computes the points an uninterrupted one does.
   Backbone compute_backbone(HarmonicBalance                      &hb,
-                            const BranchParameters                          &params,
+                            const BranchParameters               &params,
                             const std::vector<InternalResonance> &resonances,
                             const ContinuationCheckpoint         *resume = nullptr);
 
@@ -41,10 +41,10 @@ namespace nsm
   /// impulsive guess. The point is labelled main or tongue against the
   /// backbone's envelope (label_point). Throws NumericalError if nothing
   /// converges.
-  BackbonePoint solve_on_branch(HarmonicBalance &hb,
-                                const BranchParameters     &params,
-                                const Backbone  &backbone,
-                                double           omega,
-                                bool             main_only = false);
+  BackbonePoint solve_on_branch(HarmonicBalance        &hb,
+                                const BranchParameters &params,
+                                const Backbone         &backbone,
+                                double                  omega,
+                                bool                    main_only = false);
 
 } // namespace nsm

@@ -14,9 +14,9 @@ namespace nsm
   /// step and returns false to stop.
   /// Returns true if LOCA finished its run (it reached Omega min or max, or
   /// accept stopped it), false if it failed to converge a step.
-  bool run_arclength(HarmonicBalance                                &hb,
-                     const BranchParameters                                    &params,
-                     const BackbonePoint                            &start,
-                     double                                          initial_step,
+  bool run_arclength(HarmonicBalance                                  &hb,
+                     const BranchParameters                           &params,
+                     const BackbonePoint                              &start,
+                     double                                            initial_step,
                      const std::function<bool(const BackbonePoint &)> &accept);
 } // namespace nsm

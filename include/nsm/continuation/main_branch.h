@@ -91,7 +91,7 @@ namespace nsm
   /// energy of their main and tongue points at or beyond its Omega and it
   /// names an internal resonance; else main.
   void label_point(HarmonicBalance                  &hb,
-                   const BranchParameters                      &params,
+                   const BranchParameters           &params,
                    const std::vector<BackbonePoint> &points,
                    BackbonePoint                    &point);
 
