@@ -11,7 +11,6 @@
 #include <nsm/scene/scene_file.h>
 #include <nsm/base/text.h>
 #include <nsm/study/study.h>
-
 #include <nsm/base/assertions.h>
 #include <nsm/base/errors.h>
 
@@ -242,8 +241,8 @@ int main(int argc, char **argv)
                    "                              nsm-bar DIR --resume takes the scene from DIR's record (parameters.prm)\n"
                    "--verbose                     print the continuation's events in the summary too\n"
                    "exit codes: 0 done, 2 bad input, 3 numerical failure, 4 other error, 5 a file could "
-                   "not be written whole, 6 a bug in nsm-bar, 130 / 143 stopped by SIGINT / SIGTERM (a run writes what it computed, a study "
-                   "keeps its rows done)\n";
+                   "not be written whole, 6 a bug in nsm-bar, 130 / 143 stopped by SIGINT / SIGTERM (a run "
+                   "writes what it computed, a study keeps its rows done)\n";
       return 0;
     }
   if (arguments.size() == 1 &&
@@ -267,11 +266,9 @@ int main(int argc, char **argv)
     {
       line = parse_command_line(arguments);
     }
-  catch (const nsm::InputError &e)
+  catch (...)
     {
-      if (launcher_rank() == 0)
-        nsm::print_error("input error: ", e.what());
-      return nsm::exit_codes::input;
+      return nsm::report_failure(std::current_exception(), launcher_rank() == 0);
     }
   nsm::set_parameter_overrides(line.overrides);
 #ifdef DEBUG
@@ -285,7 +282,8 @@ int main(int argc, char **argv)
   const int code = run(argc, argv, line.scene, line.verbose, line.resume, mpi);
   // A rank that failed alone would leave the others waiting in a collective;
   // bad input fails on every rank alike.
-  if (code != 0 && code != nsm::exit_codes::input && code < 128 && mpi && dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+  if (code != 0 && code != nsm::exit_codes::input && code < 128 && mpi &&
+      dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
     MPI_Abort(MPI_COMM_WORLD, code);
   return code;
 }

@@ -330,7 +330,9 @@ namespace nsm
       /// against, made before the harmonic balance.
       void set_up_band_check()
       {
-        timed("band check set-up", [&] { space_ = std::make_unique<SpaceReference>(*discretisation_, scene_.receptance, branch()); });
+        timed("band check set-up", [&] {
+          space_ = std::make_unique<SpaceReference>(*discretisation_, scene_.receptance, branch());
+        });
       }
 
       void verify_in_time()

@@ -1,6 +1,5 @@
 #include <nsm/base/band_cholesky.h>
 #include <nsm/base/errors.h>
-
 #include <nsm/base/assertions.h>
 
 #include <algorithm>

@@ -1,6 +1,5 @@
 #include <nsm/base/dense_lu.h>
 #include <nsm/base/vector_clones.h>
-
 #include <nsm/base/assertions.h>
 
 #include <algorithm>

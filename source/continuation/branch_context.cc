@@ -2,7 +2,6 @@
 #include <nsm/continuation/constants.h>
 #include <nsm/continuation/branch_context.h>
 #include <nsm/continuation/continuation.h>
-
 #include <nsm/base/assertions.h>
 
 #include <algorithm>

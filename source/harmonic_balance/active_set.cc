@@ -1,6 +1,5 @@
 #include <nsm/harmonic_balance/constants.h>
 #include <nsm/harmonic_balance/active_set.h>
-
 #include <nsm/base/assertions.h>
 
 #include <algorithm>

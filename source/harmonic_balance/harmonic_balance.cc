@@ -1,7 +1,6 @@
 #include <nsm/harmonic_balance/constants.h>
 #include <nsm/harmonic_balance/harmonic_balance.h>
 #include <nsm/harmonic_balance/trigonometric.h>
-
 #include <nsm/base/assertions.h>
 
 #include <chrono>

@@ -1,5 +1,4 @@
 #include <nsm/harmonic_balance/series_samples.h>
-
 #include <nsm/base/assertions.h>
 
 #include <fftw3.h>

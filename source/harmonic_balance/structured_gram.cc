@@ -1,5 +1,4 @@
 #include <nsm/harmonic_balance/structured_gram.h>
-
 #include <nsm/base/assertions.h>
 
 namespace nsm

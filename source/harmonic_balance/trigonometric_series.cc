@@ -1,6 +1,5 @@
 #include <nsm/harmonic_balance/trigonometric_series.h>
 #include <nsm/base/vector_clones.h>
-
 #include <nsm/base/assertions.h>
 
 namespace nsm

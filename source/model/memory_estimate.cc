@@ -87,7 +87,8 @@ namespace nsm
     std::ostringstream s;
     s.precision(3);
     s << "the scene needs about " << need / (1 << 20) << " MiB of memory (an estimate from "
-      << "Discretisation/Cells = " << d.cells << " and Discretisation/Degree = " << d.degree << ", Harmonic balance/Harmonics and the fields asked for), more than the "
+      << "Discretisation/Cells = " << d.cells << " and Discretisation/Degree = " << d.degree
+      << ", Harmonic balance/Harmonics and the fields asked for), more than the "
       << have / (1 << 20) << " MiB "
       << (resources.memory_limit > 0 ? "of Resources/Memory limit" :
                                              "the machine has available (or the process's address-space limit allows)")

@@ -1,5 +1,4 @@
 #include <nsm/model/shifted_factor.h>
-
 #include <nsm/base/assertions.h>
 
 #include <algorithm>

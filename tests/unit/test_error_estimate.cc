@@ -124,13 +124,13 @@ TEST(BandCheck, FindsTheEigenfrequenciesAMeshDoesNotResolve)
 {
   nsm::Scene scene = uniform_scene(40);
   testing_helpers::HbModel resolved(scene);
-  const auto               fine = nsm::SpaceReference(resolved.discretisation, scene.receptance, nsm::BranchParameters(scene)).band(resolved.discretisation);
+  const auto fine = nsm::SpaceReference(resolved.discretisation, scene.receptance, resolved.branch).band(resolved.discretisation);
   EXPECT_EQ(fine.modes, 25u);
   EXPECT_LT(fine.error, 1e-6);
   scene.discretisation.degree = 2;
   scene.discretisation.cells  = 20;
   testing_helpers::HbModel coarse(scene);
-  const auto               rough = nsm::SpaceReference(coarse.discretisation, scene.receptance, nsm::BranchParameters(scene)).band(coarse.discretisation);
+  const auto rough = nsm::SpaceReference(coarse.discretisation, scene.receptance, coarse.branch).band(coarse.discretisation);
   EXPECT_EQ(rough.modes, 25u);
   EXPECT_GT(rough.error, 1e-2);
 }

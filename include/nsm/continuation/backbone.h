@@ -5,7 +5,7 @@
 
 #include <nsm/harmonic_balance/newton_solver.h>
 #include <nsm/harmonic_balance/solution_measures.h>
-#include <nsm/continuation/branch_parameters.h>
+#include <nsm/scene/scene.h>
 
 #include <memory>
 #include <optional>
