@@ -11,7 +11,7 @@ namespace nsm
 {
   namespace
   {
-    constexpr double eps = std::numeric_limits<double>::epsilon();
+    constexpr double round_off = std::numeric_limits<double>::epsilon();
   }
 
   int count_eigenvalues_below(const BandedPencil &p, const double sigma)
@@ -44,7 +44,7 @@ namespace nsm
                 // replaced by one at the rounding of the diagonal, as in
                 // LAPACK's dlaebz.
                 if (s == 0)
-                  s = eps * (std::abs(p.k[entry]) + std::abs(sigma * p.m[entry]));
+                  s = round_off * (std::abs(p.k[entry]) + std::abs(sigma * p.m[entry]));
                 d[i & mask] = s;
                 negative += s < 0;
               }
@@ -77,7 +77,7 @@ namespace nsm
         const auto [lo, hi] = bracket(j);
         if (counts_.at(lo) == j - 1 && counts_.at(hi) == j)
           return;
-        if (hi - lo <= 4 * eps * hi)
+        if (hi - lo <= 4 * round_off * hi)
           throw NumericalError("two eigenvalues w^2 agree to rounding near " + std::to_string(hi) +
                                ": they cannot be told apart");
         next_guess = std::find_if(next_guess, guesses.end(), [lo = lo, hi = hi](const double g) {

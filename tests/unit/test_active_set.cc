@@ -4,19 +4,18 @@
 
 #include <gtest/gtest.h>
 
+#include "basis_value.h"
+
 #include <cmath>
 
 namespace
 {
+  using testing_helpers::basis_value;
+
   /// The exact rule's grid, as the harmonic balance sets it.
   unsigned int grid(const unsigned int harmonics)
   {
     return 8 * harmonics + 8;
-  }
-
-  double phi(const nsm::TrigonometricBasis &b, const unsigned int i, const double tau)
-  {
-    return b.sine[i] ? std::sin(b.order[i] * tau) : std::cos(b.order[i] * tau);
   }
 
   /// The Dirichlet kernel 1 + 2 sum_k cos(k x), k = 1..M.
@@ -80,7 +79,7 @@ TEST(ActiveSet, ExactGramMatchesABruteForceQuadrature)
       const double tau = (t + 0.5) * h;
       double       q   = 0;
       for (unsigned int i = 0; i < n; ++i)
-        f[i] = phi(b, i, tau), q += v[i] * f[i];
+        f[i] = basis_value(b, i, tau), q += v[i] * f[i];
       if (q <= 0)
         continue;
       ++active;

@@ -25,7 +25,7 @@ namespace
   }
 
   /// The uniform bar to Omega 2 (period 3.14 to 4), Energy max 1e-4.
-  nsm::Scene uniform_scene(const unsigned int harmonics)
+  nsm::Scene uniform_to_omega_2(const unsigned int harmonics)
   {
     nsm::Scene scene              = testing_helpers::hb_scene("1", harmonics);
     scene.continuation.omega_max  = 2.0;
@@ -39,7 +39,7 @@ namespace
 // own Newton (BranchContext), the same numbers to Newton's tolerance.
 TEST(ErrorEstimate, IsTheEnergyChangeToTheSolutionWithHalfTheHarmonics)
 {
-  testing_helpers::HbModel model(uniform_scene(20)), fewer(uniform_scene(10));
+  testing_helpers::HbModel model(uniform_to_omega_2(20)), fewer(uniform_to_omega_2(10));
   const nsm::Backbone      backbone = model.backbone();
   nsm::Progress            quiet("test", 0);
   const std::vector<double> estimates = nsm::estimate_energy_errors(model.hb, model.branch, backbone, quiet);
@@ -70,7 +70,7 @@ TEST(ErrorEstimate, OnTheUniformBarItIsTheSizeOfTheErrorAgainstTheExactMode)
 {
   for (const unsigned int harmonics : {20u, 40u})
     {
-      testing_helpers::HbModel model(uniform_scene(harmonics));
+      testing_helpers::HbModel model(uniform_to_omega_2(harmonics));
       const nsm::Backbone      backbone = model.backbone();
       nsm::Progress            quiet("test", 0);
       const std::vector<double> estimates = nsm::estimate_energy_errors(model.hb, model.branch, backbone, quiet);
@@ -99,7 +99,7 @@ TEST(ErrorEstimate, OnTheUniformBarItIsTheSizeOfTheErrorAgainstTheExactMode)
 // estimate; a point not found again counts as beyond any bound.
 TEST(BandCheck, WarnsWhenTheMeshMovesTheEnergyMoreThanTheHarmonicsDo)
 {
-  testing_helpers::HbModel  model(uniform_scene(20));
+  testing_helpers::HbModel  model(uniform_to_omega_2(20));
   const nsm::BandAgreement band{40, 12, 1e-3};
   const double              nan = std::numeric_limits<double>::quiet_NaN();
   const auto verdict = [&](const std::vector<double> &changes, const double estimate) {
@@ -122,7 +122,7 @@ TEST(BandCheck, WarnsWhenTheMeshMovesTheEnergyMoreThanTheHarmonicsDo)
 // per cent (measured 0.10 against 40 cells).
 TEST(BandCheck, FindsTheEigenfrequenciesAMeshDoesNotResolve)
 {
-  nsm::Scene scene = uniform_scene(40);
+  nsm::Scene scene = uniform_to_omega_2(40);
   testing_helpers::HbModel resolved(scene);
   const auto fine = nsm::SpaceReference(resolved.discretisation, scene.receptance, resolved.branch).band(resolved.discretisation);
   EXPECT_EQ(fine.modes, 25u);
@@ -141,7 +141,7 @@ TEST(BandCheck, FindsTheEigenfrequenciesAMeshDoesNotResolve)
 // with half its cells does not.
 TEST(BandCheck, CellsZeroChoosesTheFewestCellsThatResolveTheBand)
 {
-  nsm::Scene scene              = uniform_scene(40);
+  nsm::Scene scene              = uniform_to_omega_2(40);
   scene.discretisation.degree   = 4;
   scene.discretisation.cells    = 0;
   scene.output.backbone         = true;

@@ -9,39 +9,14 @@
 
 #include <cmath>
 
-#include "exact_bar.h"
 #include "hb_model.h"
+#include "uniform_tent.h"
 
 namespace
 {
-  constexpr double g0 = 1e-3;
-
-  /// The rigid wall at g0.
-  nsm::ContactLaw wall() { return testing_helpers::wall_at(g0); }
-
-  /// The uniform bar on `cells` cells of FE_Q(degree), and the exact tent
-  /// of period T interpolated on it (exact_bar.h).
-  struct UniformBar
-  {
-    UniformBar(const double period, const unsigned int degree, const unsigned int cells)
-      : exact(period, g0)
-      , scene(testing_helpers::bar_scene("1", degree, cells))
-      , bar(scene.bar)
-      , discretisation(bar, scene.discretisation)
-      , tent(discretisation.n_dofs())
-    {
-      const auto x = discretisation.support_points();
-      for (unsigned int i = 0; i < x.size(); ++i)
-        tent[i] = x[i] <= exact.x_peak ? exact.peak * x[i] / exact.x_peak
-                                       : exact.peak + (g0 - exact.peak) * (x[i] - exact.x_peak) / (1 - exact.x_peak);
-    }
-
-    exact::UniformMode     exact;
-    nsm::Scene             scene;
-    nsm::BarModel          bar;
-    nsm::Discretisation    discretisation;
-    dealii::Vector<double> tent;
-  };
+  using testing_helpers::tent_gap;
+  using testing_helpers::tent_wall;
+  using UniformBar = testing_helpers::UniformTent;
 
   nsm::ModalState state_of(const nsm::ModalFlow &flow, const dealii::Vector<double> &u)
   {
@@ -59,7 +34,7 @@ TEST(ModalFlow, ConservesEnergyAndKeepsTheWallThroughItsSwitches)
   // where both sides agree (a wall moved in the switch test alone, or a
   // wrong static offset, breaks it). The contact DoF never passes g0.
   const UniformBar     uniform(3.5, 2, 50);
-  const nsm::ModalFlow flow(uniform.discretisation, wall());
+  const nsm::ModalFlow flow(uniform.discretisation, tent_wall());
   nsm::ModalState      s  = state_of(flow, uniform.tent);
   const double         e0 = flow.strain_energy(s.u);
   unsigned int         switches = 0;
@@ -67,7 +42,7 @@ TEST(ModalFlow, ConservesEnergyAndKeepsTheWallThroughItsSwitches)
     {
       switches += flow.advance(s, 3.5 / 8, nullptr).switches;
       EXPECT_NEAR((flow.strain_energy(s.u) + flow.kinetic_energy(s.v)) / e0, 1.0, 1e-9);
-      EXPECT_LE(flow.contact_displacement(s.u), g0);
+      EXPECT_LE(flow.contact_displacement(s.u), tent_gap);
     }
   EXPECT_GE(switches, 4u); // two periods, each with a landing and a release
 }
@@ -80,7 +55,7 @@ TEST(PeriodicOrbit, MonodromyIsTheFlowsDerivativeAndPreservesVolume)
   // time shift and the family direction give a Jordan pair at 1.
   const UniformBar         uniform(3.5, 2, 40);
   const nsm::PeriodicOrbit orbit =
-    nsm::find_periodic_orbit(uniform.discretisation, wall(), 2 * M_PI / 3.5, uniform.tent, {1e-10, 1e-4, true});
+    nsm::find_periodic_orbit(uniform.discretisation, tent_wall(), 2 * M_PI / 3.5, uniform.tent, {1e-10, 1e-4, true});
   ASSERT_TRUE(orbit.converged);
   EXPECT_LT(orbit.periodicity, 1e-9);
   EXPECT_NEAR(std::abs(orbit.multipliers[0] - 1.0), 0.0, 1e-4);
@@ -98,14 +73,14 @@ TEST(PeriodicOrbit, MonodromyIsTheFlowsDerivativeAndPreservesVolume)
   EXPECT_NEAR(determinant.imag(), 0.0, 1e-8);
 
   // Finite differences of one period against the tangent, for a few DoFs.
-  const nsm::ModalFlow flow(uniform.discretisation, wall());
+  const nsm::ModalFlow flow(uniform.discretisation, tent_wall());
   const std::size_t    k = flow.dofs().size();
   nsm::ModalState      s = state_of(flow, orbit.displacement);
   nsm::ModalTangents   t{dealii::LAPACKFullMatrix<double>(k, k), dealii::LAPACKFullMatrix<double>(k, k)};
   for (std::size_t i = 0; i < k; ++i)
     t.du(i, i) = 1;
   flow.advance(s, 3.5, &t);
-  const double delta = 1e-6 * g0;
+  const double delta = 1e-6 * tent_gap;
   for (const std::size_t column : {std::size_t(3), k / 2, k - 2})
     {
       nsm::ModalState plus = state_of(flow, orbit.displacement), minus = plus;
@@ -134,14 +109,14 @@ TEST(PeriodicOrbit, UniformBarOrbitHasTheTentsContactFraction)
     {
       const unsigned int       cells = 50;
       const UniformBar         uniform(period, 2, cells);
-      const nsm::PeriodicOrbit orbit = nsm::find_periodic_orbit(uniform.discretisation, wall(), 2 * M_PI / period,
+      const nsm::PeriodicOrbit orbit = nsm::find_periodic_orbit(uniform.discretisation, tent_wall(), 2 * M_PI / period,
                                                                 uniform.tent, {1e-10, 1e-4, false});
       ASSERT_TRUE(orbit.converged) << "T = " << period;
       EXPECT_NEAR(orbit.contact_fraction, (4 - period) / period, 2.0 / cells / period) << "T = " << period;
-      EXPECT_DOUBLE_EQ(orbit.displacement[uniform.discretisation.contact_dof()], g0);
+      EXPECT_DOUBLE_EQ(orbit.displacement[uniform.discretisation.contact_dof()], tent_gap);
       // Energy bound: u(L) = g0 at rest implies E >= g0^2 / 2 (method.md), and
       // the tent is the least-energy member of the family.
-      EXPECT_GE(orbit.energy, g0 * g0 / 2);
+      EXPECT_GE(orbit.energy, tent_gap * tent_gap / 2);
       EXPECT_GE(orbit.energy, uniform.exact.energy * (1 - 0.02));
     }
 }

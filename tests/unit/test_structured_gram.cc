@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "basis_value.h"
+
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -16,6 +18,8 @@
 
 namespace
 {
+  using testing_helpers::basis_value;
+
   /// Nodes and weights of the n-point Gauss-Legendre rule on [-1, 1], by
   /// Newton on P_n from the Chebyshev estimates.
   void gauss_legendre(const unsigned int n, std::vector<double> &x, std::vector<double> &w)
@@ -42,11 +46,6 @@ namespace
       }
   }
 
-  double phi(const nsm::TrigonometricBasis &b, const unsigned int i, const double tau)
-  {
-    return b.sine[i] ? std::sin(b.order[i] * tau) : std::cos(b.order[i] * tau);
-  }
-
   /// G_ij = (1 or 2) / 2 pi * integral over the intervals of phi_i phi_j,
   /// row-major: 200 Gauss points per interval integrate the products (up to
   /// frequency 2M = 80 over at most a period) to rounding.
@@ -62,7 +61,8 @@ namespace
           const double tau = 0.5 * (a + e) + 0.5 * (e - a) * x[q], weight = 0.5 * (e - a) * w[q];
           for (unsigned int i = 0; i < n; ++i)
             for (unsigned int j = 0; j < n; ++j)
-              g[i * n + j] += (b.order[i] == 0 ? 1.0 : 2.0) / (2 * M_PI) * weight * phi(b, i, tau) * phi(b, j, tau);
+              g[i * n + j] +=
+                (b.order[i] == 0 ? 1.0 : 2.0) / (2 * M_PI) * weight * basis_value(b, i, tau) * basis_value(b, j, tau);
         }
     return g;
   }
@@ -144,7 +144,7 @@ TEST(StructuredGram, SampledSumsAreTheSampledRulesProducts)
           {
             double sum = 0;
             for (const unsigned int t : active)
-              sum += phi(b, i, 2 * M_PI * t / samples) * phi(b, j, 2 * M_PI * t / samples);
+              sum += basis_value(b, i, 2 * M_PI * t / samples) * basis_value(b, j, 2 * M_PI * t / samples);
             EXPECT_NEAR(dense[i * n + j], (b.order[i] == 0 ? 1.0 : 2.0) / samples * sum, 1e-13) << i << ' ' << j;
           }
       EXPECT_DOUBLE_EQ(gram.share(), double(active.size()) / samples);

@@ -6,41 +6,27 @@
 
 #include <cmath>
 
-#include "exact_bar.h"
 #include "hb_model.h"
+#include "uniform_tent.h"
 
 namespace
 {
-  constexpr double g0 = 1e-3;
+  using testing_helpers::tent_gap;
 
-  /// The rigid wall at g0.
-  nsm::ContactLaw wall() { return testing_helpers::wall_at(g0); }
-
-  /// The uniform bar's exact mode (exact_bar.h) on a mesh of FE_Q(1), and the
-  /// integration of its period. The impulse per period is 2 (u* - g0).
-  struct ExactMode
+  /// The uniform bar's exact mode on a mesh of FE_Q(1) (uniform_tent.h), and
+  /// the integration of its period. The impulse per period is 2 (u* - g0).
+  struct ExactMode : testing_helpers::UniformTent
   {
     ExactMode(unsigned int cells, double period, unsigned int steps)
-      : exact(period, g0)
-      , scene(testing_helpers::bar_scene("1", 1, cells))
-      , bar(scene.bar)
-      , discretisation(bar, scene.discretisation)
-      , integrator(discretisation, wall(), period, steps)
-      , u(discretisation.n_dofs())
+      : UniformTent(period, 1, cells)
+      , integrator(discretisation, testing_helpers::tent_wall(), period, steps)
+      , u(tent)
       , v(discretisation.n_dofs())
-      , exact_impulse(2 * (exact.peak - g0))
+      , exact_impulse(2 * (exact.peak - tent_gap))
     {
-      const double x_peak = exact.x_peak, peak = exact.peak;
-      const auto   x      = discretisation.support_points();
-      for (unsigned int i = 0; i < x.size(); ++i)
-        u[i] = x[i] <= x_peak ? peak * x[i] / x_peak : peak + (g0 - peak) * (x[i] - x_peak) / (1 - x_peak);
       result = integrator.run(u, v, 2);
     }
 
-    exact::UniformMode         exact;
-    nsm::Scene                 scene;
-    nsm::BarModel              bar;
-    nsm::Discretisation        discretisation;
     nsm::ContactTimeIntegrator integrator;
     dealii::Vector<double>     u, v;
     double                     exact_impulse;
@@ -63,7 +49,7 @@ TEST(TimeVerification, ExactUniformModeComesBackWithItsEnergyContactAndImpulse)
       const ExactMode    mode(cells, period, std::lround(period * cells));
       // The mesh holds the tent exactly (x* = 3/4 is a node): its energy is.
       EXPECT_NEAR(mode.integrator.energy(mode.u, mode.v) / mode.exact.energy, 1.0, 1e-10);
-      EXPECT_NEAR(mode.exact.peak / g0, 1.5, 1e-12);
+      EXPECT_NEAR(mode.exact.peak / tent_gap, 1.5, 1e-12);
       const nsm::TimeVerification &r = mode.result;
       EXPECT_LT(r.periodicity_defect, 1.5 * independent[i]);
       EXPECT_GT(r.periodicity_defect, independent[i] / 1.5);
@@ -72,7 +58,7 @@ TEST(TimeVerification, ExactUniformModeComesBackWithItsEnergyContactAndImpulse)
       // Contact fraction (4 - T) / T = 1/7 to a few steps; impulse 2 (u* - g0) = g0 to 2 %.
       EXPECT_NEAR(r.contact_fraction, (4 - period) / period, 1e-3);
       EXPECT_NEAR(r.impulse / mode.exact_impulse, 1.0, 0.02);
-      EXPECT_NEAR(mode.exact_impulse, g0, 1e-15);
+      EXPECT_NEAR(mode.exact_impulse, tent_gap, 1e-15);
       // Energy-conserving scheme: the drift is the impacts' O(dt) loss.
       EXPECT_LT(std::abs(r.energy_drift), 1e-3);
     }
@@ -110,12 +96,12 @@ TEST(TimeVerification, PenetrationIsRemovedWithTheStaticShape)
   u *= 1.1; // u(L) = 1.1 g0: 10 % into the wall
   mode.integrator.make_admissible(u);
   const unsigned int n = mode.discretisation.contact_dof();
-  EXPECT_EQ(u[n], g0);
+  EXPECT_EQ(u[n], tent_gap);
   // The static shape of the uniform bar clamped at 0 is x: the whole tent
   // is lowered by 0.1 g0 x, not the contact DoF alone.
   const auto x = mode.discretisation.support_points();
   for (unsigned int i = 0; i < x.size(); ++i)
-    EXPECT_NEAR(u[i], 1.1 * mode.u[i] - 0.1 * g0 * x[i], 1e-15);
+    EXPECT_NEAR(u[i], 1.1 * mode.u[i] - 0.1 * tent_gap * x[i], 1e-15);
 }
 
 TEST(TimeVerification, RedistributedMassKeepsTheBarsMassAndLeavesTheContactDofWithout)
@@ -125,7 +111,7 @@ TEST(TimeVerification, RedistributedMassKeepsTheBarsMassAndLeavesTheContactDofWi
       auto                      scene = testing_helpers::bar_scene("1.5 - x", degree, 20);
       const nsm::BarModel       bar(scene.bar);
       const nsm::Discretisation d(bar, scene.discretisation);
-      const nsm::ContactTimeIntegrator integrator(d, wall(), 3.5, 100);
+      const nsm::ContactTimeIntegrator integrator(d, testing_helpers::tent_wall(), 3.5, 100);
       dealii::Vector<double>    zero(d.n_dofs()), ones(d.n_dofs()), contact(d.n_dofs());
       ones = 1;
       ones[d.clamped_dof()] = 0;
