@@ -1,4 +1,3 @@
-#include <nsm/model/adaptive_refinement.h>
 #include <nsm/model/automatic_range.h>
 #include <nsm/model/band_cells.h>
 #include <nsm/model/bar_model.h>
@@ -23,12 +22,12 @@
 #include <nsm/verification/harmonics_estimate.h>
 #include <nsm/verification/orbit_refinement.h>
 #include <nsm/verification/space_estimate.h>
+#include <nsm/verification/stage_runner.h>
 #include <nsm/verification/time_verification.h>
 #include <nsm/verification/refinement_checkpoint.h>
 #include <nsm/verification/verification_checkpoint.h>
 
 #include <deal.II/base/multithread_info.h>
-#include <deal.II/base/timer.h>
 
 #include <algorithm>
 #include <fstream>
@@ -136,9 +135,10 @@ namespace nsm
       return s.str();
     }
 
-    /// The stages of one run, in order; each adds its wall and CPU time
-    /// (deal.II's Timer) to the report, and its tables, fields and notes to
-    /// the report or the output stage.
+    /// The stages of one run, in order: those a study's row runs too (the
+    /// mesh, the receptance, the harmonic balance: StageRunner), and the
+    /// run's own. Each is timed on the runner's clock, and adds its tables,
+    /// fields and notes to the report or the output stage.
     class SceneRun
     {
     public:
@@ -161,28 +161,26 @@ namespace nsm
             scene_.check_consistency(false);
             report_.notes.push_back(describe(choice, scene_.discretisation.degree));
           });
-        timed("mesh and assembly", [&] {
-          discretisation_ = std::make_unique<Discretisation>(bar, scene_.discretisation);
-        });
-        if (scene_.discretisation.refinement == Refinement::adaptive)
-          timed("adaptive refinement", [&] {
-            Progress progress("adaptive refinement", scene_.output.progress_every);
-            // An automatic range is read off the initial mesh for the band,
-            // and again off the refined one for the run.
-            Scene initial = scene_;
-            if (traces_branch())
-              resolve_automatic_range(initial.continuation, initial.contact.gap, initial.output.fields_at,
-                                      *discretisation_);
-            for (std::string &note :
-                 refine_adaptively(*discretisation_, scene_.discretisation, initial.refinement_band(), &progress))
-              report_.notes.push_back(std::move(note));
-          });
-        report_.notes.push_back(describe(*discretisation_));
+        // An automatic range is read off the initial mesh for the band of
+        // an adaptive refinement, and again off the refined one for the run.
+        const auto band = [&](const Discretisation &initial_mesh) {
+          Scene initial = scene_;
+          if (traces_branch())
+            resolve_automatic_range(initial.continuation, initial.contact.gap, initial.output.fields_at,
+                                    initial_mesh);
+          return initial.refinement_band();
+        };
+        for (std::string &note : stages_.mesh(bar, scene_.discretisation, band, scene_.output.progress_every))
+          report_.notes.push_back(std::move(note));
+        report_.notes.push_back(describe(discretisation()));
         if (traces_branch())
           for (std::string &note : resolve_automatic_range(scene_.continuation, scene_.contact.gap,
-                                                           scene_.output.fields_at, *discretisation_))
+                                                           scene_.output.fields_at, discretisation()))
             report_.notes.push_back(std::move(note));
       }
+
+      /// Every stage run, in order, with its wall and CPU time.
+      std::vector<StageTiming> timings() const { return stages_.timings(); }
 
       /// What the continuation reads of the scene (its automatic range set).
       BranchParameters branch() const { return BranchParameters(scene_); }
@@ -193,47 +191,39 @@ namespace nsm
       void spectrum()
       {
         // An adaptive mesh's modes are known once it is made (Scene checks the others).
-        const unsigned int modes = discretisation_->n_dofs() - 2;
+        const unsigned int modes = discretisation().n_dofs() - 2;
         if (scene_.output.spectrum_modes > modes)
           throw InputError("parameter 'Output/Spectrum modes' = " + std::to_string(scene_.output.spectrum_modes) +
                            " is out of range: allowed an integer in [0, " + std::to_string(modes) +
                            "], the clamped-clamped modes of the adaptive mesh");
         timed("spectrum", [&] {
-          tables_.push_back(spectrum_table(*discretisation_, scene_.output.spectrum_modes));
+          tables_.push_back(spectrum_table(discretisation(), scene_.output.spectrum_modes));
         });
       }
 
-      void set_up_receptance()
-      {
-        timed("receptance set-up", [&] {
-          receptance_ = std::make_unique<Receptance>(*discretisation_, scene_.receptance, scene_.receptance_band());
-        });
-      }
+      void set_up_receptance() { stages_.set_up_receptance(scene_.receptance, scene_.receptance_band()); }
 
       void receptance()
       {
-        timed("receptance", [&] { tables_.push_back(receptance_table(*receptance_, scene_.output)); });
+        timed("receptance", [&] { tables_.push_back(receptance_table(stages_.receptance(), scene_.output)); });
       }
 
       void harmonic_balance()
       {
-        timed("harmonic balance", [&] {
-          hb_         = std::make_unique<HarmonicBalance>(scene_.harmonic_balance, scene_.contact, *receptance_);
-          resonances_ = internal_resonances(*receptance_, branch());
-          std::optional<ContinuationCheckpoint> checkpoint;
-          if (resume_)
-            {
-              checkpoint  = read_checkpoint(scene_.output.directory + "/" + checkpoint_file, branch(), *hb_);
-              companions_ = checkpoint->companions;
-              check_companion(verification_checkpoint_file);
-              check_companion(refinement_checkpoint_file);
-              report_.notes.push_back(resume_note(*checkpoint));
-            }
-          backbone_ = compute_backbone(*hb_, branch(), resonances_, checkpoint ? &*checkpoint : nullptr);
-          report_.notes.push_back(backbone_note());
-          report_.events = backbone_.events;
-          report_.result = backbone_result(backbone_, *bar_, scene_.contact, scene_.continuation);
-        });
+        const auto resume = [&](HarmonicBalance &hb) {
+          ContinuationCheckpoint checkpoint =
+            read_checkpoint(scene_.output.directory + "/" + checkpoint_file, branch(), hb);
+          companions_ = checkpoint.companions;
+          check_companion(verification_checkpoint_file);
+          check_companion(refinement_checkpoint_file);
+          report_.notes.push_back(resume_note(checkpoint));
+          return checkpoint;
+        };
+        stages_.harmonic_balance(scene_.harmonic_balance, scene_.contact, branch(),
+                                 resume_ ? StageRunner::Resume(resume) : StageRunner::Resume());
+        report_.notes.push_back(backbone_note());
+        report_.events = backbone().events;
+        report_.result = backbone_result(backbone(), *bar_, scene_.contact, scene_.continuation);
       }
 
       /// Writes the continuation's checkpoint and the points verified and refined so far
@@ -253,15 +243,15 @@ namespace nsm
         };
         if (present(verifications_) > 0)
           companion(verification_checkpoint_file, [&](std::ostream &out) {
-            write_verification_checkpoint(out, backbone_, verifications_, scene_.output);
+            write_verification_checkpoint(out, backbone(), verifications_, scene_.output);
           });
         if (present(orbits_) > 0)
           companion(refinement_checkpoint_file, [&](std::ostream &out) {
-            write_refinement_checkpoint(out, backbone_, orbits_, scene_.output);
+            write_refinement_checkpoint(out, backbone(), orbits_, scene_.output);
           });
-        if ((report_.resumable = backbone_.checkpoint != nullptr))
+        if ((report_.resumable = backbone().checkpoint != nullptr))
           report_.files.push_back(write_checksummed(directory + "/" + checkpoint_file, [&](std::ostream &out) {
-            write_checkpoint(out, *backbone_.checkpoint, scene_.computation_entries, *hb_, companions);
+            write_checkpoint(out, *backbone().checkpoint, scene_.computation_entries, hb(), companions);
           }));
       }
 
@@ -309,8 +299,8 @@ namespace nsm
         EstimateSummary summary;
         timed("error estimate", [&] {
           Progress progress("error estimate", scene_.output.progress_every);
-          estimates_ = estimate_energy_errors(*hb_, branch(), backbone_, progress);
-          summary    = summarise_estimates(backbone_, estimates_);
+          estimates_ = estimate_energy_errors(hb(), branch(), backbone(), progress);
+          summary    = summarise_estimates(backbone(), estimates_);
           report_.result.push_back(estimate_summary(summary, scene_.harmonic_balance.harmonics));
           note_stop("estimates");
         });
@@ -318,8 +308,8 @@ namespace nsm
           return;
         timed("band check", [&] {
           const SpaceVerdict verdict =
-            space_verdict(space_->band(*discretisation_), space_->energy_changes(backbone_),
-                          summary.estimated > 0 ? summary.median : std::nan(""), *discretisation_);
+            space_verdict(space_->band(discretisation()), space_->energy_changes(backbone()),
+                          summary.estimated > 0 ? summary.median : std::nan(""), discretisation());
           report_.result.push_back(verdict.summary);
           if (!verdict.warning.empty())
             report_.result.push_back("warning: " + verdict.warning);
@@ -331,7 +321,7 @@ namespace nsm
       void set_up_band_check()
       {
         timed("band check set-up", [&] {
-          space_ = std::make_unique<SpaceReference>(*discretisation_, scene_.receptance, branch());
+          space_ = std::make_unique<SpaceReference>(discretisation(), scene_.receptance, branch());
         });
       }
 
@@ -343,11 +333,11 @@ namespace nsm
           if (resume_)
             {
               known = read_verification_checkpoint(scene_.output.directory + "/" + verification_checkpoint_file,
-                                                   backbone_, scene_.output);
+                                                   backbone(), scene_.output);
               note_resumed("verification in time", present(known), verification_checkpoint_file,
                            "Verify steps and periods");
             }
-          verifications_ = verify_backbone(*hb_, *discretisation_, backbone_, scene_.output, progress, known);
+          verifications_ = verify_backbone(hb(), discretisation(), backbone(), scene_.output, progress, known);
           report_.result.push_back(verification_summary(verifications_, scene_));
           note_stop("verifies");
         });
@@ -356,10 +346,10 @@ namespace nsm
       /// The refinement's dense modes, checked before any other work.
       void check_refinement_size() const
       {
-        if (discretisation_->n_dofs() > max_refined_dofs)
+        if (discretisation().n_dofs() > max_refined_dofs)
           throw InputError("parameter 'Output/Refine in time' = true is out of range: allowed for at most " +
                            std::to_string(max_refined_dofs) + " DoFs (dense modes); the mesh has " +
-                           std::to_string(discretisation_->n_dofs()));
+                           std::to_string(discretisation().n_dofs()));
       }
 
       void refine_in_time()
@@ -370,11 +360,11 @@ namespace nsm
           if (resume_)
             {
               known = read_refinement_checkpoint(scene_.output.directory + "/" + refinement_checkpoint_file,
-                                                 backbone_, scene_.output, discretisation_->n_dofs());
+                                                 backbone(), scene_.output, discretisation().n_dofs());
               note_resumed("refinement in time", present(known), refinement_checkpoint_file, "Refine every");
             }
-          orbits_ = refine_backbone(*hb_, *discretisation_, backbone_, scene_.output, progress, std::move(known));
-          report_.result.push_back(refinement_summary(backbone_, orbits_, scene_.output));
+          orbits_ = refine_backbone(hb(), discretisation(), backbone(), scene_.output, progress, std::move(known));
+          report_.result.push_back(refinement_summary(backbone(), orbits_, scene_.output));
           note_stop("shoots");
         });
       }
@@ -385,27 +375,27 @@ namespace nsm
       {
         timed("bar amplitude", [&] {
           Progress progress("bar amplitude", scene_.output.progress_every);
-          for (std::size_t i = 0; i < backbone_.points.size() && point_stop_signal() == 0; ++i)
+          for (std::size_t i = 0; i < backbone().points.size() && point_stop_signal() == 0; ++i)
             {
-              const PeriodicField field(*hb_, *discretisation_, backbone_.points[i]);
+              const PeriodicField field(hb(), discretisation(), backbone().points[i]);
               bar_amplitudes_.push_back(field.max_displacement(scene_.field_time_samples()));
               progress.update([&] { return "point " + std::to_string(i + 1) + " of " +
-                                           std::to_string(backbone_.points.size()); });
+                                           std::to_string(backbone().points.size()); });
             }
           // A stop leaves the column out rather than part-filled.
-          if (bar_amplitudes_.size() < backbone_.points.size())
+          if (bar_amplitudes_.size() < backbone().points.size())
             bar_amplitudes_.clear();
         });
       }
 
       void backbone_tables()
       {
-        tables_.push_back(backbone_table(backbone_, estimates_, verifications_, orbits_, bar_amplitudes_));
+        tables_.push_back(backbone_table(backbone(), estimates_, verifications_, orbits_, bar_amplitudes_));
         if (scene_.output.harmonics_table)
-          tables_.push_back(harmonics_table(*hb_, backbone_));
-        tables_.push_back(tongue_table(backbone_));
-        tables_.push_back(grazing_table(*discretisation_, scene_.continuation.mode, scene_.contact.gap));
-        tables_.push_back(resonance_table(resonances_));
+          tables_.push_back(harmonics_table(hb(), backbone()));
+        tables_.push_back(tongue_table(backbone()));
+        tables_.push_back(grazing_table(discretisation(), scene_.continuation.mode, scene_.contact.gap));
+        tables_.push_back(resonance_table(stages_.resonances()));
       }
 
       void fields()
@@ -419,18 +409,18 @@ namespace nsm
               const std::optional<BackbonePoint> point = field_point(omega);
               if (!point)
                 continue;
-              fields_.emplace_back(*hb_, *discretisation_, *point);
+              fields_.emplace_back(hb(), discretisation(), *point);
               if (const BackbonePoint &p = fields_.back().point(); p.branch != Branch::main)
                 report_.notes.push_back(off_main_field_note(p));
               if (o.verify_in_time)
-                report_.notes.push_back(field_verification(fields_.back(), *discretisation_, hb_->law(), scene_.output));
+                report_.notes.push_back(field_verification(fields_.back(), discretisation(), hb().law(), scene_.output));
               if (o.refine_in_time)
                 report_.notes.push_back(field_refinement(fields_.back()));
               progress.update(report_count);
             }
-          for (std::size_t i = 0; o.fields_every > 0 && i < backbone_.points.size(); i += o.fields_every)
+          for (std::size_t i = 0; o.fields_every > 0 && i < backbone().points.size(); i += o.fields_every)
             {
-              fields_.emplace_back(*hb_, *discretisation_, backbone_.points[i]);
+              fields_.emplace_back(hb(), discretisation(), backbone().points[i]);
               progress.update(report_count);
             }
         });
@@ -452,7 +442,7 @@ namespace nsm
           Progress progress("output", scene_.output.progress_every);
           for (std::size_t i = 0; i < fields_.size(); ++i)
             {
-              for (std::string &f : write_field(directory, i, fields_[i], *discretisation_, options))
+              for (std::string &f : write_field(directory, i, fields_[i], discretisation(), options))
                 report_.files.push_back(std::move(f));
               progress.update([&] {
                 return std::to_string(i + 1) + " of " + std::to_string(fields_.size()) + " fields written";
@@ -471,8 +461,8 @@ namespace nsm
       {
         PlotResult        plots;
         const std::string caption = "scene " + scene_.origin + ": FE_Q(" +
-                                    std::to_string(discretisation_->fe().degree) + ") x " +
-                                    std::to_string(discretisation_->n_cells()) + " cells, M = " +
+                                    std::to_string(discretisation().fe().degree) + ") x " +
+                                    std::to_string(discretisation().n_cells()) + " cells, M = " +
                                     std::to_string(scene_.harmonic_balance.harmonics);
         timed("plots", [&] { plots = make_plots(scene_.contact, directory, caption); });
         for (std::string &f : plots.files)
@@ -486,23 +476,27 @@ namespace nsm
       template <typename Work>
       void timed(const std::string &name, Work &&work)
       {
-        dealii::Timer timer;
-        work();
-        timer.stop();
-        report_.stages.push_back({name, timer.wall_time(), timer.cpu_time()});
+        stages_.timed(name, std::forward<Work>(work));
       }
+
+      Discretisation        &discretisation() { return stages_.discretisation(); }
+      const Discretisation  &discretisation() const { return stages_.discretisation(); }
+      HarmonicBalance       &hb() { return stages_.hb(); }
+      const HarmonicBalance &hb() const { return stages_.hb(); }
+      Backbone              &backbone() { return stages_.backbone(); }
+      const Backbone        &backbone() const { return stages_.backbone(); }
 
       /// The point of a field at omega: solved on the branch, or else (off
       /// the computed branch, or no converged solution there) the nearest
       /// main point within Continuation/Search reach.
       std::optional<BackbonePoint> field_point(const double omega)
       {
-        std::string why = off_branch(backbone_, omega);
+        std::string why = off_branch(backbone(), omega);
         if (!why.empty())
           return nearest_main_point(omega, why);
         try
           {
-            return solve_on_branch(*hb_, branch(), backbone_, omega);
+            return solve_on_branch(hb(), branch(), backbone(), omega);
           }
         catch (const NumericalError &e)
           {
@@ -516,7 +510,7 @@ namespace nsm
       /// nearest main Omega on each side.
       std::optional<BackbonePoint> nearest_main_point(const double omega, const std::string &why)
       {
-        const auto          &p       = backbone_.points;
+        const auto          &p       = backbone().points;
         const BackbonePoint *below   = nearest_on_side(p, omega, -1, true);
         const BackbonePoint *above   = nearest_on_side(p, omega, 1, true);
         const BackbonePoint *nearest = nearest_on_side(p, omega, 0, true);
@@ -542,7 +536,7 @@ namespace nsm
       std::string field_refinement(const PeriodicField &field) const
       {
         const BackbonePoint &p     = field.point();
-        const PeriodicOrbit  orbit = refine_point(field, *discretisation_, hb_->law(), scene_.output, {});
+        const PeriodicOrbit  orbit = refine_point(field, discretisation(), hb().law(), scene_.output, {});
         std::ostringstream  s;
         s.precision(6);
         s << "field at Omega = " << p.omega << " refined in time: ";
@@ -560,12 +554,12 @@ namespace nsm
       std::string backbone_note() const
       {
         std::ostringstream s;
-        const unsigned int other = backbone_.points_on(Branch::other);
-        s << "backbone: " << backbone_.points.size() << " points (" << backbone_.main_points() << " main, "
-          << backbone_.points.size() - backbone_.main_points() - other << " on " << backbone_.tongues.size()
-          << " tongues, " << other << " on other families), " << backbone_.leaps << " leaps, "
-          << backbone_.folds.size() << " folds, "
-          << hb_->n_unknowns() << " unknowns";
+        const unsigned int other = backbone().points_on(Branch::other);
+        s << "backbone: " << backbone().points.size() << " points (" << backbone().main_points() << " main, "
+          << backbone().points.size() - backbone().main_points() - other << " on " << backbone().tongues.size()
+          << " tongues, " << other << " on other families), " << backbone().leaps << " leaps, "
+          << backbone().folds.size() << " folds, "
+          << hb().n_unknowns() << " unknowns";
         return s.str();
       }
 
@@ -573,12 +567,8 @@ namespace nsm
       RunReport                      &report_;
       const bool                      resume_; ///< --resume: checkpoints are read
       const BarModel                 *bar_ = nullptr;
+      StageRunner                     stages_; ///< the stages a study's row runs too, and the clock
       std::vector<CsvTable>           tables_;
-      std::unique_ptr<Discretisation> discretisation_;
-      std::unique_ptr<Receptance>     receptance_;
-      std::unique_ptr<HarmonicBalance> hb_;
-      std::vector<InternalResonance>  resonances_;
-      Backbone                        backbone_;
       Verifications                   verifications_;
       RefinedOrbits                   orbits_;
       std::vector<double>             bar_amplitudes_;
@@ -700,6 +690,7 @@ namespace nsm
       note("not written: " + report.failure);
     if (!report.plot_failure.empty())
       note("plots not drawn: " + report.plot_failure);
+    report.stages = run.timings();
     write_record(scene, command_line, output, report);
     report.files = output.commit(report.files, manifest_notes);
     return report;

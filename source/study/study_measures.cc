@@ -1,10 +1,10 @@
-#include <nsm/model/adaptive_refinement.h>
 #include <nsm/model/bar_model.h>
 #include <nsm/model/discretisation.h>
 #include <nsm/harmonic_balance/harmonic_balance.h>
 #include <nsm/model/receptance.h>
 #include <nsm/model/spectrum.h>
 #include <nsm/study/study_measures.h>
+#include <nsm/verification/stage_runner.h>
 #include <nsm/verification/time_verification.h>
 
 #include <algorithm>
@@ -188,55 +188,35 @@ namespace nsm
     return r;
   }
 
-  RowMeasures measure_run(const StudyScene &row, const RowReference &reference, dealii::TimerOutput &timer)
+  RowMeasures measure_run(const StudyScene &row, const RowReference &reference, StageRunner &stages)
   {
-    const Scene &scene = row.scene;
-    using Scope = dealii::TimerOutput::Scope;
-    RowMeasures                        m;
-    const BarModel                  bar(scene.bar);
-    const bool                      exact = reference.exact_bar;
-    std::unique_ptr<Discretisation> d;
-    {
-      Scope scope(timer, "mesh");
-      d = std::make_unique<Discretisation>(bar, scene.discretisation);
-    }
-    if (scene.discretisation.refinement == Refinement::adaptive)
-      {
-        Scope scope(timer, "refinement");
-        refine_adaptively(*d, scene.discretisation, scene.refinement_band());
-      }
-    m.dofs  = d->n_dofs();
-    m.cells = d->n_cells();
+    const Scene   &scene = row.scene;
+    RowMeasures    m;
+    const BarModel bar(scene.bar);
+    const bool     exact = reference.exact_bar;
+    stages.mesh(bar, scene.discretisation, [&](const Discretisation &) { return scene.refinement_band(); });
+    const Discretisation &d = stages.discretisation();
+    m.dofs                  = d.n_dofs();
+    m.cells                 = d.n_cells();
     const StudyParameters &study = row.study;
     if (study.spectrum_modes > 0 && exact)
-      {
-        Scope scope(timer, "spectrum");
-        m.spectrum_error = spectrum_error(*d, reference.frequencies, m.spectrum_modes);
-      }
+      stages.timed("spectrum", [&] { m.spectrum_error = spectrum_error(d, reference.frequencies, m.spectrum_modes); });
     if (study.receptance_frequency_values.empty() && study.backbone_omega_values.empty())
       return m;
-    std::unique_ptr<Receptance> receptance;
-    {
-      Scope scope(timer, "receptance set-up");
-      receptance = std::make_unique<Receptance>(*d, scene.receptance, scene.receptance_band());
-    }
+    stages.set_up_receptance(scene.receptance, scene.receptance_band());
     if (!study.receptance_frequency_values.empty() && exact)
-      {
-        Scope scope(timer, "receptance");
-        m.receptance_error = receptance_error(*receptance, study.receptance_frequency_values, reference.gammas);
-      }
+      stages.timed("receptance", [&] {
+        m.receptance_error = receptance_error(stages.receptance(), study.receptance_frequency_values, reference.gammas);
+      });
     if (study.backbone_omega_values.empty())
       return m;
-    HarmonicBalance        hb(scene.harmonic_balance, scene.contact, *receptance);
     const BranchParameters branch(scene);
-    Backbone        backbone;
-    {
-      Scope scope(timer, "harmonic balance");
-      backbone = compute_backbone(hb, branch, internal_resonances(*receptance, branch));
-    }
-    m.hb_unknowns       = hb.n_unknowns();
-    m.time_samples      = hb.n_samples();
-    m.main_points       = backbone.main_points();
+    stages.harmonic_balance(scene.harmonic_balance, scene.contact, branch);
+    HarmonicBalance &hb       = stages.hb();
+    const Backbone  &backbone = stages.backbone();
+    m.hb_unknowns             = hb.n_unknowns();
+    m.time_samples            = hb.n_samples();
+    m.main_points             = backbone.main_points();
     m.newton_iterations = backbone.newton_cost.converged_iterations + backbone.newton_cost.failed_iterations;
     m.failed_solves     = backbone.newton_cost.failed_solves;
     m.backbone_end      = backbone_end_name(backbone.end);
@@ -244,15 +224,9 @@ namespace nsm
     m.energy_error_partial = ended_inside(backbone.end, m.omega_reached, study.backbone_omega_values);
     if (reference.mode_bar)
       main_point_errors(backbone, *reference.mode_bar, scene.contact.gap, m);
-    {
-      Scope scope(timer, "energy solves");
-      backbone_errors(hb, row, backbone, reference, m);
-    }
+    stages.timed("energy solves", [&] { backbone_errors(hb, row, backbone, reference, m); });
     if (study.verify_in_time)
-      {
-        Scope scope(timer, "verification in time");
-        time_defects(hb, *d, scene, m);
-      }
+      stages.timed("verification in time", [&] { time_defects(hb, d, scene, m); });
     return m;
   }
 } // namespace nsm

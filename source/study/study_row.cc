@@ -1,8 +1,6 @@
 #include <nsm/study/study_measures.h>
 #include <nsm/study/study_row.h>
 
-#include <deal.II/base/timer.h>
-
 #include <algorithm>
 #include <fstream>
 #include <limits>
@@ -69,15 +67,13 @@ namespace nsm
     /// status is kept as one CSV cell, and its measures left empty.
     RepeatedRuns repeat_runs(const StudyScene &row, const RowReference &reference)
     {
-      using Timer = dealii::TimerOutput;
-      std::ostringstream quiet;
-      RepeatedRuns       runs;
+      RepeatedRuns runs;
       for (unsigned int r = 0; r < row.study.repeats && runs.status == "ok"; ++r)
         {
-          Timer timer(quiet, Timer::never, Timer::cpu_and_wall_times);
+          StageRunner stages;
           try
             {
-              runs.measures = measure_run(row, reference, timer);
+              runs.measures = measure_run(row, reference, stages);
             }
           catch (const NumericalError &e)
             {
@@ -87,17 +83,17 @@ namespace nsm
             {
               runs.status = std::string("failed: ") + message;
             }
-          const auto walls = timer.get_summary_data(Timer::total_wall_time);
-          const auto cpus  = timer.get_summary_data(Timer::total_cpu_time);
-          double     total = 0, total_cpu = 0;
+          const std::vector<StageTiming> timings = stages.timings();
+          double                         total = 0, total_cpu = 0;
           for (std::size_t s = 0; s < study_stages().size(); ++s)
             {
-              const auto it = walls.find(study_stages()[s]);
-              runs.stage_walls[s].push_back(it == walls.end() ? 0.0 : it->second);
+              const auto it = std::find_if(timings.begin(), timings.end(),
+                                           [&](const StageTiming &t) { return t.name == study_stages()[s]; });
+              runs.stage_walls[s].push_back(it == timings.end() ? 0.0 : it->wall_seconds);
               total += runs.stage_walls[s].back();
             }
-          for (const auto &entry : cpus)
-            total_cpu += entry.second;
+          for (const StageTiming &t : timings)
+            total_cpu += t.cpu_seconds;
           runs.totals.push_back(total);
           runs.cpu.push_back(total_cpu);
         }
@@ -135,14 +131,13 @@ namespace nsm
 
   std::vector<std::optional<MainBranchPoint>> main_branch_at(const StudyScene &row)
   {
-    std::ostringstream  quiet;
-    dealii::TimerOutput timer(quiet, dealii::TimerOutput::never, dealii::TimerOutput::wall_times);
+    StageRunner stages;
     // Without a reference, measure_run skips the spectrum and receptance errors
     // the study's rows measure, and without verification the time
     // integration: a reference level needs only its backbone.
     StudyScene level           = row;
     level.study.verify_in_time = false;
-    return measure_run(level, no_reference(level), timer).points;
+    return measure_run(level, no_reference(level), stages).points;
   }
 
   std::vector<std::string> measure_study_row(const StudyScene &run, const FineReference *fine)

@@ -3,19 +3,14 @@
 // continuation's events and the files written. Printed as the run summary.
 #pragma once
 
+#include <nsm/base/stage_clock.h>
+
 #include <iosfwd>
 #include <string>
 #include <vector>
 
 namespace nsm
 {
-  struct StageTiming
-  {
-    std::string name;
-    double      wall_seconds;
-    double      cpu_seconds;
-  };
-
   struct RunReport
   {
     /// The answer first: range, main points, tongues, energies, verdicts.

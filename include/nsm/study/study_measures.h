@@ -6,8 +6,7 @@
 #include <nsm/model/exact_references.h>
 #include <nsm/study/study_parameters.h>
 #include <nsm/study/study_row.h>
-
-#include <deal.II/base/timer.h>
+#include <nsm/verification/stage_runner.h>
 
 #include <optional>
 #include <string>
@@ -60,8 +59,8 @@ namespace nsm
   /// backbone reference's points (if `fine` is given).
   RowReference reference_of(const StudyScene &row, const FineReference *fine);
 
-  /// One run of the stages the study's measures need, each timed in
-  /// `timer` under its study_stages() name, with its errors against
+  /// One run of the stages the study's measures need, each timed on
+  /// `stages` under its study_stages() name, with its errors against
   /// `reference`. Throws NumericalError.
-  RowMeasures measure_run(const StudyScene &row, const RowReference &reference, dealii::TimerOutput &timer);
+  RowMeasures measure_run(const StudyScene &row, const RowReference &reference, StageRunner &stages);
 } // namespace nsm

@@ -1,0 +1,37 @@
+#include <nsm/base/progress.h>
+#include <nsm/model/adaptive_refinement.h>
+#include <nsm/verification/stage_runner.h>
+
+namespace nsm
+{
+  std::vector<std::string> StageRunner::mesh(const BarModel &bar, const Scene::Discretisation &parameters,
+                                             const std::function<double(const Discretisation &)> &band,
+                                             const double progress_every)
+  {
+    timed("mesh", [&] { discretisation_ = std::make_unique<Discretisation>(bar, parameters); });
+    if (parameters.refinement != Refinement::adaptive)
+      return {};
+    return timed("refinement", [&] {
+      Progress progress("adaptive refinement", progress_every);
+      return refine_adaptively(*discretisation_, parameters, band(*discretisation_), &progress);
+    });
+  }
+
+  void StageRunner::set_up_receptance(const Scene::Receptance &parameters, const double band)
+  {
+    timed("receptance set-up",
+          [&] { receptance_ = std::make_unique<Receptance>(*discretisation_, parameters, band); });
+  }
+
+  void StageRunner::harmonic_balance(const Scene::HarmonicBalance &parameters, const Scene::Contact &contact,
+                                     const BranchParameters &branch, const Resume &resume)
+  {
+    timed("harmonic balance", [&] {
+      hb_         = std::make_unique<HarmonicBalance>(parameters, contact, *receptance_);
+      resonances_ = internal_resonances(*receptance_, branch);
+      if (resume)
+        resumed_ = resume(*hb_);
+      backbone_ = compute_backbone(*hb_, branch, resonances_, resumed_ ? &*resumed_ : nullptr);
+    });
+  }
+} // namespace nsm
