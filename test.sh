@@ -1,15 +1,25 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs the whole CTest suite.
-#   ./test.sh          the suite (Release build in build/)
-#   ./test.sh --debug  then the suite again in a Debug build (build-debug/):
-#                      the kernels' Asserts and deal.II's own checks
-#   ./test.sh --all    then the suite again under AddressSanitizer and UBSan
-#                      (build-sanitize/)
+#   ./test.sh              the suite (Release build in build/)
+#   ./test.sh --debug      then the suite again in a Debug build (build-debug/):
+#                          the kernels' Asserts and deal.II's own checks
+#   ./test.sh --all        then the suite again under AddressSanitizer and UBSan
+#                          (build-sanitize/)
+#   ./test.sh --all K/N    the same, with only the K-th of N parts of that suite
+#                          (every N-th test from the K-th: CI runs it in halves)
 set -euo pipefail
 cd "$(dirname "$0")"
+part=""
 case "${1:-}" in
-  "" | --debug | --all) ;;
-  *) echo "usage: ./test.sh [--debug | --all]" >&2; exit 2 ;;
+  "" | --debug) [ $# -le 1 ] || { echo "usage: ./test.sh [--debug | --all [K/N]]" >&2; exit 2; } ;;
+  --all)
+    if [ $# -eq 2 ] && [[ "$2" =~ ^([1-9][0-9]*)/([1-9][0-9]*)$ ]] \
+      && [ "${BASH_REMATCH[1]}" -le "${BASH_REMATCH[2]}" ]; then
+      part="${BASH_REMATCH[1]},,${BASH_REMATCH[2]}"
+    elif [ $# -ne 1 ]; then
+      echo "usage: ./test.sh [--debug | --all [K/N]] (K/N: the K-th of N parts, 1 <= K <= N)" >&2; exit 2
+    fi ;;
+  *) echo "usage: ./test.sh [--debug | --all [K/N]]" >&2; exit 2 ;;
 esac
 # What the suite runs: the program and the unit tests (the benchmark programs,
 # run by hand, are built by `cmake --build build`, and by CI in turn).
@@ -17,13 +27,13 @@ NSM_BUILD_TARGETS="nsm-bar unit_tests" source scripts/install-and-build.sh
 ctest --test-dir build --output-on-failure --timeout 900 -j "$(nproc)"
 
 # The suite again in another build of the program and the unit tests:
-# checked_suite DIR CMAKE_OPTIONS EXCLUDED_TESTS.
+# checked_suite DIR CMAKE_OPTIONS EXCLUDED_TESTS [CTEST_OPTIONS...].
 checked_suite() {
   echo "building nsm-bar and the unit tests in $1/ (log in build.log)"
-  cmake -S . -B "$1" $2 >> build.log 2>&1 || { tail -50 build.log; exit 1; }
+  cmake -S . -B "$1" -DNSM_FAST_START=ON $2 >> build.log 2>&1 || { tail -50 build.log; exit 1; }
   cmake --build "$1" -j "$(nproc)" --target nsm-bar unit_tests >> build.log 2>&1 \
     || { tail -50 build.log; exit 1; }
-  ctest --test-dir "$1" --output-on-failure --timeout 900 -j "$(nproc)" -E "$3"
+  ctest --test-dir "$1" --output-on-failure --timeout 900 -j "$(nproc)" -E "$3" "${@:4}"
 }
 
 # valgrind's memcheck case runs on the Release build only: under the Debug
@@ -39,5 +49,6 @@ case "${1:-}" in
     # Leak checking is off: MPI and Trilinos keep their start-up allocations
     # to the end.
     export ASAN_OPTIONS=detect_leaks=0:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1
-    checked_suite build-sanitize "-DCMAKE_BUILD_TYPE=Release -DNSM_SANITIZE=ON" "$excluded" ;;
+    checked_suite build-sanitize "-DCMAKE_BUILD_TYPE=Release -DNSM_SANITIZE=ON" "$excluded" \
+      ${part:+-I "$part"} ;;
 esac

@@ -25,7 +25,7 @@ fi
 targets=()
 for target in ${NSM_BUILD_TARGETS:-}; do targets+=(--target "$target"); done
 echo "building ${NSM_BUILD_TARGETS:-everything} in build/ (a first build takes minutes; log in build.log)"
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > build.log 2>&1 || { cat build.log; exit 1; }
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DNSM_FAST_START=ON > build.log 2>&1 || { cat build.log; exit 1; }
 set +o pipefail
 cmake --build build -j "$(nproc)" "${targets[@]}" 2>&1 | tee -a build.log \
   | grep --line-buffered -E '^\[ *[0-9]+%\] (Building|Linking)' | sed -u 's/ CXX object.*\/source\// /'

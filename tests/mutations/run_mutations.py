@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Plants deliberate bugs, one at a time, and checks that the suite catches each.
 
-usage: run_mutations.py [WORK_DIRECTORY] [--only REGEX] [--sample N]
-       run_mutations.py --in-place [--only REGEX] [--sample N]
+usage: run_mutations.py [WORK_DIRECTORY] [--only REGEX] [--sample N [--turn K]]
+       run_mutations.py --in-place [--only REGEX] [--sample N [--turn K]]
        run_mutations.py --check-texts
 Copies the tracked sources of this repository into WORK_DIRECTORY/src
 (default /tmp/nsm-mutations), builds them once and checks that the unmutated
@@ -11,8 +11,8 @@ tree itself and rebuilds build/, which ./test.sh has just built and tested.
 Then for each mutation: applies it, rebuilds nsm-bar and the unit tests,
 runs CTest, and restores the file. Fails unless every mutation makes at least
 one test fail. --only runs the mutations whose name matches REGEX; --sample N
-runs an N-th of them, those whose index is the commit count modulo N, so that
-N consecutive commits run every one. Not part of CTest, but for
+runs an N-th of them, those whose index is the commit count (or --turn K)
+modulo N, so that N consecutive turns run every one. Not part of CTest, but for
 --check-texts (CTest mutations.texts): each mutation's text occurs exactly once
 in its file, so that a change of the code it plants into is noticed by the
 suite, not by the next mutation run.
@@ -245,7 +245,7 @@ def selected(args):
     if args.only:
         chosen = [(i, m) for i, m in chosen if re.search(args.only, m[0])]
     if args.sample:
-        turn = commit_count() % args.sample
+        turn = (commit_count() if args.turn is None else args.turn) % args.sample
         chosen = [(i, m) for i, m in chosen if i % args.sample == turn]
         print(f"sample {turn} of {args.sample} (commit {commit_count()}): "
               f"{len(chosen)} of {len(MUTATIONS)} mutations", flush=True)
@@ -315,6 +315,7 @@ def main():
     parser.add_argument("--in-place", action="store_true")
     parser.add_argument("--only")
     parser.add_argument("--sample", type=int)
+    parser.add_argument("--turn", type=int, help="with --sample: which N-th (default: the commit count)")
     parser.add_argument("--check-texts", action="store_true")
     args = parser.parse_args()
     if args.check_texts:
