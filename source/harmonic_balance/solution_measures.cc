@@ -94,7 +94,7 @@ namespace nsm
       {
         const HarmonicPhase &p = solution.phases[functions.order[i]];
         force[i]        = solution.scale * x[i] * p.cos;
-        displacement[i] = -law.sign() * solution.scale * x[i] * p.sin;
+        displacement[i] = law.displacement_coefficient(solution.scale * x[i], p.sin);
       }
     samples.sample(force, lambdas);
     samples.sample(displacement, us);
