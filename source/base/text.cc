@@ -94,17 +94,19 @@ namespace nsm
     return false;
   }
 
-  bool is_valid_utf8(const std::string &text)
+  std::size_t first_invalid_utf8(const std::string &text)
   {
     for (std::size_t i = 0; i < text.size();)
       {
         const std::size_t length = utf8_length(text, i);
         if (length == 0)
-          return false;
+          return i;
         i += length;
       }
-    return true;
+    return std::string::npos;
   }
+
+  bool is_valid_utf8(const std::string &text) { return first_invalid_utf8(text) == std::string::npos; }
 
   std::string significant(const double value, const int digits)
   {

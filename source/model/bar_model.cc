@@ -1,5 +1,6 @@
 #include <nsm/base/text.h>
 #include <nsm/model/bar_model.h>
+#include <nsm/scene/scene_entries.h>
 
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/point.h>
@@ -40,6 +41,15 @@ namespace nsm
            ++word)
         if (word->str().rfind("rand", 0) == 0)
           refuse("'" + word->str() + "' is random: the bar would differ from run to run");
+      // A number as the scene's entries take it: not subnormal, not beyond
+      // the doubles (scene_entries::outside_normal_range).
+      static const std::regex number(R"((^|[^A-Za-z_0-9.])((\d+\.?\d*|\.\d+)([eE][+-]?\d+)?))");
+      for (auto match = std::sregex_iterator(expression.begin(), expression.end(), number);
+           match != std::sregex_iterator();
+           ++match)
+        if (scene_entries::outside_normal_range((*match)[2].str()))
+          refuse("the number " + (*match)[2].str() + " is not a normal double (a magnitude below 2.2e-308, "
+                 "subnormal, or beyond 1.8e308): write 0 or a normal number");
     }
 
     /// A(x) is checked this densely on [0, L], besides at every quadrature

@@ -224,6 +224,66 @@ namespace nsm
                          " levels deep: allowed at most " + std::to_string(max_nesting_depth));
     }
 
+    /// The entry of a JSON text at `position` inside one of its strings:
+    /// the keys of the objects it lies in and its own ("Bar/Cross section";
+    /// deal.II's {"value": ...} form and its name mangling, "_20" for a
+    /// blank, undone), or "" outside a value.
+    std::string json_entry_at(const std::string &text, const std::size_t position)
+    {
+      std::vector<std::string> keys{""}; // the key of each open object; the outermost has none
+      std::string              key, string;
+      std::size_t              start = 0;
+      bool                     quoted = false, value = false; ///< in a string; that string is a value
+      char                     previous = 0; ///< the last character outside strings but white space
+      for (std::size_t i = 0; i < position; ++i)
+        if (quoted)
+          {
+            if (text[i] == '\\')
+              ++i; // an escaped character, '"' too
+            else if (text[i] == '"')
+              quoted = false, string = text.substr(start, i - start), previous = '"';
+          }
+        else if (!std::isspace(static_cast<unsigned char>(text[i])))
+          {
+            if (text[i] == '"')
+              quoted = true, start = i + 1, value = previous == ':';
+            else if (text[i] == ':')
+              key = string;
+            else if (text[i] == '{')
+              keys.push_back(key);
+            else if (text[i] == '}' && keys.size() > 1)
+              keys.pop_back();
+            previous = text[i];
+          }
+      if (!quoted || !value)
+        return "";
+      std::string entry;
+      for (const std::string &k : keys)
+        entry += k.empty() ? "" : k + "/";
+      entry += key == "value" ? "" : key;
+      if (!entry.empty() && entry.back() == '/')
+        entry.pop_back();
+      return std::regex_replace(entry, std::regex("_20"), " ");
+    }
+
+    /// A JSON or XML scene holds UTF-8 text only: else the parser's message
+    /// would name neither the entry nor the line.
+    void check_utf8(const std::string &path, const bool json)
+    {
+      std::ifstream      in(path, std::ios::binary);
+      std::ostringstream read;
+      read << in.rdbuf();
+      const std::string text     = read.str();
+      const std::size_t position = first_invalid_utf8(text);
+      if (position == std::string::npos)
+        return;
+      const std::string entry = json ? json_entry_at(text, position) : "";
+      const std::string line  = "line " + std::to_string(1 + std::count(text.begin(), text.begin() + position, '\n'));
+      throw InputError("scene '" + shown(path) + "': " +
+                       (entry.empty() ? line : "parameter '" + printable(entry) + "' (" + line + ")") +
+                       " is not valid UTF-8 text: allowed, text in UTF-8 (a byte shown as \\xNN is not)");
+    }
+
     std::string number_in_words(const std::string &text)
     {
       if (text == "MAX_DOUBLE")
@@ -388,6 +448,7 @@ namespace nsm
       {
         readable_file(path);
         check_nesting(path, extension == ".json");
+        check_utf8(path, extension == ".json");
       }
     else
       {

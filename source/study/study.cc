@@ -44,6 +44,29 @@ namespace nsm
       return text.str();
     }
 
+    /// The directories of `path` that do not exist yet, deepest first: those
+    /// creating it makes, and a failure removes again.
+    std::vector<fs::path> missing_directories(const std::string &path)
+    {
+      std::vector<fs::path> missing;
+      std::error_code       error;
+      fs::path              p = fs::absolute(path, error).lexically_normal();
+      if (p.filename().empty())
+        p = p.parent_path();
+      for (; !fs::exists(p, error) && p != p.parent_path(); p = p.parent_path())
+        missing.push_back(p);
+      return missing;
+    }
+
+    /// Removes those of `directories` that are empty, in order.
+    void remove_empty(const std::vector<fs::path> &directories)
+    {
+      std::error_code error;
+      for (const fs::path &d : directories)
+        if (fs::is_directory(d, error) && fs::is_empty(d, error))
+          fs::remove(d, error);
+    }
+
     /// What a study writes into its directory, in place; NAME.partial is a
     /// write it did not finish.
     const std::set<std::string> study_files = {"study.csv", "study.scene", "reference.csv", "study.png",
@@ -338,20 +361,23 @@ namespace nsm
       {
         if (!root())
           return;
-        std::error_code error;
-        const bool      created = !fs::exists(directory(), error);
+        // A failure leaves none of the directories it created behind.
+        const std::vector<fs::path> created = missing_directories(directory());
+        std::error_code             error;
         fs::create_directories(directory(), error);
         if (error)
-          throw InputError("parameter 'Output/Directory' = " + directory() + " cannot be created: " +
-                           error.message() + "; allowed: a new or empty directory, or this study's");
+          {
+            remove_empty(created);
+            throw InputError("parameter 'Output/Directory' = " + directory() + " cannot be created: " +
+                             error.message() + "; allowed: a new or empty directory, or this study's");
+          }
         try
           {
             write_atomically(directory() + "/study.scene", [&](std::ostream &out) { out << scene_text_; });
           }
         catch (const OutputError &)
           {
-            if (created) // nothing of the study is in it
-              fs::remove(directory(), error);
+            remove_empty(created); // nothing of the study is in them
             throw;
           }
       }

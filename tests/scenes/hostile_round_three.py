@@ -477,7 +477,9 @@ def new_rows(executable):
               ("receptance_list", PLOTTED, "Output/Receptance frequencies", "0.5, 1e-310"),
               ("underflow_in_list", PLOTTED, "Output/Receptance frequencies", "1e-400"),
               ("study_list", SMALL + section("Study", Spectrum_modes=2) + output(Directory="out"),
-               "Study/Receptance frequencies", "1e-310")]],
+               "Study/Receptance frequencies", "1e-310"),
+              ("cross_section", PLOTTED, "Bar/Cross section", "1.5 - x + 1e-310 * x"),
+              ("cross_section_underflow", PLOTTED, "Bar/Cross section", "1.5 - 1e-400 * x")]],
         # ---- 7. text that is not UTF-8 --------------------------------------
         # old: exit 4 "<unspecified file>(354): invalid code sequence".
         dict(name="not_utf8_output_option", cls=7, scene=PLOTTED, args=["--output", latin1], code=2,
@@ -532,6 +534,9 @@ def new_rows(executable):
         # old: refused after all the work (exit 5).
         dict(name="directory_name_256_bytes", cls=11, scene=PLOTTED, args=["--output", "new/" + "a" * 256],
              code=2, words=["Output/Directory", "256 bytes"], before_work=True),
+        # A study's directory too: the refusal leaves no folder it made (new/).
+        dict(name="study_directory_name_256_bytes", cls=11, scene=STUDY_PLOTTED,
+             args=["--output", "new/" + "a" * 256], code=2, words=["Output/Directory", "cannot be created"]),
         # A long path ending in a short name. old: exit 5 after the work
         # (the staging name is longer than the last component).
         dict(name="directory_path_4000_bytes", cls=11, scene=PLOTTED,

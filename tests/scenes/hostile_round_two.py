@@ -387,6 +387,15 @@ def json_section_newline(row):
     write("scene.json", json_scene({"Bar": {"Cross section": "1.5 - y\n+ 1"}, "Output": {"Directory": "out"}}))
 
 
+def json_value_not_utf8(row):
+    """A byte that is not UTF-8 (0xFF, written through surrogateescape) in a
+    value, after a value that holds an escaped quote, a colon and a brace."""
+    row["scene_file"] = "scene.json"
+    text = json_scene({"Contact": {"Force sign": 'physical\\" : {'}, "Bar": {"Cross section": "1.5 - x BYTE"},
+                       "Output": {"Directory": "out"}})
+    write("scene.json", text.replace("BYTE", "\udcff"))
+
+
 def new_rows(executable):
     """The rows; executable is used by the setups that need an earlier run."""
     narrow_step = "1.5 - x - 2*(abs(x - 0.5005) < 4e-4)"       # A < 0 on (0.5001, 0.5009)
@@ -635,6 +644,9 @@ def new_rows(executable):
         # A newline inside a value: the message still one line.
         dict(name="json_section_newline", scene=None, setup=json_section_newline, code=2,
              words=["Bar/Cross section"]),
+        # A byte that is not UTF-8: the message names the entry and the line.
+        dict(name="json_value_not_utf8", scene=None, setup=json_value_not_utf8, code=2,
+             words=["parameter 'Bar/Cross section' (line", "not valid UTF-8"]),
         # ---- 12. Output/Directory ------------------------------------------------------
         # A VTK run's snapshots are a folder its manifest lists: a rerun
         # replaces the earlier output.

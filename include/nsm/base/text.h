@@ -19,6 +19,9 @@ namespace nsm
   /// it writes hold text only.
   bool is_valid_utf8(const std::string &text);
 
+  /// Where the first byte of `text` that is not valid UTF-8 lies, or npos.
+  std::size_t first_invalid_utf8(const std::string &text);
+
   /// `value` to `digits` significant digits, whatever its scale (energies go
   /// down to 1e-20 with small gaps), as messages and notes print numbers.
   std::string significant(double value, int digits);
