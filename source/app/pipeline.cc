@@ -560,6 +560,11 @@ namespace nsm
           << " tongues, " << other << " on other families), " << backbone().leaps << " leaps, "
           << backbone().folds.size() << " folds, "
           << hb().n_unknowns() << " unknowns";
+        for (const auto &[harmonics, points] : backbone().fewer_harmonics_traced)
+          s << (&harmonics == &backbone().fewer_harmonics_traced.front().first ?
+                  "; traced for guesses where a leap or gap found none: the branch with M = " :
+                  ", with M = ")
+            << harmonics << " (" << points << " points)";
         return s.str();
       }
 

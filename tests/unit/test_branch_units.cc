@@ -394,10 +394,16 @@ TEST(Leap, BeyondSearchReachTheBranchWithHalfTheHarmonicsCarriesALostBranchOn)
       });
       EXPECT_EQ(landing->branch, nsm::Branch::main) << omega;
     }
-  // Without the M = 40 branch the run is lost before the first such landing.
+  // The backbone says which branch it traced for those guesses: M = 40.
+  ASSERT_FALSE(carried.fewer_harmonics_traced.empty());
+  EXPECT_EQ(carried.fewer_harmonics_traced.front().first, 40u);
+  EXPECT_GT(carried.fewer_harmonics_traced.front().second, 0u);
+  // Without the M = 40 branch the run is lost before the first such landing,
+  // and traces none.
   const nsm::Backbone lost = HbModel(short_reach(false)).backbone();
   EXPECT_EQ(lost.end, nsm::BackboneEnd::lost);
   EXPECT_LT(*lost.omega_reached(1), beyond.front());
+  EXPECT_TRUE(lost.fewer_harmonics_traced.empty());
 }
 
 // The uniform bar's first nonsmooth mode has the energy g0^2 / (2 (T - 3)^2),

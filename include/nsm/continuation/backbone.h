@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace nsm
@@ -105,6 +106,11 @@ namespace nsm
     std::vector<GapSearch>     gap_searches; ///< the gaps the search left, in the order tried
     unsigned int               leaps = 0;
     BackboneEnd                end   = BackboneEnd::range;
+    /// The branches traced with fewer harmonics for guesses where a leap or
+    /// a gap found none (BranchContext::fewer_harmonics: M / 2, and within
+    /// it M / 4, ...), each as its harmonics and its points; empty if none
+    /// was needed.
+    std::vector<std::pair<unsigned int, std::size_t>> fewer_harmonics_traced;
     /// Where the continuation stood when it ended or was interrupted: what
     /// a run stopped by a signal writes for --resume (checkpoint.h).
     std::shared_ptr<const ContinuationCheckpoint> checkpoint;

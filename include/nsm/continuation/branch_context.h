@@ -110,6 +110,9 @@ namespace nsm
     /// near solutions.
     const Backbone *fewer_harmonics();
 
+    /// That branch if it was traced, else null (tracing nothing).
+    const Backbone *fewer_harmonics_traced() const { return fewer_harmonics_.get(); }
+
     /// A point of that branch as a guess at this M: its unknowns (the same
     /// quantities at both M), the higher harmonics zero (a point with more
     /// harmonics than M loses those above M).
