@@ -6,7 +6,7 @@
 #   ./test.sh --all        then the suite again under AddressSanitizer and UBSan
 #                          (build-sanitize/)
 #   ./test.sh --all K/N    the same, with only the K-th of N parts of that suite
-#                          (every N-th test from the K-th: CI runs it in halves)
+#                          (every N-th test from the K-th: CI runs it in thirds)
 set -euo pipefail
 cd "$(dirname "$0")"
 part=""

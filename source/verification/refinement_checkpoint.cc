@@ -9,7 +9,7 @@ namespace nsm
 {
   namespace
   {
-    constexpr const char *format_line = "nsm-bar refinement checkpoint 1";
+    constexpr const char *refinement_format_line = "nsm-bar refinement checkpoint 1";
 
     /// The measures a found orbit's line holds, in order (its multipliers
     /// are not written: only floquet_max reaches the output). O:
@@ -26,7 +26,7 @@ namespace nsm
                                    const std::vector<std::optional<PeriodicOrbit>> &orbits,
                                    const Scene::Output &output)
   {
-    out << format_line << "\nsettings " << output.refine_every << '\n';
+    out << refinement_format_line << "\nsettings " << output.refine_every << '\n';
     write_point_lines(out, backbone, orbits, [&](const PeriodicOrbit &o) {
       out << ' ' << o.converged << ' ' << o.newton_steps << ' ' << o.switches;
       for (const double *value : measures(o))
@@ -45,7 +45,7 @@ namespace nsm
     std::vector<std::optional<PeriodicOrbit>> known(backbone.points.size());
     CheckpointReader                          reader(path);
     std::istringstream                        settings;
-    if (!start_point_checkpoint(reader, format_line, settings))
+    if (!start_point_checkpoint(reader, refinement_format_line, settings))
       return known;
     constexpr std::size_t any = std::numeric_limits<unsigned int>::max();
     if (reader.count(settings, any) != output.refine_every)

@@ -9,7 +9,7 @@ namespace nsm
 {
   namespace
   {
-    constexpr const char *format_line = "nsm-bar verification checkpoint 1";
+    constexpr const char *verification_format_line = "nsm-bar verification checkpoint 1";
 
     /// The results a line holds, in order (V: PointVerification, const or not).
     template <typename V>
@@ -24,7 +24,7 @@ namespace nsm
                                      const std::vector<std::optional<PointVerification>> &verifications,
                                      const Scene::Output &output)
   {
-    out << format_line << "\nsettings " << output.verify_steps << ' ' << output.verify_periods << '\n';
+    out << verification_format_line << "\nsettings " << output.verify_steps << ' ' << output.verify_periods << '\n';
     write_point_lines(out, backbone, verifications, [&](const PointVerification &v) {
       for (const double *value : fields(v))
         out << ' ' << exact(*value);
@@ -38,7 +38,7 @@ namespace nsm
     std::vector<std::optional<PointVerification>> known(backbone.points.size());
     CheckpointReader                              reader(path);
     std::istringstream                            settings;
-    if (!start_point_checkpoint(reader, format_line, settings))
+    if (!start_point_checkpoint(reader, verification_format_line, settings))
       return known;
     constexpr std::size_t any = std::numeric_limits<unsigned int>::max();
     const std::size_t     steps = reader.count(settings, any), periods = reader.count(settings, any);
