@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <set>
 #include <sstream>
 
 namespace nsm
@@ -226,8 +227,8 @@ namespace nsm
 
     /// The entry of a JSON text at `position` inside one of its strings:
     /// the keys of the objects it lies in and its own ("Bar/Cross section";
-    /// deal.II's {"value": ...} form and its name mangling, "_20" for a
-    /// blank, undone), or "" outside a value.
+    /// deal.II's {"value": ...} form and its name mangling undone), or ""
+    /// outside a value.
     std::string json_entry_at(const std::string &text, const std::size_t position)
     {
       std::vector<std::string> keys{""}; // the key of each open object; the outermost has none
@@ -257,13 +258,16 @@ namespace nsm
           }
       if (!quoted || !value)
         return "";
+      // deal.II's own fields of an entry are not part of its name.
+      static const std::set<std::string> fields = {"value", "default_value", "documentation", "pattern",
+                                                   "pattern_description", "actions"};
       std::string entry;
       for (const std::string &k : keys)
-        entry += k.empty() ? "" : k + "/";
-      entry += key == "value" ? "" : key;
+        entry += k.empty() ? "" : demangle(k) + "/";
+      entry += fields.count(key) ? "" : demangle(key);
       if (!entry.empty() && entry.back() == '/')
         entry.pop_back();
-      return std::regex_replace(entry, std::regex("_20"), " ");
+      return entry;
     }
 
     /// A JSON or XML scene holds UTF-8 text only: else the parser's message

@@ -48,13 +48,17 @@ namespace nsm
     /// creating it makes, and a failure removes again.
     std::vector<fs::path> missing_directories(const std::string &path)
     {
+      // The path's own prefixes, as create_directories walks them ("new" and
+      // "new/../x" of "new/../x").
       std::vector<fs::path> missing;
       std::error_code       error;
-      fs::path              p = fs::absolute(path, error).lexically_normal();
-      if (p.filename().empty())
-        p = p.parent_path();
-      for (; !fs::exists(p, error) && p != p.parent_path(); p = p.parent_path())
-        missing.push_back(p);
+      fs::path              prefix;
+      for (const fs::path &part : fs::path(path))
+        {
+          prefix /= part;
+          if (!part.empty() && part != "." && part != ".." && !fs::exists(prefix, error))
+            missing.insert(missing.begin(), prefix);
+        }
       return missing;
     }
 

@@ -8,6 +8,10 @@ namespace nsm
                                              const std::function<double(const Discretisation &)> &band,
                                              const double progress_every)
   {
+    // What was built on an earlier mesh goes with it.
+    hb_.reset();
+    receptance_.reset();
+    backbone_ = Backbone();
     timed("mesh", [&] { discretisation_ = std::make_unique<Discretisation>(bar, parameters); });
     if (parameters.refinement != Refinement::adaptive)
       return {};
@@ -29,9 +33,10 @@ namespace nsm
     timed("harmonic balance", [&] {
       hb_         = std::make_unique<HarmonicBalance>(parameters, contact, *receptance_);
       resonances_ = internal_resonances(*receptance_, branch);
+      std::optional<ContinuationCheckpoint> resumed;
       if (resume)
-        resumed_ = resume(*hb_);
-      backbone_ = compute_backbone(*hb_, branch, resonances_, resumed_ ? &*resumed_ : nullptr);
+        resumed = resume(*hb_);
+      backbone_ = compute_backbone(*hb_, branch, resonances_, resumed ? &*resumed : nullptr);
     });
   }
 } // namespace nsm

@@ -1,7 +1,7 @@
 // The one clock of a run's stages: deal.II's TimerOutput, wall and CPU time
 // per named stage, read back in the order the stages were first entered. A
-// run (app/pipeline.cc), a study's row (study/study_measures.cc) and a whole
-// study are timed on it.
+// run (app/pipeline.cc) and a study's row (study/study_measures.cc) are timed
+// on it.
 #pragma once
 
 #include <deal.II/base/timer.h>

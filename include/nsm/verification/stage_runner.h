@@ -42,6 +42,7 @@ namespace nsm
     /// with Refinement = adaptive, "refinement": refined towards the band
     /// that `band` reads off the initial mesh, with progress lines every
     /// `progress_every` seconds (0: none). Returns the refinement's notes.
+    /// The mesh refers to `bar`, which must outlive the runner's use of it.
     std::vector<std::string> mesh(const BarModel &bar, const Scene::Discretisation &parameters,
                                   const std::function<double(const Discretisation &)> &band,
                                   double progress_every = 0);
@@ -67,8 +68,6 @@ namespace nsm
     const std::vector<InternalResonance> &resonances() const { return resonances_; }
     Backbone                             &backbone() { return backbone_; }
     const Backbone                       &backbone() const { return backbone_; }
-    /// The checkpoint the backbone went on from (harmonic_balance's `resume`).
-    const std::optional<ContinuationCheckpoint> &resumed() const { return resumed_; }
 
   private:
     StageClock                            clock_;
@@ -76,7 +75,6 @@ namespace nsm
     std::unique_ptr<Receptance>           receptance_;
     std::unique_ptr<HarmonicBalance>      hb_;
     std::vector<InternalResonance>        resonances_;
-    std::optional<ContinuationCheckpoint> resumed_;
     Backbone                              backbone_;
   };
 } // namespace nsm
