@@ -262,17 +262,6 @@ namespace nsm
         }
     }
 
-    /// The folders of `path` that do not exist yet, deepest first.
-    std::vector<std::string> missing_folders(fs::path path)
-    {
-      std::vector<std::string> missing;
-      std::error_code          error;
-      for (; !path.empty() && path != path.root_path() && !fs::exists(fs::symlink_status(path, error));
-           path = path.parent_path())
-        missing.push_back(path.string());
-      return missing;
-    }
-
     /// Names no file system takes are refused before any work.
     void check_name_lengths(const fs::path &path, const std::string &target)
     {
@@ -373,6 +362,16 @@ namespace nsm
         throw;
       }
     target_ = path.string();
+  }
+
+  std::vector<std::string> missing_folders(std::filesystem::path path)
+  {
+    std::vector<std::string> missing;
+    std::error_code          error;
+    for (; !path.empty() && path != path.root_path() && !fs::exists(fs::symlink_status(path, error));
+         path = path.parent_path())
+      missing.push_back(path.string());
+    return missing;
   }
 
   OutputDirectory::~OutputDirectory()

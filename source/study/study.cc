@@ -1,6 +1,7 @@
 #include <nsm/continuation/continuation.h>
 #include <nsm/base/csv.h>
 #include <nsm/model/memory_estimate.h>
+#include <nsm/output/output_directory.h>
 #include <nsm/output/plots.h>
 #include <nsm/base/interruption.h>
 #include <nsm/base/progress.h>
@@ -44,31 +45,12 @@ namespace nsm
       return text.str();
     }
 
-    /// The directories of `path` that do not exist yet, deepest first: those
-    /// creating it makes, and a failure removes again.
-    std::vector<fs::path> missing_directories(const std::string &path)
-    {
-      // The path's own prefixes, as create_directories walks them ("new" and
-      // "new/../x" of "new/../x").
-      std::vector<fs::path> missing;
-      std::error_code       error;
-      fs::path              prefix;
-      for (const fs::path &part : fs::path(path))
-        {
-          prefix /= part;
-          if (!part.empty() && part != "." && part != ".." && !fs::exists(prefix, error))
-            missing.insert(missing.begin(), prefix);
-        }
-      return missing;
-    }
-
-    /// Removes those of `directories` that are empty, in order.
-    void remove_empty(const std::vector<fs::path> &directories)
+    /// Removes those of `folders` that are empty, deepest first.
+    void remove_empty(const std::vector<std::string> &folders)
     {
       std::error_code error;
-      for (const fs::path &d : directories)
-        if (fs::is_directory(d, error) && fs::is_empty(d, error))
-          fs::remove(d, error);
+      for (const std::string &folder : folders)
+        fs::remove(folder, error); // a folder that is not empty stays
     }
 
     /// What a study writes into its directory, in place; NAME.partial is a
@@ -366,8 +348,8 @@ namespace nsm
         if (!root())
           return;
         // A failure leaves none of the directories it created behind.
-        const std::vector<fs::path> created = missing_directories(directory());
-        std::error_code             error;
+        const std::vector<std::string> created = missing_folders(directory());
+        std::error_code                error;
         fs::create_directories(directory(), error);
         if (error)
           {

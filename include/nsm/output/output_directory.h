@@ -1,11 +1,16 @@
 // The output directory of one run, written whole or not at all.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
 namespace nsm
 {
+  /// The folders of `path` that do not exist yet, deepest first: those
+  /// creating it makes, and that a failure removes again (if still empty).
+  std::vector<std::string> missing_folders(std::filesystem::path path);
+
   /// Files go into a hidden staging sibling of `Output/Directory`, which
   /// commit() swaps in for it in one rename, so the directory holds either
   /// the previous complete output or the new one, never a mixture, and never
