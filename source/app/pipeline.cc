@@ -19,6 +19,7 @@
 #include <nsm/base/progress.h>
 #include <nsm/model/receptance.h>
 #include <nsm/output/result_tables.h>
+#include <nsm/scene/scene_entries.h>
 #include <nsm/verification/harmonics_estimate.h>
 #include <nsm/verification/orbit_refinement.h>
 #include <nsm/verification/space_estimate.h>
@@ -221,6 +222,8 @@ namespace nsm
         };
         stages_.harmonic_balance(scene_.harmonic_balance, scene_.contact, branch(),
                                  resume_ ? StageRunner::Resume(resume) : StageRunner::Resume());
+        if (!hb().law().rigid())
+          report_.notes.push_back("compliant wall: " + hb().law().stiffness_note(hb().receptance()(0.0).gamma));
         report_.notes.push_back(backbone_note());
         report_.events = backbone().events;
         report_.result = backbone_result(backbone(), *bar_, scene_.contact, scene_.continuation);
@@ -463,7 +466,10 @@ namespace nsm
         const std::string caption = "scene " + scene_.origin + ": FE_Q(" +
                                     std::to_string(discretisation().fe().degree) + ") x " +
                                     std::to_string(discretisation().n_cells()) + " cells, M = " +
-                                    std::to_string(scene_.harmonic_balance.harmonics);
+                                    std::to_string(scene_.harmonic_balance.harmonics) +
+                                    (scene_.contact.wall == Wall::compliant ?
+                                       ", compliant wall k = " + scene_entries::format_value(scene_.contact.stiffness) :
+                                       "");
         timed("plots", [&] { plots = make_plots(scene_.contact, directory, caption); });
         for (std::string &f : plots.files)
           report_.files.push_back(std::move(f));

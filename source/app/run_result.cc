@@ -149,16 +149,17 @@ namespace nsm
     }
 
     /// The main points' energy error against the uniform bar's exact mode,
-    /// if the bar is uniform and the force sign physical.
+    /// if the bar is uniform, the wall rigid and the force sign physical.
     std::vector<std::string> exact_errors(const std::vector<const BackbonePoint *> &main, const BarModel &bar,
                                           const Scene::Contact &contact)
     {
       const std::optional<ExactBar> exact = ExactBar::of(bar);
-      if (!exact || contact.sign != ForceSign::physical)
+      const ContactLaw               law(contact);
+      if (!exact || !exact->knows_first_mode(law))
         return {};
       std::vector<double> errors;
       for (const BackbonePoint *p : main)
-        if (const std::optional<double> e = exact->first_mode_energy(p->omega, contact.gap))
+        if (const std::optional<double> e = exact->first_mode_energy(p->omega, law))
           errors.push_back(std::abs(p->measures.energy - *e) / *e);
       if (errors.empty())
         return {};

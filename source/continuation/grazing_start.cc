@@ -26,16 +26,26 @@ namespace nsm
       throw InputError(s.str());
     }
 
+    /// What the contact law's gap weight a makes of a gamma(0).
+    std::string weight_note(const Scene::Contact &contact, const double gamma0)
+    {
+      std::ostringstream s;
+      if (contact.wall == Wall::rigid)
+        s << "Contact/Alpha = " << contact.alpha << " gives alpha gamma(0) = " << contact.alpha * gamma0
+          << " (the contact law's switch lambda - alpha g balances force and gap for alpha gamma(0) near 1, "
+             "where the start converges most easily)";
+      else
+        s << ContactLaw(contact).stiffness_note(gamma0);
+      return s.str();
+    }
+
     [[noreturn]] void no_start(const BranchContext &context, const unsigned int mode, const double w)
     {
       std::ostringstream s;
       s << "no converged non-trivial solution within Continuation/Search reach = "
         << text(context.params.continuation.search_reach) << " (relative) of grazing of clamped-free mode " << mode
         << " (w = " << w << ") and before the end of Continuation/Omega min..max"
-        << "; Contact/Alpha = " << context.params.contact.alpha << " gives alpha gamma(0) = "
-        << context.params.contact.alpha * context.hb.receptance()(0.0).gamma
-        << " (the contact law's switch lambda - alpha g balances force and gap for alpha "
-           "gamma(0) near 1, where the start converges most easily)";
+        << "; " << weight_note(context.params.contact, context.hb.receptance()(0.0).gamma);
       throw NumericalError(s.str());
     }
   } // namespace

@@ -50,7 +50,7 @@ namespace nsm
   {
     gamma0_       = receptance(0.0).gamma;
     force_scale_  = law_.gap() / gamma0_;
-    alpha_gamma0_ = law_.alpha() * gamma0_;
+    a_gamma0_     = law_.gap_weight() * gamma0_;
   }
 
   void HarmonicBalance::set_omega(const double omega)
@@ -99,7 +99,7 @@ namespace nsm
       }
     if (has_unfolding())
       v[1] = 0;
-    v[0] -= alpha_gamma0_;
+    v[0] -= a_gamma0_;
     return v;
   }
 
@@ -159,8 +159,32 @@ namespace nsm
       }
   }
 
+  std::vector<double> HarmonicBalance::describing_guess() const
+  {
+    // With u = A cos(W t), the spring's first harmonic is a_1 = k A f(psi) / pi,
+    // f(psi) = psi - sin(psi) cos(psi), cos(psi) = g0 / A; the first harmonic
+    // balances where A = -s gamma_1 a_1, so f(psi) = pi / (-s gamma_1 k).
+    const double target = M_PI / (-law_.sign() * phases_[1].sin / phases_[1].cos * law_.gap_weight());
+    if (!(target > 0 && target < M_PI / 2))
+      return {};
+    double low = 0, high = M_PI / 2;
+    for (int i = 0; i < 60; ++i)
+      {
+        const double psi = (low + high) / 2;
+        (psi - std::sin(psi) * std::cos(psi) < target ? low : high) = psi;
+      }
+    const std::vector<double> a = law_.clipped_force_harmonics(law_.gap() / std::cos(low), harmonics_);
+    std::vector<double>       x(n_unknowns(), 0.0);
+    for (unsigned int i = 0; i < n_unknowns(); ++i)
+      if (!functions_.sine[i])
+        x[i] = a[functions_.order[i]] / phases_[functions_.order[i]].cos / force_scale_; // c = a / cos(theta)
+    return x;
+  }
+
   std::vector<double> HarmonicBalance::grazing_guess() const
   {
+    if (!law_.rigid())
+      return describing_guess();
     // lambda = I delta(tau): a_0 = I / (2 pi), a_k = I / pi (cosines); the
     // displacement at tau = 0, -s sum gamma_k a_k, must equal the gap.
     double sum = 0;
@@ -220,7 +244,7 @@ namespace nsm
     const std::vector<double> coefficient = coefficients_only(x);
     const PhasedSolution      solution{functions_, phases_, coefficient, force_scale_, omega_};
     PeriodicSolutionMeasures  result{};
-    measures_.energy(solution, result);
+    measures_.energy(solution, law_, result);
     measures_.force_and_gap(solution, active_set_, law_, result);
     result.contact_fraction = active_set_.gram(contact_coefficients(x)).share();
     return result;

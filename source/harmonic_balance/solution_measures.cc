@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 namespace nsm
 {
@@ -12,7 +13,26 @@ namespace nsm
     , energy_samples_(energy_basis_, 4 * (2 * harmonics + 1))
   {}
 
-  void SolutionMeasures::energy(const PhasedSolution &solution, PeriodicSolutionMeasures &result) const
+  void SolutionMeasures::add_wall_energy(const PhasedSolution &solution, const ContactLaw &law,
+                                         std::vector<double> &e) const
+  {
+    // u(L, tau) on the energy's basis (slot 2m - 1: sin m tau, 2m: cos m tau).
+    const TrigonometricBasis &functions = solution.functions;
+    std::vector<double>       coefficients(energy_basis_.size(), 0.0), u;
+    for (unsigned int i = 0; i < functions.size(); ++i)
+      {
+        const unsigned int m    = functions.order[i];
+        const unsigned int slot = m == 0 ? 0 : (functions.sine[i] ? 2 * m - 1 : 2 * m);
+        coefficients[slot] +=
+          law.displacement_coefficient(solution.scale * solution.x[i], solution.phases[m].sin);
+      }
+    energy_samples_(coefficients, u);
+    for (std::size_t t = 0; t < e.size(); ++t)
+      e[t] += law.stored_energy(u[t]);
+  }
+
+  void SolutionMeasures::energy(const PhasedSolution &solution, const ContactLaw &law,
+                                PeriodicSolutionMeasures &result) const
   {
     const TrigonometricBasis  &functions = solution.functions;
     const std::vector<double> &x         = solution.x;
@@ -52,7 +72,6 @@ namespace nsm
                         add(0.5 * cc * w2 * mass * ki * kj * sign_i * sign_j));
         }
 
-    result.energy = ec[0];
     // The full basis of degree 2M orders its coefficients 1, then sin and
     // cos of each m.
     std::vector<double> coefficients(energy_basis_.size()), e;
@@ -60,6 +79,15 @@ namespace nsm
     for (unsigned int m = 1; m < top; ++m)
       coefficients[2 * m - 1] = es[m], coefficients[2 * m] = ec[m];
     energy_samples_(coefficients, e);
+    // The bar's mean energy is ec[0]; a compliant wall stores energy too,
+    // whose mean the samples give.
+    if (law.rigid())
+      result.energy = ec[0];
+    else
+      {
+        add_wall_energy(solution, law, e);
+        result.energy = std::accumulate(e.begin(), e.end(), 0.0) / double(e.size());
+      }
     const double e_min = *std::min_element(e.begin(), e.end());
     const double e_max = *std::max_element(e.begin(), e.end());
     result.energy_spread = (e_max - e_min) / result.energy;

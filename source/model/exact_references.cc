@@ -113,11 +113,12 @@ namespace nsm
     return c1 * j0(k * s_L_) + c2 * y0(k * s_L_);
   }
 
-  std::optional<double> ExactBar::first_mode_energy(const double omega, const double gap) const
+  std::optional<double> ExactBar::first_mode_energy(const double omega, const ContactLaw &law) const
   {
     const double period = 2 * M_PI * wave_speed_ / (omega * length_);
-    if (!uniform_ || period <= 3 || period >= 4)
+    if (!knows_first_mode(law) || period <= 3 || period >= 4)
       return std::nullopt;
+    const double gap = law.gap();
     return young_ * section_0_ * gap * gap / (2 * length_ * (period - 3) * (period - 3));
   }
 } // namespace nsm

@@ -27,6 +27,7 @@ namespace nsm
 
     const Options<ForceSign> force_signs = {{"physical", ForceSign::physical},
                                             {"seed-eq5", ForceSign::seed_eq5}};
+    const Options<Wall> walls = {{"rigid", Wall::rigid}, {"compliant", Wall::compliant}};
     const Options<ReceptanceMethod> receptance_methods = {{"direct", ReceptanceMethod::direct},
                                                           {"modal", ReceptanceMethod::modal}};
     const Options<HarmonicBasis> bases = {{"cosine", HarmonicBasis::cosine},
@@ -106,17 +107,28 @@ namespace nsm
   {
     const Contact d;
     prm.enter_subsection("Contact");
-    prm.declare_entry("Enabled", text(d.enabled), Patterns::Bool(), "Rigid wall at x = L + gap; a backbone needs it.");
+    prm.declare_entry("Enabled", text(d.enabled), Patterns::Bool(), "A wall at x = L + gap; a backbone needs it.");
     prm.declare_entry("Gap", text(d.gap), Patterns::Double(tiny, big), "Initial gap g0.");
     prm.declare_entry("Alpha",
                       text(d.alpha),
                       Patterns::Double(tiny, big),
-                      "alpha of the contact law -lambda + max(lambda - alpha g, 0) = 0.");
+                      "alpha of the rigid wall's law -lambda + max(lambda - alpha g, 0) = 0 (a stiffness: it "
+                      "scales the gap against the force in the switch).");
     prm.declare_entry("Force sign",
                       name_of(d.sign, force_signs),
                       selection(force_signs),
                       "physical: the wall pushes the bar back, u_N = -gamma lambda; seed-eq5: the "
                       "paper's eq. (5) literally, u_N = +gamma lambda.");
+    prm.declare_entry("Wall",
+                      name_of(d.wall, walls),
+                      selection(walls),
+                      "rigid: Signorini's law, lambda >= 0, g >= 0, lambda g = 0; compliant: a unilateral spring, "
+                      "lambda = k max(-g, 0), solved as -lambda + max(-k g, 0) = 0 (doc/method.md, The wall).");
+    prm.declare_entry("Wall stiffness",
+                      text(d.stiffness),
+                      Patterns::Double(tiny, big),
+                      "k of a compliant wall, force per length; the rigid wall is its limit k -> infinity. The "
+                      "bar's own static end stiffness is 1 / gamma(0) (E A / L for a uniform bar).");
     prm.leave_subsection();
   }
 
@@ -127,6 +139,8 @@ namespace nsm
     gap     = prm.get_double("Gap");
     alpha   = prm.get_double("Alpha");
     sign    = selected(prm.get("Force sign"), force_signs);
+    wall      = selected(prm.get("Wall"), walls);
+    stiffness = prm.get_double("Wall stiffness");
     prm.leave_subsection();
   }
 
@@ -271,6 +285,10 @@ namespace nsm
           std::tuple{output.bar_amplitude, "Output/Bar amplitude", "a column of backbone.csv"}})
       require(!wanted || output.backbone, entry,
               std::string("false unless Output/Backbone = true (") + what + ")", "true");
+    require(!output.refine_in_time || contact.wall == Wall::rigid,
+            "Output/Refine in time",
+            "false when Contact/Wall = compliant (its exact flow follows the rigid wall's impacts only)",
+            "true");
     require(!output.backbone || contact.enabled,
             "Output/Backbone",
             "false when Contact/Enabled = false (no contact, no nonsmooth mode)",

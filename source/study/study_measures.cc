@@ -89,12 +89,12 @@ namespace nsm
     /// The energy error of every written main-branch point against the exact
     /// mode, where it exists: needs no Omega bracketed by two main points, so
     /// it measures a run whose tongues leave only short main segments.
-    void main_point_errors(const Backbone &backbone, const ExactBar &bar, double gap, RowMeasures &m)
+    void main_point_errors(const Backbone &backbone, const ExactBar &bar, const ContactLaw &law, RowMeasures &m)
     {
       std::vector<double> errors;
       for (const BackbonePoint &p : backbone.points)
         if (p.branch == Branch::main)
-          if (const std::optional<double> e = bar.first_mode_energy(p.omega, gap))
+          if (const std::optional<double> e = bar.first_mode_energy(p.omega, law))
             errors.push_back(std::abs(p.measures.energy - *e) / *e);
       if (errors.empty())
         return;
@@ -156,7 +156,8 @@ namespace nsm
     const StudyParameters        &study = row.study;
     const std::size_t             n     = study.backbone_omega_values.size();
     const std::optional<ExactBar> exact = ExactBar::of(BarModel(scene.bar));
-    const bool mode = scene.contact.sign == ForceSign::physical && scene.continuation.mode == 1;
+    const ContactLaw              law(scene.contact);
+    const bool                    mode = scene.continuation.mode == 1 && exact && exact->knows_first_mode(law);
     bool       exact_mode = false;
     if (exact)
       {
@@ -168,7 +169,7 @@ namespace nsm
         if (mode)
           for (std::size_t i = 0; i < n; ++i)
             {
-              r.energies[i] = exact->first_mode_energy(study.backbone_omega_values[i], scene.contact.gap);
+              r.energies[i] = exact->first_mode_energy(study.backbone_omega_values[i], law);
               exact_mode |= r.energies[i].has_value();
             }
         if (mode)
@@ -223,7 +224,7 @@ namespace nsm
     m.omega_reached     = backbone.omega_reached(branch_direction(scene.contact));
     m.energy_error_partial = ended_inside(backbone.end, m.omega_reached, study.backbone_omega_values);
     if (reference.mode_bar)
-      main_point_errors(backbone, *reference.mode_bar, scene.contact.gap, m);
+      main_point_errors(backbone, *reference.mode_bar, ContactLaw(scene.contact), m);
     stages.timed("energy solves", [&] { backbone_errors(hb, row, backbone, reference, m); });
     if (study.verify_in_time)
       stages.timed("verification in time", [&] { time_defects(hb, d, scene, m); });

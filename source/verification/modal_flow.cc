@@ -50,6 +50,9 @@ namespace nsm
     , contact_(discretisation.contact_dof())
     , clamp_(discretisation.clamped_dof())
   {
+    if (!law.rigid())
+      throw LogicError("ModalFlow: the exact flow follows a rigid wall's impacts only (the scene refuses "
+                       "Output/Refine in time with Contact/Wall = compliant)");
     for (unsigned int i = 0; i < discretisation.n_dofs(); ++i)
       if (i != contact_ && i != clamp_)
         dofs_.push_back(i);

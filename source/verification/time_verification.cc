@@ -82,7 +82,8 @@ namespace nsm
   void ContactTimeIntegrator::make_admissible(dealii::Vector<double> &u) const
   {
     u[clamp_] = 0;
-    if (!law_.penetrates(u[contact_]))
+    // A compliant wall's spring holds any penetration.
+    if (!law_.rigid() || !law_.penetrates(u[contact_]))
       return;
     dealii::Vector<double> shape(u.size());
     shape[contact_] = 1;
@@ -93,7 +94,7 @@ namespace nsm
 
   double ContactTimeIntegrator::energy(const dealii::Vector<double> &u, const dealii::Vector<double> &v) const
   {
-    return (mass_.matrix_norm_square(v) + stiffness_.matrix_norm_square(u)) / 2;
+    return (mass_.matrix_norm_square(v) + stiffness_.matrix_norm_square(u)) / 2 + law_.stored_energy(u[contact_]);
   }
 
   double ContactTimeIntegrator::step(dealii::Vector<double> &u, dealii::Vector<double> &v,
@@ -108,14 +109,14 @@ namespace nsm
     mass_.vmult(next, predicted);
     next[clamp_] = 0;
     step_solver_.solve(next);
-    // Free of the wall unless that puts the contact DoF beyond it; on the
-    // wall, lambda is the force that holds it there.
-    double lambda = 0;
-    if (law_.penetrates(next[contact_]))
+    // Free of the wall unless that puts the contact DoF beyond it; then
+    // lambda is the wall's force at the step's end (ContactLaw::step_force).
+    const double lambda = law_.step_force(next[contact_], contact_response_[contact_]);
+    if (lambda != 0)
       {
-        lambda = law_.gap_at(next[contact_]) / contact_response_[contact_];
         next.add(lambda, contact_response_);
-        next[contact_] = law_.gap();
+        if (law_.rigid())
+          next[contact_] = law_.gap(); // exactly on the wall, not one rounding beyond it
       }
     // a_{n+1} = 4/dt^2 (u_{n+1} - u_n - dt v_n) - a_n, v_{n+1} = v_n + dt/2 (a_n + a_{n+1})
     dealii::Vector<double> acceleration(next);

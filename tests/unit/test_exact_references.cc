@@ -52,13 +52,22 @@ TEST(ExactReferences, UnitBarsMatchTheTestFormulas)
     EXPECT_NEAR(taper->receptance(omega), exact::tapered_receptance(omega), 1e-13 * std::abs(exact::tapered_receptance(omega)));
 
   const auto uniform = exact_of(bar("1"));
+  nsm::Scene::Contact contact;
+  contact.gap = 1e-3;
+  const nsm::ContactLaw rigid_wall(contact);
   for (const double omega : {0.0, 0.3, 1.0, 2.5, 7.0})
     EXPECT_NEAR(uniform->receptance(omega), exact::uniform_receptance(omega), 1e-14 * std::abs(exact::uniform_receptance(omega)));
   for (const double omega : {1.6, 1.8, 2.05})
-    EXPECT_NEAR(*uniform->first_mode_energy(omega, 1e-3), exact::UniformMode(2 * M_PI / omega, 1e-3).energy,
+    EXPECT_NEAR(*uniform->first_mode_energy(omega, rigid_wall), exact::UniformMode(2 * M_PI / omega, 1e-3).energy,
                 1e-15);
-  EXPECT_FALSE(uniform->first_mode_energy(1.5, 1e-3)); // below w1: no mode
-  EXPECT_FALSE(taper->first_mode_energy(1.95, 1e-3));
+  EXPECT_FALSE(uniform->first_mode_energy(1.5, rigid_wall)); // below w1: no mode
+  EXPECT_FALSE(taper->first_mode_energy(1.95, rigid_wall));
+  // The tent is the rigid wall's mode with the physical sign only.
+  contact.wall = nsm::Wall::compliant;
+  EXPECT_FALSE(uniform->first_mode_energy(1.8, nsm::ContactLaw(contact)));
+  contact.wall = nsm::Wall::rigid;
+  contact.sign = nsm::ForceSign::seed_eq5;
+  EXPECT_FALSE(uniform->first_mode_energy(1.8, nsm::ContactLaw(contact)));
 }
 
 TEST(ExactReferences, ScaledBarsMatchAConvergedDiscretisation)

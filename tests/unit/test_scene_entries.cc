@@ -63,6 +63,8 @@ namespace
       {"Contact/Gap", "0.002", {}, NSM_MEMBER(contact.gap)},
       {"Contact/Alpha", "7", {}, NSM_MEMBER(contact.alpha)},
       {"Contact/Force sign", "seed-eq5", {}, NSM_MEMBER(contact.sign)},
+      {"Contact/Wall", "compliant", {}, NSM_MEMBER(contact.wall)},
+      {"Contact/Wall stiffness", "11", {}, NSM_MEMBER(contact.stiffness)},
       {"Discretisation/Degree", "2", {}, NSM_MEMBER(discretisation.degree)},
       {"Discretisation/Cells", "300", {}, NSM_MEMBER(discretisation.cells)},
       {"Discretisation/Quadrature points", "5", {}, NSM_MEMBER(discretisation.quadrature_points)},

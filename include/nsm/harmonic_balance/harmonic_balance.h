@@ -10,11 +10,12 @@
 // are scaled, x = c / F with F = g0 / gamma(0), so the scaled system does not
 // depend on g0 at all. With tau = W t the residual of eqs. (9)-(10) reads
 //     R_i = x_i cos(theta_i) - P_i[max(q, 0)],
-//     q(tau) = sum_j x_j D_j phi_j(tau) - alpha gamma(0),
-//     D_j = cos(theta_j) - s alpha sin(theta_j),
-// with P_i the Fourier projection on phi_i. Both integration rules reduce to
+//     q(tau) = sum_j x_j D_j phi_j(tau) - a gamma(0),
+//     D_j = beta cos(theta_j) - s a sin(theta_j),
+// with P_i the Fourier projection on phi_i and (beta, a) the contact law's
+// weights: (1, alpha) for the rigid wall, (0, k) for the compliant one. Both integration rules reduce to
 // the active Gram matrix G_ij = P_i[phi_j on {q > 0}]: R = diag(cos) x - G v
-// with v = D x - alpha gamma(0) e_0, and J = diag(cos) - G diag(D).
+// with v = D x - a gamma(0) e_0, and J = diag(cos) - G diag(D).
 #pragma once
 
 #include <nsm/harmonic_balance/active_set.h>
@@ -60,7 +61,7 @@ namespace nsm
     /// of the first harmonic is fixed to 0 and mu must vanish at a solution.
     unsigned int n_unknowns() const { return functions_.size(); }
     /// Samples per period: the sampled rule's Time samples, or the grid on
-    /// which the exact rule brackets the roots of lambda - alpha g.
+    /// which the exact rule brackets the roots of q.
     unsigned int n_samples() const { return active_set_.n_samples(); }
     bool         has_unfolding() const { return basis_ == HarmonicBasis::full; }
 
@@ -75,9 +76,12 @@ namespace nsm
                   std::vector<double>       *jacobian,
                   std::vector<double>       *domega) const;
 
-    /// Guess near grazing of clamped-free mode `pole` (0-based index of the
-    /// nearest pole): an impulsive contact force at t = 0 whose displacement
-    /// reaches the gap. Empty if no positive impulse can do it at this W.
+    /// Guess near grazing at this W. Rigid wall: an impulsive contact force
+    /// at t = 0 whose displacement reaches the gap; empty if no positive
+    /// impulse can do it. Compliant wall: the spring's force under u(L) =
+    /// A cos(W t), with A where the first harmonic balances alone (the
+    /// describing function, ContactLaw::clipped_force_harmonics); empty where
+    /// no A > g0 does.
     std::vector<double> grazing_guess() const;
 
     PeriodicSolutionMeasures measure(const std::vector<double> &x) const;
@@ -89,7 +93,7 @@ namespace nsm
     /// a and b of the solution x at the current W.
     FourierCoefficients coefficients(const std::vector<double> &x) const;
 
-    /// Share of the period with lambda - alpha g > 0 (0: the trivial motion).
+    /// Share of the period with q > 0 (0: the trivial motion).
     double contact_fraction(const std::vector<double> &x) const;
 
     const Receptance &receptance() const { return receptance_; }
@@ -109,7 +113,10 @@ namespace nsm
     double force_scale() const { return force_scale_; }
 
   private:
-    /// q's coefficients v = D x - alpha gamma(0) e_0 (slot 1 of the full basis
+    /// grazing_guess() of the compliant wall.
+    std::vector<double> describing_guess() const;
+
+    /// q's coefficients v = D x - a gamma(0) e_0 (slot 1 of the full basis
     /// carries mu, not a coefficient).
     std::vector<double> contact_coefficients(const std::vector<double> &x) const;
 
@@ -120,7 +127,7 @@ namespace nsm
     unsigned int        harmonics_;
     HarmonicBasis       basis_;
     Integration         integration_;
-    double              alpha_gamma0_; ///< alpha gamma(0): q's constant term
+    double              a_gamma0_; ///< a gamma(0): q's constant term
     ContactLaw          law_;
     double              gamma0_;
     double              force_scale_;

@@ -16,14 +16,14 @@ namespace nsm
   /// Quantities of one converged (or candidate) periodic solution.
   struct PeriodicSolutionMeasures
   {
-    double energy;            ///< period mean of kinetic + strain energy
+    double energy;            ///< period mean of kinetic + strain energy (+ a compliant wall's)
     double energy_spread;     ///< (max - min) / mean over the period
     double max_contact_force; ///< max over the period of lambda(t)
     double max_contact_displacement = 0; ///< max over the period of |u(L, t)|: the contact end's amplitude
-    double contact_fraction;  ///< share of the period with lambda - alpha g > 0
-    double min_force;         ///< min lambda / max lambda (Signorini: >= 0)
-    double min_gap;           ///< min g / g0 (Signorini: >= 0)
-    double max_complementarity; ///< max |lambda g| / (max lambda g0)
+    double contact_fraction;  ///< share of the period in contact (q > 0, ContactLaw)
+    double min_force;         ///< min lambda / max lambda (both walls: >= 0)
+    double min_gap;           ///< min g / g0 (rigid wall: >= 0; compliant: its deepest penetration)
+    double max_complementarity; ///< max |lambda g| / (max lambda g0) (rigid wall: 0)
   };
 
   /// gamma(k W) = tan(theta) at the frequency of harmonic k.
@@ -54,11 +54,13 @@ namespace nsm
     /// taken from 4 (2M + 1) points of it.
     explicit SolutionMeasures(unsigned int harmonics);
 
-    /// Period mean and spread of the energy.
-    void energy(const PhasedSolution &solution, PeriodicSolutionMeasures &result) const;
+    /// Period mean and spread of the energy: the bar's, plus what a
+    /// compliant wall stores, k max(u - g0, 0)^2 / 2, at the spread's points.
+    void energy(const PhasedSolution &solution, const ContactLaw &law, PeriodicSolutionMeasures &result) const;
 
-    /// Period-mean energy carried by each harmonic k = 0..M (Parseval: they
-    /// add up to the mean of energy()).
+    /// Period-mean energy of the bar carried by each harmonic k = 0..M
+    /// (Parseval: they add up to the bar's mean energy, energy() less a
+    /// compliant wall's).
     std::vector<double> harmonic_energies(const PhasedSolution &solution) const;
 
     /// Largest and least contact force, least gap and largest |lambda g| at
@@ -67,6 +69,9 @@ namespace nsm
                        PeriodicSolutionMeasures &result) const;
 
   private:
+    /// e += the compliant wall's energy at the spread's points.
+    void add_wall_energy(const PhasedSolution &solution, const ContactLaw &law, std::vector<double> &e) const;
+
     unsigned int harmonics_;
     /// The basis of the energy over the period (1, sin and cos of m tau, m =
     /// 1..2M) and its values at the 4 (2M + 1) points of the spread, by FFT.

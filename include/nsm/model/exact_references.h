@@ -5,6 +5,7 @@
 #pragma once
 
 #include <nsm/model/bar_model.h>
+#include <nsm/model/contact_law.h>
 
 #include <optional>
 #include <string>
@@ -30,10 +31,15 @@ namespace nsm
     /// gamma(w): the end displacement under a unit harmonic end force.
     double receptance(double omega) const;
 
-    /// The energy of the uniform bar's first nonsmooth mode at Omega
-    /// (physical force sign): E A g0^2 / (2 L (T' - 3)^2), T' = 2 pi c / (Omega L)
-    /// in (3, 4). None for a taper or outside that range.
-    std::optional<double> first_mode_energy(double omega, double gap) const;
+    /// The energy of the uniform bar's first nonsmooth mode at Omega against
+    /// the rigid wall of `law` with the physical force sign:
+    /// E A g0^2 / (2 L (T' - 3)^2), T' = 2 pi c / (Omega L) in (3, 4). None for
+    /// a taper, another wall or sign, or outside that range.
+    std::optional<double> first_mode_energy(double omega, const ContactLaw &law) const;
+
+    /// The bar is uniform and `law` a rigid wall with the physical sign: the
+    /// first nonsmooth mode is known (in its range of Omega).
+    bool knows_first_mode(const ContactLaw &law) const { return uniform_ && law.rigid() && law.sign() > 0; }
 
   private:
     ExactBar(const BarModel &bar, double section_0, double section_L);

@@ -21,6 +21,13 @@ namespace nsm
     seed_eq5  ///< the paper's eq. (5) literally: u_N = +gamma lambda
   };
 
+  /// What the bar's end meets beyond the gap (doc/method.md, "The wall").
+  enum class Wall
+  {
+    rigid,    ///< Signorini: g >= 0, lambda >= 0, lambda g = 0
+    compliant ///< a unilateral spring of stiffness k: lambda = k max(-g, 0)
+  };
+
   enum class Refinement
   {
     none,
@@ -65,7 +72,7 @@ namespace nsm
   /// more than one parameter.
   struct Scene
   {
-    /// Dimensional inputs (L, E, rho, A(x), g0, alpha) lie in
+    /// Dimensional inputs (L, E, rho, A(x), g0, alpha, k) lie in
     /// [1 / magnitude_limit, magnitude_limit]: the products and quotients the
     /// run forms of them (frequencies, energies, contact forces) then stay
     /// finite and above the underflow threshold.
@@ -91,6 +98,8 @@ namespace nsm
       double    gap     = 1e-3;
       double    alpha   = 1.0;
       ForceSign sign    = ForceSign::physical;
+      Wall      wall    = Wall::rigid;
+      double    stiffness = 100.0; ///< k of a compliant wall
 
       static void declare(dealii::ParameterHandler &prm);
       void        parse(dealii::ParameterHandler &prm);

@@ -1,10 +1,12 @@
 // Verification in time: a backbone point's state at t = 0 integrated over
-// whole periods on the same FE model, with the physical wall u(L) <= g0.
+// whole periods on the same FE model, with the physical wall of the contact
+// law: rigid (u(L) <= g0) or compliant (a unilateral spring beyond g0).
 // The scheme (doc/method.md): mass redistribution, no inertia at the contact
 // DoF (Khenous, Laborde, Renard 2008), Newmark's average acceleration for
 // the rest, and the one-node contact condition solved
 // exactly at each step: the contact DoF, without inertia, is in static
-// balance at every t_{n+1}, on the wall or free of it.
+// balance at every t_{n+1}, free of the wall or held by it (on the rigid
+// wall's face, or where the compliant wall's spring balances it).
 #pragma once
 
 #include <nsm/model/contact_law.h>
@@ -28,7 +30,7 @@ namespace nsm
     double periodicity_defect_end; ///< the same after the last period
     double energy_drift;           ///< (E_end - E_0) / E_0, E with the redistributed mass
     double impulse;                ///< contact impulse per period, mean over the periods
-    double contact_fraction;       ///< share of the steps with the contact DoF on the wall
+    double contact_fraction;       ///< share of the steps with the wall pushing the contact DoF
   };
 
   /// The FE mass matrix without inertia at the contact DoF: its row and
@@ -44,8 +46,9 @@ namespace nsm
                           double                period,
                           unsigned int          steps_per_period);
 
-    /// Removes a penetration u_N > g0 with the static shape K^{-1} e_N (moving
-    /// the contact DoF alone would add spurious strain energy).
+    /// Removes a penetration u_N > g0 of the rigid wall with the static shape
+    /// K^{-1} e_N (moving the contact DoF alone would add spurious strain
+    /// energy). A compliant wall admits every u.
     void make_admissible(dealii::Vector<double> &u) const;
 
     /// Integrates from (u0, v0) over `periods` periods; u0 must be admissible.
@@ -56,7 +59,7 @@ namespace nsm
     /// The clamp as a unit row and column.
     static void constrain_clamp(dealii::SparseMatrix<double> &matrix, unsigned int clamp);
 
-    /// (v^T M~ v + u^T K u) / 2.
+    /// (v^T M~ v + u^T K u) / 2 plus the energy the wall stores.
     double energy(const dealii::Vector<double> &u, const dealii::Vector<double> &v) const;
 
   private:
