@@ -72,7 +72,8 @@ namespace nsm
 
   BranchContext::BranchContext(HarmonicBalance               &hb,
                                const BranchParameters        &params,
-                               std::vector<InternalResonance> resonances)
+                               std::vector<InternalResonance> resonances,
+                               FewerHarmonicsBranch          *fewer)
     : hb(hb)
     , params(params)
     , resonances(std::move(resonances))
@@ -82,6 +83,7 @@ namespace nsm
     , newton_(hb, params.harmonic_balance)
     , leap_newton_(hb, leap_parameters(params.harmonic_balance))
     , progress_("continuation", params.progress_every)
+    , fewer_(fewer)
   {}
 
   bool BranchContext::make_point(const std::vector<double> &x, const double omega, const double residual,
@@ -149,32 +151,10 @@ namespace nsm
   {
     NewtonCost total = newton_.cost();
     total += leap_newton_.cost();
-    if (fewer_harmonics_)
-      total += fewer_harmonics_->newton_cost;
     return total;
   }
 
-  const Backbone *BranchContext::fewer_harmonics()
-  {
-    const unsigned int harmonics = params.harmonic_balance.harmonics;
-    if (harmonics < 2)
-      return nullptr;
-    if (!fewer_harmonics_)
-      {
-        BranchParameters fewer            = params;
-        fewer.harmonic_balance.harmonics = harmonics / 2;
-        // The run's own Newton iterations (Max iterations = 0 would give the
-        // M / 2 run fewer): at M = 320 the seed bar's M / 2 branch with 12 lets
-        // the run be lost at 2.19991, with 20 it carries it to 2.2.
-        fewer.harmonic_balance.max_iterations = params.harmonic_balance.iterations();
-        // Unfilled, so that a run's leaps do not depend on whether it fills its gaps.
-        fewer.continuation.fill_gaps_wider_than = 0;
-        HarmonicBalance          model(fewer.harmonic_balance, fewer.contact, hb.receptance());
-        const PointStopsDeferred whole;
-        fewer_harmonics_ = std::make_unique<Backbone>(compute_backbone(model, fewer, resonances));
-      }
-    return fewer_harmonics_.get();
-  }
+  const Backbone *BranchContext::fewer_harmonics() { return fewer_ ? fewer_->get() : nullptr; }
 
   std::vector<double> BranchContext::guess_from_fewer_harmonics(const BackbonePoint &fewer) const
   {

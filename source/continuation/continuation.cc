@@ -158,8 +158,9 @@ namespace nsm
                             const std::vector<InternalResonance> &resonances,
                             const ContinuationCheckpoint         *resume)
   {
-    Backbone      backbone;
-    BranchContext context(hb, params, resonances);
+    Backbone             backbone;
+    FewerHarmonicsBranch fewer(hb, params, resonances);
+    BranchContext        context(hb, params, resonances, &fewer);
     if (resume)
       restore(*resume, context, backbone);
     else
@@ -172,12 +173,8 @@ namespace nsm
     if (!backbone.checkpoint)
       backbone.checkpoint = complete_checkpoint(context, backbone);
     backbone.newton_cost = context.newton_cost();
-    if (const Backbone *fewer = context.fewer_harmonics_traced())
-      {
-        backbone.fewer_harmonics_traced = {{params.harmonic_balance.harmonics / 2, fewer->points.size()}};
-        for (const auto &deeper : fewer->fewer_harmonics_traced)
-          backbone.fewer_harmonics_traced.push_back(deeper);
-      }
+    backbone.newton_cost += fewer.newton_cost();
+    backbone.fewer_harmonics_traced = fewer.traced();
     // Points traced on the way from grazing to the range are not written.
     auto &p = backbone.points;
     p.erase(std::remove_if(p.begin(), p.end(),

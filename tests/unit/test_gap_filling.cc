@@ -83,7 +83,8 @@ TEST(GapFilling, FillsTheMainBranchWhereNewtonFindsItAndKeepsTheTracedPoints)
 
   // What is left: Newton at M = 80 from every point of the M = 40 branch
   // inside a remaining gap finds no solution the labels put on the main branch.
-  nsm::BranchContext  run(filled_model.hb, filled_model.branch, filled_model.resonances);
+  nsm::FewerHarmonicsBranch half(filled_model.hb, filled_model.branch, filled_model.resonances);
+  nsm::BranchContext        run(filled_model.hb, filled_model.branch, filled_model.resonances, &half);
   const nsm::Backbone &fewer = *run.fewer_harmonics(); // the guesses the filling had
   unsigned int         tried = 0, converged = 0;
   for (const auto &g : filled_gaps)

@@ -107,7 +107,7 @@ namespace nsm
     unsigned int               leaps = 0;
     BackboneEnd                end   = BackboneEnd::range;
     /// The branches traced with fewer harmonics for guesses where a leap or
-    /// a gap found none (BranchContext::fewer_harmonics: M / 2, and within
+    /// a gap found none (FewerHarmonicsBranch, fewer_harmonics.h: M / 2, and within
     /// it M / 4, ...), each as its harmonics and its points; empty if none
     /// was needed.
     std::vector<std::pair<unsigned int, std::size_t>> fewer_harmonics_traced;

@@ -7,6 +7,7 @@
 
 #include <nsm/continuation/backbone.h>
 #include <nsm/continuation/branch_parameters.h>
+#include <nsm/continuation/fewer_harmonics.h>
 #include <nsm/base/progress.h>
 
 #include <memory>
@@ -51,7 +52,10 @@ namespace nsm
   class BranchContext
   {
   public:
-    BranchContext(HarmonicBalance &hb, const BranchParameters &params, std::vector<InternalResonance> resonances);
+    /// `fewer`, if given, must outlive the context: the branch with half the
+    /// harmonics that fewer_harmonics() gives (null: none).
+    BranchContext(HarmonicBalance &hb, const BranchParameters &params, std::vector<InternalResonance> resonances,
+                  FewerHarmonicsBranch *fewer = nullptr);
 
     /// A converged solve becomes a point only if it is a genuine contact
     /// motion: the trivial solution (no contact) and, in the full basis, a
@@ -103,15 +107,12 @@ namespace nsm
 
     NewtonCost newton_cost() const;
 
-    /// The same branch traced with half the harmonics (computed once, on
-    /// first use, never with its gaps filled; null below 2 harmonics): where
-    /// a leap finds no landing, its main points, and in a gap of the main
-    /// branch (gap_filling.h) all its points there, are guesses that lie
-    /// near solutions.
+    /// The same branch traced with half the harmonics, as passed in
+    /// (fewer_harmonics.h; null if none or below 2 harmonics): where a leap
+    /// finds no landing, its main points, and in a gap of the main branch
+    /// (gap_filling.h) all its points there, are guesses that lie near
+    /// solutions.
     const Backbone *fewer_harmonics();
-
-    /// That branch if it was traced, else null (tracing nothing).
-    const Backbone *fewer_harmonics_traced() const { return fewer_harmonics_.get(); }
 
     /// A point of that branch as a guess at this M: its unknowns (the same
     /// quantities at both M), the higher harmonics zero (a point with more
@@ -135,7 +136,7 @@ namespace nsm
     NewtonSolver leap_newton_;
     Progress     progress_;
     SolveFailure last_failure_ = SolveFailure::stalled;
-    std::unique_ptr<Backbone> fewer_harmonics_;
+    FewerHarmonicsBranch *fewer_;
   };
 
   /// The point of least energy written within `reach` of omega and not
