@@ -14,8 +14,8 @@ one test fail. --only runs the mutations whose name matches REGEX; --sample N
 runs an N-th of them, those whose index is the commit count (or --turn K)
 modulo N, so that N consecutive turns run every one. Not part of CTest, but for
 --check-texts (CTest mutations.texts): each mutation's text occurs exactly once
-in its file, so that a change of the code it plants into is noticed by the
-suite, not by the next mutation run.
+in its file (whitespace matching any whitespace), so that a change of the code
+it plants into is noticed by the suite, not by the next mutation run.
 """
 import argparse
 import signal
@@ -28,7 +28,9 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-# (name, file, text, replacement): the text must occur exactly once.
+# (name, file, text, replacement): the text must occur exactly once, its
+# whitespace matching any whitespace (matches()), so that re-indenting or
+# re-wrapping the code it plants into keeps the mutation.
 MUTATIONS = [
     ("harmonic balance's wall at g0 / 2", "source/harmonic_balance/harmonic_balance.cc",
      "force_scale_  = law_.gap() / gamma0_;", "force_scale_  = 0.5 * law_.gap() / gamma0_;"),
@@ -116,8 +118,8 @@ MUTATIONS = [
      "if (context.beyond(q.omega, gap.first) && context.beyond(gap.second, q.omega))",
      "if (q.branch == Branch::main && context.beyond(q.omega, gap.first) && context.beyond(gap.second, q.omega))"),
     ("gap filling that keeps a tongue landing", "source/continuation/gap_filling.cc",
-     "            if (point.branch == Branch::main)\n              return true;",
-     "            if (true)\n              return true;"),
+     "if (point.branch == Branch::main)\n              return true;\n            if (point.branch == Branch::other)",
+     "if (true)\n              return true;\n            if (point.branch == Branch::other)"),
     ("gap search without the predicted mode", "source/continuation/gap_filling.cc",
      "const bool predicted = trend.start && predicted_landing",
      "const bool predicted = false && predicted_landing"),
@@ -282,6 +284,13 @@ def copy_and_build(work):
 BUILD = ["make", "-j2", "nsm-bar", "unit_tests"]
 
 
+def matches(source, text):
+    """The spans of `source` that read as `text` with each run of whitespace
+    in it standing for any run (a re-indented or re-wrapped line matches)."""
+    pattern = r"\s+".join(re.escape(word) for word in text.split())
+    return [m.span() for m in re.finditer(pattern, source)]
+
+
 def try_mutation(mutation, src, build, work):
     """Applies the mutation, rebuilds, runs the suite, restores the file;
     returns the failing tests."""
@@ -289,10 +298,11 @@ def try_mutation(mutation, src, build, work):
     file = os.path.join(src, path)
     with open(file) as f:
         original = f.read()
-    assert original.count(text) == 1, f"{name}: the text occurs {original.count(text)} times"
+    spans = matches(original, text)
+    assert len(spans) == 1, f"{name}: the text occurs {len(spans)} times"
     try:
         with open(file, "w") as f:
-            f.write(original.replace(text, replacement))
+            f.write(original[:spans[0][0]] + replacement + original[spans[0][1]:])
         slug = re.sub(r"\W+", "_", name)
         if run(BUILD, build, os.path.join(work, slug + ".build.log")):
             return ["(does not build)"]
@@ -307,7 +317,7 @@ def check_texts():
     wrong = []
     for name, path, text, _ in MUTATIONS:
         with open(os.path.join(ROOT, path)) as f:
-            count = f.read().count(text)
+            count = len(matches(f.read(), text))
         if count != 1:
             wrong.append(f"{name}: {path} holds its text {count} times")
     if wrong:
