@@ -16,7 +16,7 @@ namespace
 {
   constexpr double fill_width = 0.01;
 
-  nsm::Scene seed_at(const unsigned int harmonics, const double fill)
+  nsm::Scene seed_with_fill(const unsigned int harmonics, const double fill)
   {
     nsm::Scene scene = testing_helpers::seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
     scene.discretisation.cells              = 20;
@@ -52,7 +52,7 @@ namespace
 
 TEST(GapFilling, FillsTheMainBranchWhereNewtonFindsItAndKeepsTheTracedPoints)
 {
-  testing_helpers::HbModel plain_model(seed_at(80, 0)), filled_model(seed_at(80, fill_width));
+  testing_helpers::HbModel plain_model(seed_with_fill(80, 0)), filled_model(seed_with_fill(80, fill_width));
   const nsm::Backbone      plain = plain_model.backbone(), filled = filled_model.backbone();
 
   // The filling comes after the trace: the plain run's points come first, unchanged.
