@@ -99,8 +99,9 @@ namespace nsm
         std::ostringstream msg;
         msg.precision(17);
         msg << "parameter 'Bar/Cross section' = '" << printable(expression_)
-            << "' is out of range: allowed A(x) > 0, within [" << 1 / Scene::magnitude_limit
-            << ", " << Scene::magnitude_limit << "] on [0, L], but A(" << x << ") = " << a;
+            << "' is out of range: allowed A(x) > 0, within [" << scene_entries::format_value(1 / Scene::magnitude_limit)
+            << ", " << scene_entries::format_value(Scene::magnitude_limit) << "] on [0, L], but A("
+            << scene_entries::format_value(x) << ") = " << scene_entries::format_value(a);
         throw InputError(msg.str());
       }
     return a;

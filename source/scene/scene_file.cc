@@ -169,11 +169,11 @@ namespace nsm
 
     /// The deepest nesting of a JSON text: brackets and braces outside
     /// strings.
-    std::size_t json_depth(std::istream &in)
+    std::size_t json_depth(const std::string &text)
     {
       std::size_t depth = 0, deepest = 0;
       bool        quoted = false, escaped = false;
-      for (char c; in.get(c);)
+      for (const char c : text)
         if (quoted)
           {
             quoted  = escaped || c != '"';
@@ -190,36 +190,39 @@ namespace nsm
 
     /// The deepest nesting of an XML text: elements opened ("<name") and
     /// not yet closed ("</name>" or "/>").
-    std::size_t xml_depth(std::istream &in)
+    std::size_t xml_depth(const std::string &text)
     {
       std::size_t depth = 0, deepest = 0;
       bool        in_tag = false, closing = false;
-      for (char c, previous = 0; in.get(c); previous = c)
-        if (previous == '<' && !in_tag)
-          {
-            // "<name": an element opens (a declaration "<?", "<!" does not);
-            // "</name>" closes one.
-            in_tag  = true;
-            closing = c == '/';
-            if (!closing && c != '?' && c != '!')
-              deepest = std::max(deepest, ++depth);
-          }
-        else if (c == '>' && in_tag)
-          {
-            // "</name>" and "<name/>" close an element.
-            if ((closing || previous == '/') && depth > 0)
-              --depth;
-            in_tag = false;
-          }
+      char        previous = 0;
+      for (const char c : text)
+        {
+          if (previous == '<' && !in_tag)
+            {
+              // "<name": an element opens (a declaration "<?", "<!" does not);
+              // "</name>" closes one.
+              in_tag  = true;
+              closing = c == '/';
+              if (!closing && c != '?' && c != '!')
+                deepest = std::max(deepest, ++depth);
+            }
+          else if (c == '>' && in_tag)
+            {
+              // "</name>" and "<name/>" close an element.
+              if ((closing || previous == '/') && depth > 0)
+                --depth;
+              in_tag = false;
+            }
+          previous = c;
+        }
       return deepest;
     }
 
     /// JSON and XML scenes are parsed recursively (boost's property tree):
     /// nesting deeper than max_nesting_depth is refused before.
-    void check_nesting(const std::string &path, const bool json)
+    void check_nesting(const std::string &path, const std::string &text, const bool json)
     {
-      std::ifstream     in(path);
-      const std::size_t depth = json ? json_depth(in) : xml_depth(in);
+      const std::size_t depth = json ? json_depth(text) : xml_depth(text);
       if (depth > max_nesting_depth)
         throw InputError("scene '" + shown(path) + "' is nested " + std::to_string(depth) +
                          " levels deep: allowed at most " + std::to_string(max_nesting_depth));
@@ -272,12 +275,8 @@ namespace nsm
 
     /// A JSON or XML scene holds UTF-8 text only: else the parser's message
     /// would name neither the entry nor the line.
-    void check_utf8(const std::string &path, const bool json)
+    void check_utf8(const std::string &path, const std::string &text, const bool json)
     {
-      std::ifstream      in(path, std::ios::binary);
-      std::ostringstream read;
-      read << in.rdbuf();
-      const std::string text     = read.str();
       const std::size_t position = first_invalid_utf8(text);
       if (position == std::string::npos)
         return;
@@ -286,6 +285,20 @@ namespace nsm
       throw InputError("scene '" + shown(path) + "': " +
                        (entry.empty() ? line : "parameter '" + printable(entry) + "' (" + line + ")") +
                        " is not valid UTF-8 text: allowed, text in UTF-8 (a byte shown as \\xNN is not)");
+    }
+
+    /// A JSON or XML scene's text, read once and checked before the parser
+    /// sees it.
+    std::string checked_tree_text(const std::string &path, const bool json)
+    {
+      readable_file(path);
+      std::ifstream      in(path, std::ios::binary);
+      std::ostringstream read;
+      read << in.rdbuf();
+      const std::string text = read.str();
+      check_nesting(path, text, json);
+      check_utf8(path, text, json);
+      return text;
     }
 
     std::string number_in_words(const std::string &text)
@@ -449,11 +462,7 @@ namespace nsm
     const bool        tree_format = extension == ".json" || extension == ".xml";
     std::stringstream flat;
     if (tree_format)
-      {
-        readable_file(path);
-        check_nesting(path, extension == ".json");
-        check_utf8(path, extension == ".json");
-      }
+      flat.str(checked_tree_text(path, extension == ".json"));
     else
       {
         std::vector<fs::path> chain;
@@ -471,8 +480,10 @@ namespace nsm
       });
     try
       {
-        if (tree_format)
-          text.parse_input(path);
+        if (extension == ".json")
+          text.parse_input_from_json(flat);
+        else if (extension == ".xml")
+          text.parse_input_from_xml(flat);
         else
           text.parse_input(flat, path);
       }
