@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Plots of an nsm-bar output directory (run by nsm-bar when Output/Plots = true).
 
-usage: plot_results.py DIRECTORY --gap G0
+usage: plot_results.py DIRECTORY --gap G0 [--wall rigid|compliant]
 Writes backbone.png (from backbone.csv, tongues.csv, resonances.csv, fields.csv), per
 field k, field_k_spacetime.png and field_k_tip.png, and for a study study.png (from
 study.csv); prints "wrote PATH" per file.
@@ -231,21 +231,23 @@ def orbit_error_plot(directory):
     save(figure, os.path.join(directory, "orbits.png"))
 
 
-def explain_ringing(top, bottom, tip, gap, peak):
+def explain_ringing(top, bottom, tip, gap, peak, rigid):
     """Says on the plot where the truncated series leaves the contact law's
-    bounds: a negative contact force, or the end beyond the wall. Both are
+    bounds: a negative contact force, or the end beyond a rigid wall. Both are
     Gibbs ringing of M harmonics around the impact's jumps (the harmonic
     balance enforces the law on the Fourier coefficients, so the truncated
-    series need not satisfy it pointwise)."""
+    series need not satisfy it pointwise). Beyond a compliant wall's face the
+    end is where its spring is compressed: no note."""
     n = len(tip["contact_force"])
     negative = sum(v < -1e-9 * peak for v in tip["contact_force"])
-    beyond = sum(u > gap * (1 + 1e-9) for u in tip["contact_displacement"])
+    beyond = rigid and sum(u > gap * (1 + 1e-9) for u in tip["contact_displacement"])
     # In the free flight's free space: mid-height of the force (zero there),
     # the bottom left of the displacement (which starts at the wall).
     note = dict(fontsize=7, color="0.25", bbox=dict(boxstyle="round", fc="white", ec="0.7", alpha=0.9))
     if negative:
+        where = "at the impact's jumps" if rigid else "where contact begins and ends"
         bottom.text(0.5, 0.5, f"$\\lambda < 0$ at {negative} of {n} samples: Gibbs ringing of the truncated\n"
-                    "series at the impact's jumps, not a pull of the wall", ha="center", va="center",
+                    f"series {where}, not a pull of the wall", ha="center", va="center",
                     transform=bottom.transAxes, **note)
     if beyond:
         top.text(0.02, 0.04, f"$u(L) > g_0$ at {beyond} of {n} samples (largest "
@@ -253,7 +255,7 @@ def explain_ringing(top, bottom, tip, gap, peak):
                  ha="left", va="bottom", transform=top.transAxes, **note)
 
 
-def field_plots(directory, gap):
+def field_plots(directory, gap, rigid):
     omegas = {}
     if os.path.exists(os.path.join(directory, "fields.csv")):
         f = read(os.path.join(directory, "fields.csv"))
@@ -266,7 +268,8 @@ def field_plots(directory, gap):
         phase = [t / period for t in tip["t"]]
         figure, (top, bottom) = plt.subplots(2, 1, figsize=(7, 5.5), sharex=True)
         top.plot(phase, [u / gap for u in tip["contact_displacement"]], "b-")
-        top.axhline(1.0, color="black", linestyle="--", linewidth=1, label="wall ($u = g_0$)")
+        top.axhline(1.0, color="black", linestyle="--", linewidth=1,
+                    label="wall ($u = g_0$)" if rigid else "compliant wall's face ($u = g_0$)")
         top.set_ylabel("$u(L, t) / g_0$")
         top.legend(loc="lower right", fontsize=8)
         top.set_title("Contact end over one period, " + title)
@@ -275,7 +278,7 @@ def field_plots(directory, gap):
         bottom.axhline(0.0, color="black", linewidth=0.5)
         bottom.set_ylabel(f"$\\lambda(t) / \\max|\\lambda|$ (max = {peak:.3g})")
         bottom.set_xlabel("$t / T$")
-        explain_ringing(top, bottom, tip, gap, peak)
+        explain_ringing(top, bottom, tip, gap, peak, rigid)
         if CAPTION:
             figure.text(0.5, 0.005, CAPTION, ha="center", va="bottom", fontsize=7, color="0.3")
         save(figure, path.replace("_tip.csv", "_tip.png"))
@@ -404,6 +407,8 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("directory")
     parser.add_argument("--gap", type=float, required=True)
+    parser.add_argument("--wall", choices=("rigid", "compliant"), default="rigid",
+                        help="compliant: u(L) > g0 is the spring's compression, not an overshoot")
     parser.add_argument("--caption", default="", help="what run drew the plots: its scene, mesh and M")
     arguments = parser.parse_args()
     global CAPTION
@@ -411,7 +416,7 @@ def main():
     if os.path.exists(os.path.join(arguments.directory, "backbone.csv")):
         backbone_plot(arguments.directory)
         orbit_error_plot(arguments.directory)
-    field_plots(arguments.directory, arguments.gap)
+    field_plots(arguments.directory, arguments.gap, arguments.wall == "rigid")
     if os.path.exists(os.path.join(arguments.directory, "study.csv")):
         study_plot(arguments.directory)
     # The run takes the plots as drawn only after this line (a script that

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 
 namespace nsm
 {
@@ -12,6 +11,23 @@ namespace nsm
     , energy_basis_(harmonic_basis(2 * harmonics, true))
     , energy_samples_(energy_basis_, 4 * (2 * harmonics + 1))
   {}
+
+  double SolutionMeasures::mean_wall_energy(const PhasedSolution &solution, const ContactLaw &law) const
+  {
+    // The harmonic balance's force is the projection of k max(u - g0, 0) on
+    // the basis, which holds u - g0: the mean of lambda (u - g0) / 2 is the
+    // mean of k max(u - g0, 0)^2 / 2, by Parseval (exactly with the exact
+    // rule; with the sampled one, to its quadrature).
+    double mean = 0;
+    for (unsigned int i = 0; i < solution.functions.size(); ++i)
+      {
+        const HarmonicPhase &p = solution.phases[solution.functions.order[i]];
+        const double         c = solution.scale * solution.x[i];
+        const double         u = law.displacement_coefficient(c, p.sin);
+        mean += solution.functions.order[i] == 0 ? c * p.cos * (u - law.gap()) : c * p.cos * u / 2;
+      }
+    return mean / 2;
+  }
 
   void SolutionMeasures::add_wall_energy(const PhasedSolution &solution, const ContactLaw &law,
                                          std::vector<double> &e) const
@@ -79,14 +95,13 @@ namespace nsm
     for (unsigned int m = 1; m < top; ++m)
       coefficients[2 * m - 1] = es[m], coefficients[2 * m] = ec[m];
     energy_samples_(coefficients, e);
-    // The bar's mean energy is ec[0]; a compliant wall stores energy too,
-    // whose mean the samples give.
+    // The bar's mean energy is ec[0]; a compliant wall stores energy too.
     if (law.rigid())
       result.energy = ec[0];
     else
       {
         add_wall_energy(solution, law, e);
-        result.energy = std::accumulate(e.begin(), e.end(), 0.0) / double(e.size());
+        result.energy = ec[0] + mean_wall_energy(solution, law);
       }
     const double e_min = *std::min_element(e.begin(), e.end());
     const double e_max = *std::max_element(e.begin(), e.end());

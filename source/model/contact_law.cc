@@ -6,7 +6,8 @@
 namespace nsm
 {
   ContactLaw::ContactLaw(const Scene::Contact &contact)
-    : gap_(contact.gap)
+    : rigid_(contact.wall == Wall::rigid)
+    , gap_(contact.gap)
     , force_weight_(contact.wall == Wall::rigid ? 1.0 : 0.0)
     , gap_weight_(contact.wall == Wall::rigid ? contact.alpha : contact.stiffness)
     , compliance_(contact.wall == Wall::rigid ? 0.0 : 1.0 / contact.stiffness)

@@ -138,7 +138,9 @@ namespace nsm
     // '-' is never read as an option.
     const std::string absolute = std::filesystem::absolute(directory, error).string();
     const ProgramEnd  end      = run_program(
-      {NSM_PYTHON, NSM_PLOT_SCRIPT, "--gap", gap.str(), "--caption=" + printable(caption), "--", absolute}, log_path);
+      {NSM_PYTHON, NSM_PLOT_SCRIPT, "--gap", gap.str(), "--wall", contact.wall == Wall::rigid ? "rigid" : "compliant",
+       "--caption=" + printable(caption), "--", absolute},
+      log_path);
     PlotResult  result;
     std::string last;
     // The plots the script finished are whole (it renames each into place):

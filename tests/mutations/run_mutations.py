@@ -37,7 +37,7 @@ MUTATIONS = [
     ("harmonic balance's gap doubled", "source/harmonic_balance/harmonic_balance.cc",
      "force_scale_  = law_.gap() / gamma0_;", "force_scale_  = 2 * law_.gap() / gamma0_;"),
     ("the contact law's gap 10 % off", "source/model/contact_law.cc",
-     "    : gap_(contact.gap)", "    : gap_(1.1 * contact.gap)"),
+     "gap_(contact.gap)", "gap_(1.1 * contact.gap)"),
     ("the compliant wall's energy left out", "include/nsm/model/contact_law.h",
      "return rigid() || !penetrates(u) ? 0.0 : 0.5 * gap_weight_ * gap_at(u) * gap_at(u);", "return 0.0;"),
     ("the compliant wall twice as stiff in the harmonic balance", "source/model/contact_law.cc",
@@ -287,13 +287,20 @@ BUILD = ["make", "-j2", "nsm-bar", "unit_tests"]
 def matches(source, text):
     """The spans of `source` that read as `text` with each run of whitespace
     in it standing for any run (a re-indented or re-wrapped line matches)."""
-    pattern = r"\s+".join(re.escape(word) for word in text.split())
+    words = text.split()
+    pattern = r"\s+".join(re.escape(word) for word in words)
+    # An identifier at either end must not continue beyond it.
+    if re.match(r"\w", words[0]):
+        pattern = r"(?<!\w)" + pattern
+    if re.search(r"\w$", words[-1]):
+        pattern += r"(?!\w)"
     return [m.span() for m in re.finditer(pattern, source)]
 
 
 def try_mutation(mutation, src, build, work):
     """Applies the mutation, rebuilds, runs the suite, restores the file;
-    returns the failing tests."""
+    returns the failing tests, or None if the mutated code does not build
+    (a mutation that must be written again, not a bug the suite caught)."""
     name, path, text, replacement = mutation
     file = os.path.join(src, path)
     with open(file) as f:
@@ -305,7 +312,7 @@ def try_mutation(mutation, src, build, work):
             f.write(original[:spans[0][0]] + replacement + original[spans[0][1]:])
         slug = re.sub(r"\W+", "_", name)
         if run(BUILD, build, os.path.join(work, slug + ".build.log")):
-            return ["(does not build)"]
+            return None
         return failed_tests(build, os.path.join(work, slug + ".log"))
     finally:
         with open(file, "w") as f:
@@ -347,17 +354,21 @@ def main():
         src, build = copy_and_build(work)
     # Each file is restored by try_mutation: its new time makes the next
     # build of build/ remake what the mutations touched.
-    survivors = []
+    survivors, broken = [], []
     for mutation in mutations:
         start = time.time()
         failures = try_mutation(mutation, src, build, work)
+        if failures is None:
+            print(f"BROKEN   {mutation[0]}: the mutated code does not build [{time.time() - start:.0f} s]", flush=True)
+            broken.append(mutation[0])
+            continue
         shown = ", ".join(failures[:6]) + (" ..." if len(failures) > 6 else "")
         print(f"{'caught  ' if failures else 'SURVIVED'} {mutation[0]}: {len(failures)} failing "
               f"({shown}) [{time.time() - start:.0f} s]", flush=True)
         if not failures:
             survivors.append(mutation[0])
-    if survivors:
-        sys.exit(f"mutations not caught: {survivors}")
+    if survivors or broken:
+        sys.exit(f"mutations not caught: {survivors}; mutations that do not build: {broken}")
     print(f"every mutation is caught ({len(mutations)})")
 
 

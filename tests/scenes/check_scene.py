@@ -194,6 +194,34 @@ def check_verify_in_time(name, summary):
     assert "verification in time: " in summary and "median" in summary, summary
 
 
+def check_compliant_wall(name, summary):
+    # The summary compares the spring with the bar's static end stiffness:
+    # gamma(0) of A = 1.5 - x (E = L = 1) is int_0^1 dx / (1.5 - x) = ln 3.
+    found = re.search(r"compliant wall: Contact/Wall stiffness = 1 is ([0-9.e+-]+) times", summary)
+    assert found and abs(float(found.group(1)) - math.log(3)) < 1e-5, summary
+    with open(f"{name}/backbone.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert len(rows) > 20, len(rows)
+    verified = [r for r in rows if r["verified"]]
+    assert len(verified) == (len(rows) + 3) // 4, len(verified)
+    for r in verified:
+        # The time integrator with the same spring closes each orbit to the
+        # truncation (measured at most 1.3e-3), far within Verify tolerance;
+        # its energy, the spring's with the bar's, is kept (measured 1.8e-6).
+        assert r["verified"] == "true" and float(r["periodicity_defect"]) < 0.01, r
+        assert abs(float(r["energy_drift"])) < 1e-4, r["energy_drift"]
+        if float(r["contact_fraction"]) > 0.03:
+            # No jumps to smear: impulse and contact share agree closely
+            # (measured 0.92 to 1.0001, and 1e-3).
+            assert 0.9 < float(r["impulse_ratio"]) < 1.1, r["impulse_ratio"]
+            assert abs(float(r["verified_contact_fraction"]) - float(r["contact_fraction"])) < 0.01, r
+    # The energy counted is conserved over the period: the spring's share of
+    # it varies, the total does not (measured at most 2.5e-4).
+    assert max(float(r["energy_spread"]) for r in rows if r["branch"] == "main") < 1e-3
+    for plot in ("backbone.png", "field_0_tip.png"):
+        assert os.path.getsize(os.path.join(name, plot)) > 0, plot
+
+
 def fourier_series(harmonics, omega, t):
     """u_N(t) and lambda(t) from field_k_harmonics.csv, independently of the C++."""
     u = force = 0.0

@@ -74,8 +74,8 @@ TEST(CompliantWall, StepEndsWhereTheSpringHoldsTheNode)
 
 TEST(CompliantWall, ClippedCosineHarmonicsAreTheForcesFourierCoefficients)
 {
-  // Against the midpoint rule on 200000 points (error ~ 1e-10 of a_1 at the
-  // force's kinks).
+  // Against the midpoint rule on 200000 points, whose error at the force's
+  // kinks is O(h^2): measured up to 6e-9 of a_1 at A = 1.01 g0.
   const nsm::ContactLaw spring = law_of(nsm::Wall::compliant, 3);
   for (const double amplitude : {1.01 * g0, 1.5 * g0, 10 * g0})
     {

@@ -55,7 +55,8 @@ namespace nsm
     explicit SolutionMeasures(unsigned int harmonics);
 
     /// Period mean and spread of the energy: the bar's, plus what a
-    /// compliant wall stores, k max(u - g0, 0)^2 / 2, at the spread's points.
+    /// compliant wall stores, k max(u - g0, 0)^2 / 2 (its mean exactly, its
+    /// spread at the spread's points).
     void energy(const PhasedSolution &solution, const ContactLaw &law, PeriodicSolutionMeasures &result) const;
 
     /// Period-mean energy of the bar carried by each harmonic k = 0..M
@@ -69,6 +70,9 @@ namespace nsm
                        PeriodicSolutionMeasures &result) const;
 
   private:
+    /// The compliant wall's mean energy, lambda (u - g0) / 2 by Parseval.
+    double mean_wall_energy(const PhasedSolution &solution, const ContactLaw &law) const;
+
     /// e += the compliant wall's energy at the spread's points.
     void add_wall_energy(const PhasedSolution &solution, const ContactLaw &law, std::vector<double> &e) const;
 

@@ -32,7 +32,7 @@ namespace nsm
     double gap_weight() const { return gap_weight_; }
     /// s: +1 with the physical force sign, -1 with the paper's eq. (5).
     double sign() const { return sign_; }
-    bool   rigid() const { return force_weight_ != 0; }
+    bool   rigid() const { return rigid_; }
 
     /// g = g0 - u.
     double gap_at(const double u) const { return gap_ - u; }
@@ -89,6 +89,7 @@ namespace nsm
     std::vector<double> clipped_force_harmonics(double amplitude, unsigned int harmonics) const;
 
   private:
+    bool   rigid_;
     double gap_;
     double force_weight_; ///< beta: 1 rigid, 0 compliant
     double gap_weight_;   ///< a: alpha rigid, k compliant
