@@ -8,9 +8,9 @@ namespace nsm
   ContactLaw::ContactLaw(const Scene::Contact &contact)
     : rigid_(contact.wall == Wall::rigid)
     , gap_(contact.gap)
-    , force_weight_(contact.wall == Wall::rigid ? 1.0 : 0.0)
-    , gap_weight_(contact.wall == Wall::rigid ? contact.alpha : contact.stiffness)
-    , compliance_(contact.wall == Wall::rigid ? 0.0 : 1.0 / contact.stiffness)
+    , force_weight_(rigid_ ? 1.0 : 0.0)
+    , gap_weight_(rigid_ ? contact.alpha : contact.stiffness)
+    , compliance_(rigid_ ? 0.0 : 1.0 / contact.stiffness)
     , sign_(contact.sign == ForceSign::physical ? 1.0 : -1.0)
   {}
 

@@ -25,11 +25,15 @@ namespace testing_helpers
     return scene;
   }
 
-  /// The rigid wall at `gap`, with the physical force sign.
-  inline nsm::ContactLaw wall_at(const double gap)
+  /// The wall at `gap` (rigid unless told; a compliant one of `stiffness`),
+  /// with the physical force sign.
+  inline nsm::ContactLaw wall_at(const double gap, const nsm::Wall wall = nsm::Wall::rigid,
+                                 const double stiffness = nsm::Scene::Contact().stiffness)
   {
     nsm::Scene::Contact contact;
-    contact.gap = gap;
+    contact.gap       = gap;
+    contact.wall      = wall;
+    contact.stiffness = stiffness;
     return nsm::ContactLaw(contact);
   }
 

@@ -16,15 +16,6 @@ namespace
 {
   constexpr double g0 = 1e-3;
 
-  nsm::ContactLaw law_of(const nsm::Wall wall, const double stiffness)
-  {
-    nsm::Scene::Contact contact;
-    contact.gap       = g0;
-    contact.wall      = wall;
-    contact.stiffness = stiffness;
-    return nsm::ContactLaw(contact);
-  }
-
   /// The uniform bar (A = 1, FE_Q(10) x `cells`, M harmonics) against a
   /// compliant wall of stiffness k, traced to Omega max.
   nsm::Scene compliant_uniform(const double k, const unsigned int harmonics, const double omega_max,
@@ -51,12 +42,12 @@ TEST(CompliantWall, StepEndsWhereTheSpringHoldsTheNode)
   // A time step whose contact node would reach u = g0 + 1e-4 free of the
   // wall, where a unit force moves it by r.
   const double r = 0.02, u = g0 + 1e-4;
-  const nsm::ContactLaw rigid = law_of(nsm::Wall::rigid, 1);
+  const nsm::ContactLaw rigid = testing_helpers::wall_at(g0, nsm::Wall::rigid, 1);
   const double          f_rigid = rigid.step_force(u, r);
   EXPECT_NEAR(u + f_rigid * r, g0, 1e-18); // on the rigid wall's face
   for (const double k : {50.0, 1e4, 1e8})
     {
-      const nsm::ContactLaw spring = law_of(nsm::Wall::compliant, k);
+      const nsm::ContactLaw spring = testing_helpers::wall_at(g0, nsm::Wall::compliant, k);
       const double          f = spring.step_force(u, r), end = u + f * r;
       // The spring's force at the step's end, to the rounding of end - g0.
       EXPECT_NEAR(f, -k * (end - g0), 1e-12 * std::abs(f) + 4 * k * DBL_EPSILON * u) << k;
@@ -76,7 +67,7 @@ TEST(CompliantWall, ClippedCosineHarmonicsAreTheForcesFourierCoefficients)
 {
   // Against the midpoint rule on 200000 points, whose error at the force's
   // kinks is O(h^2): measured up to 6e-9 of a_1 at A = 1.01 g0.
-  const nsm::ContactLaw spring = law_of(nsm::Wall::compliant, 3);
+  const nsm::ContactLaw spring = testing_helpers::wall_at(g0, nsm::Wall::compliant, 3);
   for (const double amplitude : {1.01 * g0, 1.5 * g0, 10 * g0})
     {
       const std::vector<double> a = spring.clipped_force_harmonics(amplitude, 12);
@@ -194,7 +185,7 @@ TEST(CompliantWall, TimeIntegrationClosesItsOrbitsAndNotAnotherWalls)
       EXPECT_NEAR(own.impulse_ratio, 1.0, 0.01) << omega;
       EXPECT_NEAR(own.time.contact_fraction, fine.point.measures.contact_fraction, 0.01) << omega;
       EXPECT_LT(std::abs(own.time.energy_drift), 1e-6) << omega;
-      for (const nsm::ContactLaw &other : {law_of(nsm::Wall::compliant, 2), law_of(nsm::Wall::rigid, 1)})
+      for (const nsm::ContactLaw &other : {testing_helpers::wall_at(g0, nsm::Wall::compliant, 2), testing_helpers::wall_at(g0, nsm::Wall::rigid, 1)})
         EXPECT_GT(fine.verified_against(other).time.periodicity_defect, 30 * own.time.periodicity_defect) << omega;
     }
 }
