@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 namespace nsm
@@ -15,10 +16,12 @@ namespace nsm
     class ArclengthRun
     {
     public:
-      ArclengthRun(BranchContext &context, Backbone &backbone, const unsigned int segment)
+      ArclengthRun(BranchContext &context, Backbone &backbone, const unsigned int segment,
+                   std::optional<std::size_t> &first_fold)
         : context_(context)
         , backbone_(backbone)
         , segment_(segment)
+        , first_fold_(first_fold)
       {}
 
       /// LOCA finished its run without a stop from accept(): it reached its
@@ -92,9 +95,9 @@ namespace nsm
       /// once the tongue is above Tongue energy ratio times the energy there.
       bool climbed_tongue(const BackbonePoint &point) const
       {
-        return context_.first_fold &&
+        return first_fold_ &&
                point.measures.energy > context_.params.continuation.tongue_energy_ratio *
-                                         backbone_.points[*context_.first_fold].measures.energy;
+                                         backbone_.points[*first_fold_].measures.energy;
       }
 
       /// A fold is where Omega turns back within the segment.
@@ -107,8 +110,8 @@ namespace nsm
         const double after  = point.omega - points.back().omega;
         if (before * after >= 0)
           return;
-        if (!context_.first_fold)
-          context_.first_fold = points.size() - 1;
+        if (!first_fold_)
+          first_fold_ = points.size() - 1;
         backbone_.folds.push_back(points.back().omega);
         backbone_.events.push_back(
           event_message("arclength turns a fold", points.back().omega, context_.resonances));
@@ -128,25 +131,31 @@ namespace nsm
 
       BranchContext     &context_;
       Backbone          &backbone_;
-      const unsigned int segment_;
-      SegmentEnd         end_ = SegmentEnd::fold;
+      const unsigned int          segment_;
+      std::optional<std::size_t> &first_fold_;
+      SegmentEnd                  end_ = SegmentEnd::fold;
     };
   } // namespace
 
-  SegmentEnd ArclengthSteps::trace(BranchContext &context, Backbone &backbone, const unsigned int segment) const
+  SegmentEnd ArclengthSteps::trace(BranchContext &context, Backbone &backbone, const unsigned int segment)
   {
-    if (context.beyond(context.near_end, backbone.points.back().omega))
-      if (const SegmentEnd end = sequential_segment(context, backbone, segment, true); end != SegmentEnd::approach)
-        return end;
-    return arclength_segment(context, backbone, segment);
+    first_fold_.reset();
+    if (!context.beyond(context.near_end, backbone.points.back().omega))
+      approach_step_.reset(); // in the range: no approach to go on with
+    else if (const SegmentEnd end = sequential_segment(context, backbone, segment, approach_step_, true);
+             end != SegmentEnd::approach)
+      return end;
+    return arclength_segment(context, backbone, segment, first_fold_);
   }
 
-  SegmentEnd arclength_segment(BranchContext &context, Backbone &backbone, const unsigned int segment)
+  SegmentEnd arclength_segment(BranchContext &context, Backbone &backbone, const unsigned int segment,
+                               std::optional<std::size_t> &first_fold)
   {
     const auto &c = context.params.continuation;
     for (double step = std::min(c.initial_step, context.max_step()); step >= c.min_step;
          step /= continuation_constants::step_shrink)
-      if (const SegmentEnd end = ArclengthRun(context, backbone, segment).run(step); end != SegmentEnd::jump)
+      if (const SegmentEnd end = ArclengthRun(context, backbone, segment, first_fold).run(step);
+          end != SegmentEnd::jump)
         return end;
     return SegmentEnd::fold;
   }

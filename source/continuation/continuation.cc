@@ -61,16 +61,18 @@ namespace nsm
       return c;
     }
 
-    /// The checkpoint of a continuation interrupted in `segment`: the
-    /// sequential method goes on from its last point with its next step;
-    /// any other from the segment's first point.
+    /// The checkpoint of a continuation interrupted in `segment`: from its
+    /// last point with the step the tracer would take next (the sequential
+    /// method's), or else from the segment's first point.
     std::shared_ptr<ContinuationCheckpoint> interrupted_checkpoint(const BranchContext &context,
+                                                                   const SegmentTracer &method,
                                                                    const Backbone &backbone,
                                                                    const unsigned int segment, const Counts &start)
     {
-      auto c     = checkpoint_up_to(context, backbone, context.next_step ? counts(backbone) : start);
+      const std::optional<double> step = method.resume_step();
+      auto c     = checkpoint_up_to(context, backbone, step ? counts(backbone) : start);
       c->segment = segment;
-      c->step    = context.next_step;
+      c->step    = step;
       c->end     = BackboneEnd::interrupted;
       return c;
     }
@@ -79,14 +81,12 @@ namespace nsm
     /// until the range, Max steps, a leap that finds no branch, or a stop
     /// signal (the checkpoint is then kept). At the range or a lost branch,
     /// the gaps behind are filled if the scene asks (gap_filling.h).
-    void trace(BranchContext &context, Backbone &backbone, unsigned int segment)
+    void trace(BranchContext &context, SegmentTracer &method, Backbone &backbone, unsigned int segment)
     {
-      const std::unique_ptr<SegmentTracer> method = make_segment_tracer(context.params.continuation.method);
       for (;; ++segment)
         {
           const Counts start = counts(backbone);
-          context.next_step.reset();
-          const SegmentEnd end   = method->trace(context, backbone, segment);
+          const SegmentEnd end   = method.trace(context, backbone, segment);
           const double omega = backbone.points.back().omega;
           if (end == SegmentEnd::range)
             {
@@ -98,7 +98,7 @@ namespace nsm
             }
           if (end == SegmentEnd::interrupted)
             {
-              backbone.checkpoint = interrupted_checkpoint(context, backbone, segment, start);
+              backbone.checkpoint = interrupted_checkpoint(context, method, backbone, segment, start);
               backbone.end        = BackboneEnd::interrupted;
               return backbone.events.push_back(
                 event_message(std::string("stopped by ") + stop_signal_name(point_stop_signal()), omega));
@@ -121,9 +121,8 @@ namespace nsm
                                                     "branch folds (continuation stalls)" :
                                                     "resonance tongue above Energy max",
                                                   omega, context.resonances));
-          if (!leap(context, backbone, segment + 1))
+          if (!leap(context, backbone, segment + 1, method.first_fold()))
             return fill_gaps(context, backbone);
-          context.first_fold.reset();
         }
     }
 
@@ -139,8 +138,8 @@ namespace nsm
       return c;
     }
 
-    /// The backbone and the context as the checkpoint left them.
-    void restore(const ContinuationCheckpoint &c, BranchContext &context, Backbone &backbone)
+    /// The backbone, the context and the tracer as the checkpoint left them.
+    void restore(const ContinuationCheckpoint &c, BranchContext &context, SegmentTracer &method, Backbone &backbone)
     {
       backbone.points      = c.points;
       backbone.events      = c.events;
@@ -149,7 +148,7 @@ namespace nsm
       backbone.leaps       = c.leaps;
       backbone.end         = c.end;
       context.span         = c.span;
-      context.resume_step  = c.step;
+      method.resume_with(c.step);
     }
   } // namespace
 
@@ -161,14 +160,15 @@ namespace nsm
     Backbone             backbone;
     FewerHarmonicsBranch fewer(hb, params, resonances);
     BranchContext        context(hb, params, resonances, &fewer);
+    const std::unique_ptr<SegmentTracer> method = make_segment_tracer(params.continuation.method);
     if (resume)
-      restore(*resume, context, backbone);
+      restore(*resume, context, *method, backbone);
     else
       backbone.points.push_back(start_at_grazing(context, backbone));
     if (!resume || !resume->complete)
       {
         backbone.end = BackboneEnd::range;
-        trace(context, backbone, resume ? resume->segment : 0);
+        trace(context, *method, backbone, resume ? resume->segment : 0);
       }
     if (!backbone.checkpoint)
       backbone.checkpoint = complete_checkpoint(context, backbone);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -15,9 +16,10 @@ namespace nsm
     /// continuation up to its first fold (the last point if none). A segment
     /// that begins on a tongue's flank can run backwards first; leaping from a
     /// point behind its own start could go round the same tongues for ever.
-    std::size_t leap_front(const BranchContext &context, const Backbone &backbone, const std::size_t first)
+    std::size_t leap_front(const BranchContext &context, const Backbone &backbone, const std::size_t first,
+                           const std::optional<std::size_t> &first_fold)
     {
-      const std::size_t last  = context.first_fold.value_or(backbone.points.size() - 1);
+      const std::size_t last  = first_fold.value_or(backbone.points.size() - 1);
       std::size_t       front = last;
       for (std::size_t i = first; i < last; ++i)
         if (context.beyond(backbone.points[i].omega, backbone.points[front].omega))
@@ -75,13 +77,14 @@ namespace nsm
     class Leap
     {
     public:
-      Leap(BranchContext &context, Backbone &backbone, const unsigned int segment)
+      Leap(BranchContext &context, Backbone &backbone, const unsigned int segment,
+           const std::optional<std::size_t> &first_fold)
         : context_(context)
         , backbone_(backbone)
         , c_(context.params.continuation)
         , segment_(segment)
         , first_(last_segment_start(backbone))
-        , front_(backbone.points[leap_front(context, backbone, first_)])
+        , front_(backbone.points[leap_front(context, backbone, first_, first_fold)])
         , reach_(c_.search_reach * front_.omega)
         // A front high on a tongue (a previous leap may have landed there)
         // must not bar the way back down: landings may go as low as the least
@@ -244,8 +247,9 @@ namespace nsm
     };
   } // namespace
 
-  bool leap(BranchContext &context, Backbone &backbone, const unsigned int segment)
+  bool leap(BranchContext &context, Backbone &backbone, const unsigned int segment,
+            const std::optional<std::size_t> &first_fold)
   {
-    return Leap(context, backbone, segment).run();
+    return Leap(context, backbone, segment, first_fold).run();
   }
 } // namespace nsm

@@ -40,13 +40,11 @@ namespace nsm
     }
 
     /// sequential_segment, with or without the limits of a filling segment.
-    SegmentEnd steps(BranchContext &context, Backbone &backbone, const unsigned int segment, const bool hand_over,
-                     const std::optional<StepLimits> &limits)
+    SegmentEnd steps(BranchContext &context, Backbone &backbone, const unsigned int segment,
+                     std::optional<double> &carried, const bool hand_over, const std::optional<StepLimits> &limits)
     {
       const auto &c    = context.params.continuation;
-      double step = std::min(c.initial_step, context.max_step());
-      if (context.resume_step)
-        step = *std::exchange(context.resume_step, std::nullopt);
+      double step = std::exchange(carried, std::nullopt).value_or(std::min(c.initial_step, context.max_step()));
       const std::size_t first = last_segment_start(backbone);
       while (!context.full(backbone))
         {
@@ -78,20 +76,27 @@ namespace nsm
           if (step < c.min_step)
             return SegmentEnd::fold;
         }
-      context.next_step = step;
+      carried = step;
       return context.full_end();
     }
   } // namespace
 
   SegmentEnd sequential_segment(BranchContext &context, Backbone &backbone, const unsigned int segment,
-                                const bool hand_over)
+                                std::optional<double> &carried, const bool hand_over)
   {
-    return steps(context, backbone, segment, hand_over, std::nullopt);
+    return steps(context, backbone, segment, carried, hand_over, std::nullopt);
+  }
+
+  SegmentEnd sequential_segment(BranchContext &context, Backbone &backbone, const unsigned int segment)
+  {
+    std::optional<double> carried;
+    return steps(context, backbone, segment, carried, false, std::nullopt);
   }
 
   SegmentEnd sequential_segment(BranchContext &context, Backbone &backbone, const unsigned int segment,
                                 const StepLimits &limits)
   {
-    return steps(context, backbone, segment, false, limits);
+    std::optional<double> carried;
+    return steps(context, backbone, segment, carried, false, limits);
   }
 } // namespace nsm

@@ -145,6 +145,54 @@ TEST(SequentialSteps, UniformSegmentEndsExactlyAtOmegaMaxOnOneBranch)
     }
 }
 
+TEST(SequentialSteps, ATracerCarriesItsStepOverMaxStepsAndGoesOnAsIfUninterrupted)
+{
+  // The uniform branch of the test above, traced whole, and traced again in
+  // two runs: the first ends at Max steps = 8 points, the second (a fresh
+  // tracer, as a resumed run has) goes on from its points with the step the
+  // first kept. Every point must be the whole run's, bit for bit.
+  auto scene = testing_helpers::hb_scene("1", 10);
+  scene.continuation.omega_max  = 1.6;
+  scene.continuation.energy_max = 1e-5;
+  Tracing              whole(scene);
+  nsm::SequentialSteps whole_method;
+  ASSERT_EQ(whole_method.trace(whole.context, whole.backbone, 0), nsm::SegmentEnd::range);
+  EXPECT_FALSE(whole_method.resume_step().has_value()); // nothing to go on with after the range
+  ASSERT_GT(whole.backbone.points.size(), 12u);
+
+  scene.continuation.max_steps = 8;
+  Tracing              first(scene);
+  nsm::SequentialSteps first_method;
+  ASSERT_EQ(first_method.trace(first.context, first.backbone, 0), nsm::SegmentEnd::max_steps);
+  ASSERT_EQ(first.backbone.points.size(), 8u);
+  ASSERT_TRUE(first_method.resume_step().has_value());
+  // A step the whole run took next: at least Min step, at most max_step().
+  EXPECT_GE(*first_method.resume_step(), scene.continuation.min_step);
+  EXPECT_LE(*first_method.resume_step(), first.context.max_step());
+
+  scene.continuation.max_steps = 2000;
+  Tracing second(scene);
+  second.backbone.points = first.backbone.points;
+  nsm::SequentialSteps second_method;
+  second_method.resume_with(first_method.resume_step());
+  ASSERT_EQ(second_method.trace(second.context, second.backbone, 0), nsm::SegmentEnd::range);
+  const auto &p = second.backbone.points, &q = whole.backbone.points;
+  ASSERT_EQ(p.size(), q.size());
+  for (std::size_t i = 0; i < p.size(); ++i)
+    {
+      EXPECT_EQ(p[i].omega, q[i].omega) << i;
+      EXPECT_EQ(p[i].x, q[i].x) << i;
+    }
+
+  // Without the carried step the second run starts again from Initial step:
+  // its points differ from the whole run's.
+  Tracing third(scene);
+  third.backbone.points = first.backbone.points;
+  nsm::SequentialSteps third_method;
+  ASSERT_EQ(third_method.trace(third.context, third.backbone, 0), nsm::SegmentEnd::range);
+  EXPECT_NE(third.backbone.points[8].omega, q[8].omega);
+}
+
 TEST(SequentialSteps, AFillingSegmentEndsBeforeItsFarSideAndBelowItsTongueThreshold)
 {
   // The uniform branch of the test above, with the limits of a gap being
@@ -174,12 +222,13 @@ TEST(SequentialSteps, AFillingSegmentEndsBeforeItsFarSideAndBelowItsTongueThresh
 TEST(ArclengthSteps, SeedSegmentTurnsAFoldAndStopsHighOnTheTongue)
 {
   Tracing     t(seed(nsm::ForceSign::physical, nsm::ContinuationMethod::arclength, 2.0));
-  const auto  end = nsm::arclength_segment(t.context, t.backbone, 0);
+  std::optional<std::size_t> first_fold;
+  const auto  end = nsm::arclength_segment(t.context, t.backbone, 0, first_fold);
   const auto &c   = t.model.scene.continuation;
   const auto &p   = t.backbone.points;
   EXPECT_EQ(end, nsm::SegmentEnd::tongue);
-  ASSERT_TRUE(t.context.first_fold.has_value());
-  const std::size_t fold = *t.context.first_fold;
+  ASSERT_TRUE(first_fold.has_value());
+  const std::size_t fold = *first_fold;
   ASSERT_GT(fold, 0u);
   ASSERT_LT(fold + 1, p.size());
   // Omega turns back at the first fold, next to a listed resonance w_j / k.

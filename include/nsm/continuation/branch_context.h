@@ -125,11 +125,6 @@ namespace nsm
     const double                         direction;
     const double                         near_end, far_end; ///< the range's ends, first met and last
     double                               span = 0; ///< of the range covered from the start
-    std::optional<std::size_t>           first_fold; ///< in the current segment (arclength)
-    /// The sequential method's next step: where a segment was interrupted
-    /// (SegmentEnd::interrupted), and where a resumed
-    /// segment starts (checkpoint.h).
-    std::optional<double>                next_step, resume_step;
 
   private:
     NewtonSolver newton_;

@@ -5,6 +5,8 @@
 
 #include <nsm/continuation/branch_context.h>
 
+#include <optional>
+
 namespace nsm
 {
   /// Tries W beyond the fold at distances growing from Initial step to Search
@@ -26,5 +28,9 @@ namespace nsm
   /// appends the landing as the first point of `segment`; a failure records
   /// how the backbone ended (Backbone::end: lost, or energy_max where the only
   /// landings lay above Energy max) and what the Newton solves ended in.
-  bool leap(BranchContext &context, Backbone &backbone, unsigned int segment);
+  /// `first_fold` is the backbone index of the ended segment's first fold, as
+  /// its tracer found it (SegmentTracer::first_fold; none: the front is
+  /// sought up to the segment's last point).
+  bool leap(BranchContext &context, Backbone &backbone, unsigned int segment,
+            const std::optional<std::size_t> &first_fold = std::nullopt);
 } // namespace nsm

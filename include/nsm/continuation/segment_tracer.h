@@ -4,12 +4,16 @@
 // never asks which method traced them. Sequential steps in Omega
 // (sequential_steps.h) and pseudo-arclength (arclength_steps.h) implement
 // it; a new method is a class of its own file, a name in the scene's option
-// list (Continuation/Method) and a line in make_segment_tracer().
+// list (Continuation/Method) and a line in make_segment_tracer(). What a
+// method keeps between its segments is its own: the driver makes one tracer
+// per backbone and asks it only what a checkpoint and a leap need.
 #pragma once
 
 #include <nsm/continuation/branch_context.h>
 
+#include <cstddef>
 #include <memory>
+#include <optional>
 
 namespace nsm
 {
@@ -20,7 +24,20 @@ namespace nsm
 
     /// Appends the segment's points to the backbone (`segment` is their
     /// segment number) and says how the segment ended.
-    virtual SegmentEnd trace(BranchContext &context, Backbone &backbone, unsigned int segment) const = 0;
+    virtual SegmentEnd trace(BranchContext &context, Backbone &backbone, unsigned int segment) = 0;
+
+    /// After a segment that a stop signal ended: the step with which it goes
+    /// on from the backbone's last point, which the checkpoint keeps
+    /// (checkpoint.h). None: it is traced again from its first point.
+    virtual std::optional<double> resume_step() const { return std::nullopt; }
+
+    /// A resumed run's first segment goes on with `step` (resume_step()).
+    virtual void resume_with(const std::optional<double> & /*step*/) {}
+
+    /// The backbone index where the last segment first turned back in Omega,
+    /// if the method follows folds (arclength): the leap starts no further
+    /// (leap.h). None: the segment ended at its first fold.
+    virtual std::optional<std::size_t> first_fold() const { return std::nullopt; }
   };
 
   /// The tracer of Continuation/Method.
