@@ -167,7 +167,7 @@ namespace nsm
         const auto band = [&](const Discretisation &initial_mesh) {
           Scene initial = scene_;
           if (traces_branch())
-            resolve_automatic_range(initial.continuation, initial.contact.gap, initial.output.fields_at,
+            resolve_automatic_range(initial.continuation, initial.contact, initial.output.fields_at,
                                     initial_mesh);
           return initial.refinement_band();
         };
@@ -175,7 +175,7 @@ namespace nsm
           report_.notes.push_back(std::move(note));
         report_.notes.push_back(describe(discretisation()));
         if (traces_branch())
-          for (std::string &note : resolve_automatic_range(scene_.continuation, scene_.contact.gap,
+          for (std::string &note : resolve_automatic_range(scene_.continuation, scene_.contact,
                                                            scene_.output.fields_at, discretisation()))
             report_.notes.push_back(std::move(note));
       }
@@ -397,7 +397,7 @@ namespace nsm
         if (scene_.output.harmonics_table)
           tables_.push_back(harmonics_table(hb(), backbone()));
         tables_.push_back(tongue_table(backbone()));
-        tables_.push_back(grazing_table(discretisation(), scene_.continuation.mode, scene_.contact.gap));
+        tables_.push_back(grazing_table(discretisation(), scene_.continuation.mode, scene_.contact));
         tables_.push_back(resonance_table(stages_.resonances()));
       }
 

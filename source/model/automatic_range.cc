@@ -10,7 +10,22 @@
 
 namespace nsm
 {
-  ModeFrequencies mode_frequencies(const Discretisation &d, const unsigned int mode, const double gap)
+  namespace
+  {
+    /// ModeFrequencies::held.
+    double held_frequency(const Discretisation &d, const unsigned int mode, const Scene::Contact &contact,
+                          bool &on_spring)
+    {
+      on_spring = contact.wall == Wall::compliant && contact.sign == ForceSign::physical;
+      if (!on_spring)
+        return std::sqrt(lowest_eigenvalues(BandedPencil(d, EndCondition::clamped_clamped), mode)[mode - 1]);
+      BandedPencil spring(d, EndCondition::clamped_free);
+      spring.entry(spring.k, spring.contact_row, spring.contact_row) += contact.stiffness;
+      return std::sqrt(lowest_eigenvalues(spring, mode)[mode - 1]);
+    }
+  } // namespace
+
+  ModeFrequencies mode_frequencies(const Discretisation &d, const unsigned int mode, const Scene::Contact &contact)
   {
     // The lowest modes alone (near_modes.h): the whole spectrum of the
     // paper's 4000-cell mesh costs more than the rest of its run.
@@ -26,14 +41,12 @@ namespace nsm
     // A bound between mode j and the next (or above the last mode).
     const double    upper = count > int(mode) ? (lowest[mode - 1] + lowest[mode]) / 2 : 2 * lowest[mode - 1];
     const ModalData free  = modes_below(free_pencil, upper);
-    const std::vector<double> clamped_lowest =
-      lowest_eigenvalues(BandedPencil(d, EndCondition::clamped_clamped), mode);
     ModeFrequencies f;
     const double    w2 = free.eigenvalues[mode - 1];
     f.free             = std::sqrt(w2);
-    f.clamped          = std::sqrt(clamped_lowest[mode - 1]);
-    f.bilinear         = 2 * f.free * f.clamped / (f.free + f.clamped);
-    f.grazing_energy   = w2 * gap * gap / (2 * free.contact_residues[mode - 1]);
+    f.held             = held_frequency(d, mode, contact, f.on_spring);
+    f.bilinear         = 2 * f.free * f.held / (f.free + f.held);
+    f.grazing_energy   = w2 * contact.gap * contact.gap / (2 * free.contact_residues[mode - 1]);
     return f;
   }
 
@@ -42,19 +55,20 @@ namespace nsm
     std::string number(const double value) { return significant(value, 10); }
   } // namespace
 
-  std::vector<std::string> resolve_automatic_range(Scene::Continuation &c, const double gap,
+  std::vector<std::string> resolve_automatic_range(Scene::Continuation &c, const Scene::Contact &contact,
                                                    const std::vector<double> &fields_at, const Discretisation &d)
   {
     if (c.omega_max > 0 && c.energy_max > 0)
       return {};
-    const ModeFrequencies    f = mode_frequencies(d, c.mode, gap);
+    const ModeFrequencies    f = mode_frequencies(d, c.mode, contact);
     std::vector<std::string> notes;
     if (c.omega_max == 0)
       {
         c.omega_max = f.free + automatic_range_share * (f.bilinear - f.free);
         notes.push_back("Continuation/Omega max = 0: " + number(c.omega_max) + ", from the spectrum (w_" +
-                        std::to_string(c.mode) + " = " + number(f.free) + " clamped-free, " + number(f.clamped) +
-                        " clamped-clamped, bilinear limit " + number(f.bilinear) + ")");
+                        std::to_string(c.mode) + " = " + number(f.free) + " clamped-free, " + number(f.held) +
+                        (f.on_spring ? " on the wall's spring" : " clamped-clamped") + ", bilinear limit " +
+                        number(f.bilinear) + ")");
         if (!(c.omega_min < c.omega_max))
           throw InputError("parameter 'Continuation/Omega min' = " + number(c.omega_min) +
                            " is out of range: allowed below the automatic Omega max = " + number(c.omega_max) +

@@ -42,7 +42,7 @@ namespace nsm
         candidate.discretisation.cells = cells;
         const Discretisation coarse(bar, candidate.discretisation);
         if (candidate.continuation.omega_max == 0 && (candidate.output.backbone || candidate.output.fields()))
-          resolve_automatic_range(candidate.continuation, candidate.contact.gap, candidate.output.fields_at, coarse);
+          resolve_automatic_range(candidate.continuation, candidate.contact, candidate.output.fields_at, coarse);
         const double top = candidate.receptance_band();
         if (top <= 0)
           throw InputError("parameter 'Discretisation/Cells' = 0 is out of range: chooses the cells for the band "

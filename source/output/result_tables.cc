@@ -132,9 +132,9 @@ namespace nsm
     return table;
   }
 
-  CsvTable grazing_table(const Discretisation &d, const unsigned int mode, const double gap)
+  CsvTable grazing_table(const Discretisation &d, const unsigned int mode, const Scene::Contact &contact)
   {
-    const ModeFrequencies f = mode_frequencies(d, mode, gap);
+    const ModeFrequencies f = mode_frequencies(d, mode, contact);
     return {"grazing.csv", {"mode", "omega", "energy"}, {{double(mode), f.free, f.grazing_energy}}};
   }
 

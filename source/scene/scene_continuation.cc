@@ -37,8 +37,9 @@ namespace nsm
                       Patterns::Double(0, frequency_limit),
                       "Upper end of the Omega range, > Omega min; harmonics up to Harmonics x "
                       "Omega max are resolved. 0: from the FE model's spectrum, w_j + 0.8 (w_b - "
-                      "w_j), with w_j the clamped-free and w_b = 2 w_j w_cc / (w_j + w_cc) the "
-                      "bilinear estimate of the branch's infinite-energy limit (w_cc clamped-clamped); "
+                      "w_j), with w_j the clamped-free and w_b = 2 w_j w_h / (w_j + w_h) the "
+                      "bilinear estimate of the branch's infinite-energy limit (w_h the bar held at the "
+                      "wall: clamped-clamped, or on a compliant wall's spring); "
                       "the summary says the value.");
     prm.declare_entry("Energy max",
                       text(d.energy_max),

@@ -2,6 +2,7 @@
 // wall, a unilateral spring lambda = k max(u - g0, 0), through the harmonic
 // balance, the measures and the time integrator (doc/method.md, "The wall").
 #include <nsm/continuation/continuation.h>
+#include <nsm/model/automatic_range.h>
 #include <nsm/verification/time_verification.h>
 
 #include <gtest/gtest.h>
@@ -188,4 +189,48 @@ TEST(CompliantWall, TimeIntegrationClosesItsOrbitsAndNotAnotherWalls)
       for (const nsm::ContactLaw &other : {testing_helpers::wall_at(g0, nsm::Wall::compliant, 2), testing_helpers::wall_at(g0, nsm::Wall::rigid, 1)})
         EXPECT_GT(fine.verified_against(other).time.periodicity_defect, 30 * own.time.periodicity_defect) << omega;
     }
+}
+
+TEST(CompliantWall, AutomaticRangeEndsShortOfTheSpringsBilinearLimit)
+{
+  // Held by a spring k at x = L, the uniform bar (E A = rho A = L = 1) has
+  // u = sin(w x) with u'(1) + k u(1) = 0: w cos(w) + k sin(w) = 0, its first
+  // root in (pi / 2, pi). Solved here by bisection; FE_Q(10) x 10 gives w to
+  // about 1e-12, so 1e-9 is the rounding of the eigensolver, not the mesh.
+  const auto held_exact = [](const double k) {
+    double lo = M_PI / 2, hi = M_PI;
+    for (int i = 0; i < 200; ++i)
+      {
+        const double mid = (lo + hi) / 2;
+        (mid * std::cos(mid) + k * std::sin(mid) > 0 ? lo : hi) = mid;
+      }
+    return lo;
+  };
+  nsm::Scene scene = compliant_uniform(1, 10, 2.0);
+  const testing_helpers::HbModel model(scene);
+  for (const double k : {0.3, 1.0, 30.0})
+    {
+      scene.contact.stiffness        = k;
+      const nsm::ModeFrequencies f   = nsm::mode_frequencies(model.discretisation, 1, scene.contact);
+      EXPECT_TRUE(f.on_spring);
+      EXPECT_NEAR(f.free, M_PI / 2, 1e-9);
+      EXPECT_NEAR(f.held, held_exact(k), 1e-9) << k;
+      EXPECT_NEAR(f.bilinear, 2 * f.free * f.held / (f.free + f.held), 1e-14);
+      // The limit lies between grazing and the rigid wall's 2 pi / 3.
+      EXPECT_GT(f.bilinear, M_PI / 2) << k;
+      EXPECT_LT(f.bilinear, 2 * M_PI / 3) << k;
+
+      nsm::Scene::Continuation c = scene.continuation;
+      c.omega_max                = 0;
+      const auto notes           = nsm::resolve_automatic_range(c, scene.contact, {}, model.discretisation);
+      EXPECT_NEAR(c.omega_max, f.free + nsm::automatic_range_share * (f.bilinear - f.free), 1e-14) << k;
+      ASSERT_FALSE(notes.empty());
+      EXPECT_NE(notes[0].find("on the wall's spring"), std::string::npos) << notes[0];
+    }
+  // With eq. (5)'s sign the spring would pull the bar: the rigid wall's
+  // clamped-clamped pi is kept.
+  scene.contact.sign = nsm::ForceSign::seed_eq5;
+  const nsm::ModeFrequencies eq5 = nsm::mode_frequencies(model.discretisation, 1, scene.contact);
+  EXPECT_FALSE(eq5.on_spring);
+  EXPECT_NEAR(eq5.held, M_PI, 1e-9);
 }

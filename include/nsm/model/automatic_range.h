@@ -16,17 +16,24 @@ namespace nsm
   struct ModeFrequencies
   {
     double free;     ///< clamped-free w_j: grazing
-    double clamped;  ///< clamped-clamped w_j: the bar held at the wall
-    /// 2 w_free w_clamped / (w_free + w_clamped): half a period free, half
+    /// w_j of the bar held at the wall: clamped-clamped against the rigid
+    /// wall; on the compliant wall's spring (k added to the contact DoF's
+    /// stiffness) with the physical sign. With eq. (5)'s sign the spring
+    /// would pull: the rigid wall's is kept.
+    double held;
+    bool   on_spring; ///< `held` is the spring's
+    /// 2 w_free w_held / (w_free + w_held): half a period free, half
     /// held, the bilinear estimate of the zero-gap (infinite energy) limit;
-    /// exact for the uniform bar (2 pi / 3 against pi / 2 and pi).
+    /// exact for the uniform bar against the rigid wall (2 pi / 3 against
+    /// pi / 2 and pi).
     double bilinear;
     /// E_g = w_j^2 g0^2 / (2 phi_j(L)^2): the energy of the linear mode with
     /// u(L) = g0 (grazing.csv).
     double grazing_energy;
   };
 
-  ModeFrequencies mode_frequencies(const Discretisation &discretisation, unsigned int mode, double gap);
+  ModeFrequencies mode_frequencies(const Discretisation &discretisation, unsigned int mode,
+                                   const Scene::Contact &contact);
 
   /// Share of the way from w_j to the bilinear estimate at which an
   /// automatic range ends. On the uniform bar the energy there is 40 E_g
@@ -36,10 +43,10 @@ namespace nsm
   constexpr double automatic_range_share = 0.8;
 
   /// Where Continuation/Omega max or Energy max is 0, sets it from `d` and
-  /// the gap g0: Omega max = w_j + automatic_range_share (w_bilinear - w_j),
+  /// the wall: Omega max = w_j + automatic_range_share (w_bilinear - w_j),
   /// Energy max = Energy max over grazing x E_g. Returns a summary note for
   /// each value set. Throws InputError naming the parameter when Omega min or
   /// a field frequency (Output/Fields at) lies beyond the automatic Omega max.
-  std::vector<std::string> resolve_automatic_range(Scene::Continuation &c, double gap,
+  std::vector<std::string> resolve_automatic_range(Scene::Continuation &c, const Scene::Contact &contact,
                                                    const std::vector<double> &fields_at, const Discretisation &d);
 } // namespace nsm

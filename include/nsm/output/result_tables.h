@@ -48,7 +48,7 @@ namespace nsm
   /// grazing.csv: the traced mode j, w_j and its grazing energy E_g =
   /// w_j^2 g0^2 / (2 phi_j(L)^2), the linear mode's energy with u(L) = g0
   /// (the plots' energy scale).
-  CsvTable grazing_table(const Discretisation &discretisation, unsigned int mode, double gap);
+  CsvTable grazing_table(const Discretisation &discretisation, unsigned int mode, const Scene::Contact &contact);
 
   /// resonances.csv: the internal resonances w_j / k in the range.
   CsvTable resonance_table(const std::vector<InternalResonance> &resonances);
