@@ -90,7 +90,7 @@ namespace nsm
 
     /// The summary line of a field's verification.
     std::string field_verification(const PeriodicField &field, const Discretisation &discretisation,
-                                   const ContactLaw &law, const Scene::Output &output)
+                                   const ContactLaw &law, const OutputParameters &output)
     {
       const PointVerification v = verify_in_time(field, discretisation, law, output);
       std::ostringstream      s;

@@ -33,7 +33,7 @@ namespace nsm
     }
 
     /// How the backbone ended, naming the parameter that ended it.
-    std::string ending(const Backbone &backbone, const double reached, const Scene::Continuation &c)
+    std::string ending(const Backbone &backbone, const double reached, const ContinuationParameters &c)
     {
       switch (backbone.end)
         {
@@ -55,7 +55,7 @@ namespace nsm
     }
 
     std::string coverage(const Backbone &backbone, const std::size_t main, const double direction,
-                         const Scene::Continuation &c)
+                         const ContinuationParameters &c)
     {
       std::ostringstream s;
       s.precision(6);
@@ -132,7 +132,7 @@ namespace nsm
     /// found (up to the range's end if the branch reached it), with what the
     /// gap search found there.
     std::vector<std::string> unfound_stretches(const Backbone &backbone, const double direction,
-                                               const Scene::Continuation &c)
+                                               const ContinuationParameters &c)
     {
       const bool reached = backbone.end == BackboneEnd::range;
       const double far   = direction > 0 ? c.omega_max : c.omega_min;
@@ -151,7 +151,7 @@ namespace nsm
     /// The main points' energy error against the uniform bar's exact mode,
     /// if the bar is uniform, the wall rigid and the force sign physical.
     std::vector<std::string> exact_errors(const std::vector<const BackbonePoint *> &main, const BarModel &bar,
-                                          const Scene::Contact &contact)
+                                          const ContactParameters &contact)
     {
       const std::optional<ExactBar> exact = ExactBar::of(bar);
       const ContactLaw               law(contact);
@@ -176,7 +176,7 @@ namespace nsm
   } // namespace
 
   std::vector<std::string> backbone_result(const Backbone &backbone, const BarModel &bar,
-                                           const Scene::Contact &contact, const Scene::Continuation &continuation)
+                                           const ContactParameters &contact, const ContinuationParameters &continuation)
   {
     if (backbone.points.empty())
       return {"backbone: no point"};

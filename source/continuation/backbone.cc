@@ -6,12 +6,12 @@
 
 namespace nsm
 {
-  bool in_omega_range(const Scene::Continuation &continuation, const double omega)
+  bool in_omega_range(const ContinuationParameters &continuation, const double omega)
   {
     return omega >= continuation.omega_min && omega <= continuation.omega_max;
   }
 
-  double branch_direction(const Scene::Contact &contact)
+  double branch_direction(const ContactParameters &contact)
   {
     return ContactLaw(contact).sign();
   }

@@ -63,7 +63,7 @@ namespace nsm
     return guess;
   }
 
-  Scene::HarmonicBalance leap_parameters(Scene::HarmonicBalance params)
+  HarmonicBalanceParameters leap_parameters(HarmonicBalanceParameters params)
   {
     params.line_search    = "Polynomial";
     params.max_iterations = params.iterations() * continuation_constants::leap_iteration_factor;

@@ -1,4 +1,5 @@
 #include <nsm/continuation/branch_parameters.h>
+#include <nsm/scene/scene.h>
 
 namespace nsm
 {

@@ -1,3 +1,4 @@
+#include <nsm/base/errors.h>
 #include <nsm/base/interruption.h>
 #include <nsm/continuation/branch_context.h>
 #include <nsm/continuation/checkpoint.h>

@@ -1,3 +1,4 @@
+#include <nsm/base/errors.h>
 #include <nsm/base/text.h>
 #include <nsm/continuation/constants.h>
 #include <nsm/continuation/grazing_start.h>
@@ -27,7 +28,7 @@ namespace nsm
     }
 
     /// What the contact law's gap weight a makes of a gamma(0).
-    std::string weight_note(const Scene::Contact &contact, const double gamma0)
+    std::string weight_note(const ContactParameters &contact, const double gamma0)
     {
       std::ostringstream s;
       if (contact.wall == Wall::rigid)

@@ -238,7 +238,7 @@ namespace nsm
 
       BranchContext                &context_;
       Backbone                     &backbone_;
-      const Scene::Continuation    &c_;
+      const ContinuationParameters    &c_;
       const unsigned int            segment_;
       const std::size_t             first_;
       const BackbonePoint           front_;

@@ -1,3 +1,4 @@
+#include <nsm/base/errors.h>
 #include <nsm/continuation/arclength_steps.h>
 #include <nsm/continuation/segment_tracer.h>
 #include <nsm/continuation/sequential_steps.h>

@@ -8,7 +8,7 @@
 
 namespace nsm
 {
-  bool stays_on_branch(const BackbonePoint &from, const BackbonePoint &to, const Scene::Continuation &c)
+  bool stays_on_branch(const BackbonePoint &from, const BackbonePoint &to, const ContinuationParameters &c)
   {
     if (!(std::abs(to.measures.contact_fraction - from.measures.contact_fraction) <= c.max_contact_change))
       return false;

@@ -1,3 +1,4 @@
+#include <nsm/base/errors.h>
 #include <nsm/harmonic_balance/constants.h>
 #include <nsm/harmonic_balance/harmonic_balance.h>
 #include <nsm/harmonic_balance/trigonometric.h>
@@ -29,7 +30,7 @@ namespace nsm
     };
 
     /// The sampled rule's Time samples, or the exact rule's bracketing grid.
-    unsigned int samples_of(const Scene::HarmonicBalance &params)
+    unsigned int samples_of(const HarmonicBalanceParameters &params)
     {
       constexpr unsigned int per_harmonic = harmonic_balance_constants::bracketing_samples_per_harmonic;
       return params.integration == Integration::sampled ? params.samples() :
@@ -37,7 +38,7 @@ namespace nsm
     }
   } // namespace
 
-  HarmonicBalance::HarmonicBalance(const Scene::HarmonicBalance &params, const Scene::Contact &contact,
+  HarmonicBalance::HarmonicBalance(const HarmonicBalanceParameters &params, const ContactParameters &contact,
                                    const Receptance &receptance)
     : receptance_(receptance)
     , harmonics_(params.harmonics)

@@ -53,7 +53,7 @@ namespace nsm
 
   struct NewtonSolver::Impl
   {
-    Impl(HarmonicBalance &hb, const Scene::HarmonicBalance &params)
+    Impl(HarmonicBalance &hb, const HarmonicBalanceParameters &params)
       : interface(hb, std::vector<double>(hb.n_unknowns(), 0.0))
       , group(Teuchos::rcp(new TimedNewtonGroup(interface, hb)))
       , status(newton_status(params))
@@ -71,7 +71,7 @@ namespace nsm
     unsigned int                           max_iterations;
   };
 
-  NewtonSolver::NewtonSolver(HarmonicBalance &hb, const Scene::HarmonicBalance &params)
+  NewtonSolver::NewtonSolver(HarmonicBalance &hb, const HarmonicBalanceParameters &params)
     : impl_(std::make_unique<Impl>(hb, params))
   {}
 

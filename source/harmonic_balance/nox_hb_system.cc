@@ -9,7 +9,7 @@ namespace nsm
   }
 
   Teuchos::RCP<NOX::StatusTest::Generic>
-  newton_status(const Scene::HarmonicBalance &params, const double tightening)
+  newton_status(const HarmonicBalanceParameters &params, const double tightening)
   {
     auto combo = Teuchos::rcp(new NOX::StatusTest::Combo(NOX::StatusTest::Combo::OR));
     // Unscaled 2-norm: the same norm the points are accepted and written with.
@@ -23,7 +23,7 @@ namespace nsm
     return combo;
   }
 
-  void set_newton_parameters(Teuchos::ParameterList &nox, const Scene::HarmonicBalance &params)
+  void set_newton_parameters(Teuchos::ParameterList &nox, const HarmonicBalanceParameters &params)
   {
     nox.set("Nonlinear Solver", "Line Search Based");
     nox.sublist("Direction").set("Method", "Newton");

@@ -17,12 +17,12 @@ namespace nsm
   }
 
   std::vector<std::string> refine_adaptively(Discretisation              &d,
-                                             const Scene::Discretisation &params,
+                                             const DiscretisationParameters &params,
                                              const double                 band_max,
                                              Progress                    *progress)
   {
     const std::vector<double> band = band_frequencies(band_max);
-    const Scene::Receptance   direct{ReceptanceMethod::direct, 0};
+    const ReceptanceParameters   direct{ReceptanceMethod::direct, 0};
     std::vector<std::string>  notes;
     for (unsigned int step = 0;; ++step)
       {

@@ -13,7 +13,7 @@ namespace nsm
   namespace
   {
     /// ModeFrequencies::held.
-    double held_frequency(const Discretisation &d, const unsigned int mode, const Scene::Contact &contact,
+    double held_frequency(const Discretisation &d, const unsigned int mode, const ContactParameters &contact,
                           bool &on_spring)
     {
       on_spring = contact.wall == Wall::compliant && contact.sign == ForceSign::physical;
@@ -25,7 +25,7 @@ namespace nsm
     }
   } // namespace
 
-  ModeFrequencies mode_frequencies(const Discretisation &d, const unsigned int mode, const Scene::Contact &contact)
+  ModeFrequencies mode_frequencies(const Discretisation &d, const unsigned int mode, const ContactParameters &contact)
   {
     // The lowest modes alone (near_modes.h): the whole spectrum of the
     // paper's 4000-cell mesh costs more than the rest of its run.
@@ -55,7 +55,7 @@ namespace nsm
     std::string number(const double value) { return significant(value, 10); }
   } // namespace
 
-  std::vector<std::string> resolve_automatic_range(Scene::Continuation &c, const Scene::Contact &contact,
+  std::vector<std::string> resolve_automatic_range(ContinuationParameters &c, const ContactParameters &contact,
                                                    const std::vector<double> &fields_at, const Discretisation &d)
   {
     if (c.omega_max > 0 && c.energy_max > 0)

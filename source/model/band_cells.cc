@@ -4,6 +4,7 @@
 #include <nsm/model/band_cells.h>
 #include <nsm/model/banded_pencil.h>
 #include <nsm/model/spectrum.h>
+#include <nsm/scene/scene.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,7 @@
+#include <nsm/base/errors.h>
 #include <nsm/base/text.h>
 #include <nsm/model/bar_model.h>
+#include <nsm/scene/parameter_limits.h>
 #include <nsm/scene/scene_entries.h>
 
 #include <deal.II/base/function_parser.h>
@@ -58,7 +60,7 @@ namespace nsm
     constexpr unsigned int section_samples = 1u << 17;
   } // namespace
 
-  BarModel::BarModel(const Scene::Bar &bar)
+  BarModel::BarModel(const BarParameters &bar)
     : length_(bar.length)
     , young_modulus_(bar.young_modulus)
     , density_(bar.density)
@@ -94,13 +96,13 @@ namespace nsm
   double BarModel::cross_section(const double x) const
   {
     const double a = section_->value(dealii::Point<1>(x));
-    if (!(a >= 1 / Scene::magnitude_limit && a <= Scene::magnitude_limit))
+    if (!(a >= 1 / magnitude_limit && a <= magnitude_limit))
       {
         std::ostringstream msg;
         msg.precision(17);
         msg << "parameter 'Bar/Cross section' = '" << printable(expression_)
-            << "' is out of range: allowed A(x) > 0, within [" << scene_entries::format_value(1 / Scene::magnitude_limit)
-            << ", " << scene_entries::format_value(Scene::magnitude_limit) << "] on [0, L], but A("
+            << "' is out of range: allowed A(x) > 0, within [" << scene_entries::format_value(1 / magnitude_limit)
+            << ", " << scene_entries::format_value(magnitude_limit) << "] on [0, L], but A("
             << scene_entries::format_value(x) << ") = " << scene_entries::format_value(a);
         throw InputError(msg.str());
       }

@@ -5,7 +5,7 @@
 
 namespace nsm
 {
-  ContactLaw::ContactLaw(const Scene::Contact &contact)
+  ContactLaw::ContactLaw(const ContactParameters &contact)
     : rigid_(contact.wall == Wall::rigid)
     , gap_(contact.gap)
     , force_weight_(rigid_ ? 1.0 : 0.0)

@@ -18,7 +18,7 @@
 namespace nsm
 {
   Discretisation::Discretisation(const BarModel                &bar,
-                                 const Scene::Discretisation &params)
+                                 const DiscretisationParameters &params)
     : bar_(bar)
     , quadrature_points_(params.quadrature_points != 0 ?
                            params.quadrature_points :
@@ -45,7 +45,7 @@ namespace nsm
     setup_and_assemble();
   }
 
-  void Discretisation::make_mesh(const Scene::Discretisation &params)
+  void Discretisation::make_mesh(const DiscretisationParameters &params)
   {
     // Cell sizes: uniform, except the last `Layers` cells, which shrink by
     // `Ratio` from one to the next towards the contact end.

@@ -1,4 +1,5 @@
 #include <nsm/model/memory_estimate.h>
+#include <nsm/scene/scene.h>
 
 #include <sys/resource.h>
 
@@ -32,7 +33,7 @@ namespace nsm
 
     /// The most cells a mesh of the scene reaches: adaptive refinement
     /// splits at most Refine fraction of the cells in each step.
-    double largest_cells(const Scene::Discretisation &d)
+    double largest_cells(const DiscretisationParameters &d)
     {
       const double cells = d.cells;
       if (d.refinement != Refinement::adaptive)
@@ -64,7 +65,7 @@ namespace nsm
     return static_cast<std::size_t>(std::min(bytes, 1e19));
   }
 
-  std::size_t available_memory(const Scene::Resources &resources)
+  std::size_t available_memory(const ResourcesParameters &resources)
   {
     double available = resources.memory_limit > 0 ? resources.memory_limit * (1 << 20) :
                                                     proc_value("/proc/meminfo", "MemAvailable");
@@ -79,7 +80,7 @@ namespace nsm
     return available > 0 ? static_cast<std::size_t>(available) : 0;
   }
 
-  void check_memory(const std::size_t bytes, const Scene::Resources &resources, const Scene::Discretisation &d)
+  void check_memory(const std::size_t bytes, const ResourcesParameters &resources, const DiscretisationParameters &d)
   {
     const double need = bytes, have = available_memory(resources);
     if (need <= have)
@@ -96,7 +97,7 @@ namespace nsm
     throw InputError(s.str());
   }
 
-  std::string memory_note(const std::size_t need, const Scene::Resources &resources)
+  std::string memory_note(const std::size_t need, const ResourcesParameters &resources)
   {
     std::ostringstream s;
     s.precision(3);

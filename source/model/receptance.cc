@@ -1,3 +1,4 @@
+#include <nsm/base/errors.h>
 #include <nsm/model/near_modes.h>
 #include <nsm/model/receptance.h>
 #include <nsm/model/shifted_factor.h>
@@ -23,7 +24,7 @@ namespace nsm
   } // namespace
 
   Receptance::Receptance(const Discretisation    &discretisation,
-                         const Scene::Receptance &params,
+                         const ReceptanceParameters &params,
                          const double             omega_max)
     : discretisation_(discretisation)
     , method_(params.method)

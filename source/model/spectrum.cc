@@ -1,3 +1,4 @@
+#include <nsm/base/errors.h>
 #include <nsm/model/spectrum.h>
 #include <nsm/model/sturm_sequence.h>
 

@@ -1,3 +1,4 @@
+#include <nsm/base/errors.h>
 #include <nsm/output/field_output.h>
 
 #include <deal.II/base/data_out_base.h>

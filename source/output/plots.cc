@@ -126,7 +126,7 @@ namespace nsm
     }
   } // namespace
 
-  PlotResult make_plots(const Scene::Contact &contact, const std::string &directory, const std::string &caption)
+  PlotResult make_plots(const ContactParameters &contact, const std::string &directory, const std::string &caption)
   {
     std::ostringstream gap;
     gap.precision(17);

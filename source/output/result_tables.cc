@@ -49,7 +49,7 @@ namespace nsm
     return table;
   }
 
-  CsvTable receptance_table(const Receptance &receptance, const Scene::Output &output)
+  CsvTable receptance_table(const Receptance &receptance, const OutputParameters &output)
   {
     CsvTable table{"receptance.csv", {"omega", "gamma", "dgamma_domega2"}, {}};
     for (const double w : output.receptance_frequencies)
@@ -132,7 +132,7 @@ namespace nsm
     return table;
   }
 
-  CsvTable grazing_table(const Discretisation &d, const unsigned int mode, const Scene::Contact &contact)
+  CsvTable grazing_table(const Discretisation &d, const unsigned int mode, const ContactParameters &contact)
   {
     const ModeFrequencies f = mode_frequencies(d, mode, contact);
     return {"grazing.csv", {"mode", "omega", "energy"}, {{double(mode), f.free, f.grazing_energy}}};

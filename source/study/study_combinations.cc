@@ -83,7 +83,7 @@ namespace nsm
       unsigned int most = 0;
       for (const StudyCombination &c : combinations)
         {
-          const Scene::Discretisation &d = c.scene.scene.discretisation;
+          const DiscretisationParameters &d = c.scene.scene.discretisation;
           if (d.refinement == Refinement::adaptive)
             return;
           most = std::max(most, d.cells * d.degree);

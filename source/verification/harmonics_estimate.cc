@@ -17,7 +17,7 @@ namespace nsm
     constexpr double upper_share = 0.9;
   } // namespace
 
-  SameMotionSolve::SameMotionSolve(HarmonicBalance &model, const Scene::HarmonicBalance &params)
+  SameMotionSolve::SameMotionSolve(HarmonicBalance &model, const HarmonicBalanceParameters &params)
     : model_(model)
     , tolerance_(params.tolerance)
     , full_steps_(model, params)
@@ -45,7 +45,7 @@ namespace nsm
     std::vector<double> estimates(backbone.points.size(), std::numeric_limits<double>::quiet_NaN());
     if (branch.harmonic_balance.harmonics < 2)
       return estimates;
-    Scene::HarmonicBalance fewer = branch.harmonic_balance;
+    HarmonicBalanceParameters fewer = branch.harmonic_balance;
     fewer.harmonics              = branch.harmonic_balance.harmonics / 2;
     HarmonicBalance model(fewer, branch.contact, hb.receptance());
     SameMotionSolve solve(model, fewer);

@@ -20,7 +20,7 @@ namespace nsm
   } // namespace
 
   PeriodicOrbit refine_point(const PeriodicField &field, const Discretisation &discretisation, const ContactLaw &law,
-                             const Scene::Output &output, const dealii::Vector<double> &fallback)
+                             const OutputParameters &output, const dealii::Vector<double> &fallback)
   {
     const OrbitSettings settings{orbit_tolerance, output.stability_margin, true};
     PeriodicOrbit orbit = find_periodic_orbit(discretisation, law, field.omega(), field.displacement(0.0), settings);
@@ -32,7 +32,7 @@ namespace nsm
   std::vector<std::optional<PeriodicOrbit>> refine_backbone(HarmonicBalance      &hb,
                                                             const Discretisation &discretisation,
                                                             const Backbone       &backbone,
-                                                            const Scene::Output  &output,
+                                                            const OutputParameters  &output,
                                                             Progress             &progress,
                                                             std::vector<std::optional<PeriodicOrbit>> known)
   {
@@ -65,7 +65,7 @@ namespace nsm
   }
 
   std::string refinement_summary(const Backbone &backbone, const std::vector<std::optional<PeriodicOrbit>> &orbits,
-                                 const Scene::Output &output)
+                                 const OutputParameters &output)
   {
     unsigned int        shot = 0, stable = 0;
     std::vector<double> errors;

@@ -24,7 +24,7 @@ namespace nsm
 
   void write_refinement_checkpoint(std::ostream &out, const Backbone &backbone,
                                    const std::vector<std::optional<PeriodicOrbit>> &orbits,
-                                   const Scene::Output &output)
+                                   const OutputParameters &output)
   {
     out << refinement_format_line << "\nsettings " << output.refine_every << '\n';
     write_point_lines(out, backbone, orbits, [&](const PeriodicOrbit &o) {
@@ -39,7 +39,7 @@ namespace nsm
 
   std::vector<std::optional<PeriodicOrbit>> read_refinement_checkpoint(const std::string   &path,
                                                                        const Backbone      &backbone,
-                                                                       const Scene::Output &output,
+                                                                       const OutputParameters &output,
                                                                        const unsigned int   dofs)
   {
     std::vector<std::optional<PeriodicOrbit>> known(backbone.points.size());

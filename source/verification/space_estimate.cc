@@ -18,7 +18,7 @@ namespace nsm
     constexpr unsigned int space_samples = 15;
   } // namespace
 
-  SpaceReference::SpaceReference(const Discretisation &model, const Scene::Receptance &receptance,
+  SpaceReference::SpaceReference(const Discretisation &model, const ReceptanceParameters &receptance,
                                  const BranchParameters &branch)
     : branch_(branch)
     , reference_(std::make_unique<Discretisation>(model, model.fe().degree, 1))

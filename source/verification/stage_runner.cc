@@ -4,7 +4,7 @@
 
 namespace nsm
 {
-  std::vector<std::string> StageRunner::mesh(const BarModel &bar, const Scene::Discretisation &parameters,
+  std::vector<std::string> StageRunner::mesh(const BarModel &bar, const DiscretisationParameters &parameters,
                                              const std::function<double(const Discretisation &)> &band,
                                              const double progress_every)
   {
@@ -21,13 +21,13 @@ namespace nsm
     });
   }
 
-  void StageRunner::set_up_receptance(const Scene::Receptance &parameters, const double band)
+  void StageRunner::set_up_receptance(const ReceptanceParameters &parameters, const double band)
   {
     timed("receptance set-up",
           [&] { receptance_ = std::make_unique<Receptance>(*discretisation_, parameters, band); });
   }
 
-  void StageRunner::harmonic_balance(const Scene::HarmonicBalance &parameters, const Scene::Contact &contact,
+  void StageRunner::harmonic_balance(const HarmonicBalanceParameters &parameters, const ContactParameters &contact,
                                      const BranchParameters &branch, const Resume &resume)
   {
     timed("harmonic balance", [&] {

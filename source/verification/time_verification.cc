@@ -176,7 +176,7 @@ namespace nsm
   }
 
   PointVerification verify_in_time(const PeriodicField &field, const Discretisation &discretisation,
-                                   const ContactLaw &law, const Scene::Output &o)
+                                   const ContactLaw &law, const OutputParameters &o)
   {
     const ContactTimeIntegrator integrator(discretisation, law, field.period(), o.verify_steps);
     dealii::Vector<double>      u = field.displacement(0.0);
@@ -195,7 +195,7 @@ namespace nsm
     HarmonicBalance                                     &hb,
     const Discretisation                                &discretisation,
     const Backbone                                      &backbone,
-    const Scene::Output                                 &o,
+    const OutputParameters                                 &o,
     Progress                                            &progress,
     const std::vector<std::optional<PointVerification>> &known)
   {

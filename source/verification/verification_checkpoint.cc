@@ -22,7 +22,7 @@ namespace nsm
 
   void write_verification_checkpoint(std::ostream &out, const Backbone &backbone,
                                      const std::vector<std::optional<PointVerification>> &verifications,
-                                     const Scene::Output &output)
+                                     const OutputParameters &output)
   {
     out << verification_format_line << "\nsettings " << output.verify_steps << ' ' << output.verify_periods << '\n';
     write_point_lines(out, backbone, verifications, [&](const PointVerification &v) {
@@ -33,7 +33,7 @@ namespace nsm
 
   std::vector<std::optional<PointVerification>> read_verification_checkpoint(const std::string   &path,
                                                                              const Backbone      &backbone,
-                                                                             const Scene::Output &output)
+                                                                             const OutputParameters &output)
   {
     std::vector<std::optional<PointVerification>> known(backbone.points.size());
     CheckpointReader                              reader(path);

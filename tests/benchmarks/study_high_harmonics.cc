@@ -65,7 +65,7 @@ namespace
   void padded_start(const nsm::Backbone &coarse, const unsigned int from, const unsigned int to, const double beyond)
   {
     testing_helpers::HbModel    model(seed(to));
-    nsm::Scene::HarmonicBalance leap = model.scene.harmonic_balance;
+    nsm::HarmonicBalanceParameters leap = model.scene.harmonic_balance;
     leap.line_search                 = "Polynomial";
     leap.max_iterations = leap.iterations() * 2;
     nsm::NewtonSolver   newton(model.hb, model.scene.harmonic_balance), leap_newton(model.hb, leap);

@@ -82,7 +82,7 @@ MUTATIONS = [
      "f -= near.contact_residues[j] / (lambda[j] - s);",
      "f -= 0 * near.contact_residues[j] / (lambda[j] - s);"),
     ("verification's wall at 2 g0", "source/verification/time_verification.cc",
-     "    : law_(law)", "    : law_(ContactLaw(Scene::Contact{true, 2 * law.gap(), law.gap_weight(), ForceSign::physical}))"),
+     "    : law_(law)", "    : law_(ContactLaw(ContactParameters{true, 2 * law.gap(), law.gap_weight(), ForceSign::physical}))"),
     ("verification loses the contact DoF's mass", "source/model/mass_redistribution.cc",
      "removed * std::abs(e->value()) / coupling", "0 * removed * std::abs(e->value()) / coupling"),
     ("Contact mass = redistributed keeps the contact DoF's mass", "source/model/discretisation.cc",

@@ -28,9 +28,9 @@ namespace testing_helpers
   /// The wall at `gap` (rigid unless told; a compliant one of `stiffness`),
   /// with the physical force sign.
   inline nsm::ContactLaw wall_at(const double gap, const nsm::Wall wall = nsm::Wall::rigid,
-                                 const double stiffness = nsm::Scene::Contact().stiffness)
+                                 const double stiffness = nsm::ContactParameters().stiffness)
   {
-    nsm::Scene::Contact contact;
+    nsm::ContactParameters contact;
     contact.gap       = gap;
     contact.wall      = wall;
     contact.stiffness = stiffness;

@@ -98,7 +98,7 @@ TEST(BranchContext, APointIsAContactMotionThatSolvesTheEquations)
 
 TEST(SequentialSteps, StaysOnBranchBoundsTheChangeOfTheSolutionAndOfTheContact)
 {
-  nsm::Scene::Continuation c; // a fifth of the solution, 0.01 of the contact fraction
+  nsm::ContinuationParameters c; // a fifth of the solution, 0.01 of the contact fraction
   nsm::BackbonePoint       from{}, to{};
   from.x = {3, 4}; // norm 5: a change of norm up to 1 stays
   to.x   = {3, 4.99};

@@ -220,7 +220,7 @@ TEST(CompliantWall, AutomaticRangeEndsShortOfTheSpringsBilinearLimit)
       EXPECT_GT(f.bilinear, M_PI / 2) << k;
       EXPECT_LT(f.bilinear, 2 * M_PI / 3) << k;
 
-      nsm::Scene::Continuation c = scene.continuation;
+      nsm::ContinuationParameters c = scene.continuation;
       c.omega_max                = 0;
       const auto notes           = nsm::resolve_automatic_range(c, scene.contact, {}, model.discretisation);
       EXPECT_NEAR(c.omega_max, f.free + nsm::automatic_range_share * (f.bilinear - f.free), 1e-14) << k;

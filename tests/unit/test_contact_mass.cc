@@ -104,7 +104,7 @@ TEST(ContactMass, ReceptanceIsTheInverseOfTheCondensedDynamicStiffness)
                                      std::pair{nsm::ReceptanceMethod::modal, 10.0},
                                      std::pair{nsm::ReceptanceMethod::modal, 0.0}})
     {
-      nsm::Scene::Receptance params;
+      nsm::ReceptanceParameters params;
       params.method = method;
       const nsm::Receptance gamma(d, params, band);
       for (const double w : {0.0, 0.7, 1.9, 2.6, 5.3, 9.1})
@@ -118,7 +118,7 @@ TEST(ContactMass, ReceptanceIsTheInverseOfTheCondensedDynamicStiffness)
   // pole is infinite) against (lambda_j - w^2) gamma(w) at w^2 = lambda_j
   // (1 -+ 1e-6), averaged: the smooth part of gamma cancels to first order
   // and an error e in lambda_j enters as (e / 1e-6 lambda_j)^2.
-  nsm::Scene::Receptance params;
+  nsm::ReceptanceParameters params;
   params.method = nsm::ReceptanceMethod::direct;
   const nsm::Receptance direct(d, params, 10.0);
   const nsm::ModalData  modes = nsm::compute_spectrum(d, nsm::EndCondition::clamped_free, 0, true);

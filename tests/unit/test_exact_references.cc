@@ -17,14 +17,14 @@
 
 namespace
 {
-  std::optional<nsm::ExactBar> exact_of(const nsm::Scene::Bar &bar)
+  std::optional<nsm::ExactBar> exact_of(const nsm::BarParameters &bar)
   {
     return nsm::ExactBar::of(nsm::BarModel(bar));
   }
 
-  nsm::Scene::Bar bar(const std::string &section, double length = 1, double young = 1, double density = 1)
+  nsm::BarParameters bar(const std::string &section, double length = 1, double young = 1, double density = 1)
   {
-    nsm::Scene::Bar b;
+    nsm::BarParameters b;
     b.cross_section = section;
     b.length        = length;
     b.young_modulus = young;
@@ -52,7 +52,7 @@ TEST(ExactReferences, UnitBarsMatchTheTestFormulas)
     EXPECT_NEAR(taper->receptance(omega), exact::tapered_receptance(omega), 1e-13 * std::abs(exact::tapered_receptance(omega)));
 
   const auto uniform = exact_of(bar("1"));
-  nsm::Scene::Contact contact;
+  nsm::ContactParameters contact;
   contact.gap = 1e-3;
   const nsm::ContactLaw rigid_wall(contact);
   for (const double omega : {0.0, 0.3, 1.0, 2.5, 7.0})

@@ -191,7 +191,7 @@ namespace
     scene.continuation.energy_max = 1;
     scene.continuation.method     = method;
     // The default gap search: the labels leave other families out.
-    scene.continuation.fill_gaps_wider_than = nsm::Scene::Continuation().fill_gaps_wider_than;
+    scene.continuation.fill_gaps_wider_than = nsm::ContinuationParameters().fill_gaps_wider_than;
     // Arclength records every tongue it climbs: 2142 points at M = 40.
     scene.continuation.max_steps = 5000;
     HbModel    model(scene);

@@ -45,7 +45,7 @@ namespace
     std::vector<Mesh> list{{"p1, 4000 cells", testing_helpers::bar_scene("1.5 - x", 1, 4000)},
                            {"p10, 20 cells", testing_helpers::bar_scene("1.5 - x", 10, 20)},
                            {"adaptive", testing_helpers::bar_scene("1.5 - x", 1, 40)}};
-    nsm::Scene::Discretisation &adaptive = list.back().scene.discretisation;
+    nsm::DiscretisationParameters &adaptive = list.back().scene.discretisation;
     adaptive.refinement                  = nsm::Refinement::adaptive;
     adaptive.adaptive_steps              = 10;
     adaptive.adaptive_tolerance          = 1e-14;

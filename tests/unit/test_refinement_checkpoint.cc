@@ -92,7 +92,7 @@ TEST(RefinementCheckpoint, AResumedRefinementEndsWithTheOrbitsOfAWholeOne)
       }
 
   // Another Refine every selects other points: nothing is kept.
-  nsm::Scene::Output other = scene.output;
+  nsm::OutputParameters other = scene.output;
   other.refine_every       = 5;
   for (const auto &o : nsm::read_refinement_checkpoint(path, backbone, other, model.discretisation.n_dofs()))
     EXPECT_FALSE(o.has_value());

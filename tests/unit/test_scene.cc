@@ -193,7 +193,7 @@ TEST(Scene, AutomaticNewtonIterationsGrowWithTheHarmonicsBeyond207)
 {
   // Max iterations = 0: 12 up to M = 207, then M / 16 (20 at M = 320, which
   // carries the seed bar's branch to 2.2 where 12 lose it); a set value wins.
-  nsm::Scene::HarmonicBalance hb;
+  nsm::HarmonicBalanceParameters hb;
   EXPECT_EQ(hb.max_iterations, 0u);
   for (const auto &[m, expected] : {std::pair{1u, 12u}, {160u, 12u}, {207u, 12u}, {208u, 13u}, {320u, 20u}, {1000u, 62u}})
     {

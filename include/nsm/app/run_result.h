@@ -5,7 +5,8 @@
 
 #include <nsm/continuation/backbone.h>
 #include <nsm/model/bar_model.h>
-#include <nsm/scene/scene.h>
+#include <nsm/scene/contact_parameters.h>
+#include <nsm/scene/continuation_parameters.h>
 
 #include <string>
 #include <vector>
@@ -13,5 +14,5 @@
 namespace nsm
 {
   std::vector<std::string> backbone_result(const Backbone &backbone, const BarModel &bar,
-                                           const Scene::Contact &contact, const Scene::Continuation &continuation);
+                                           const ContactParameters &contact, const ContinuationParameters &continuation);
 } // namespace nsm

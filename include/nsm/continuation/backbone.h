@@ -5,7 +5,8 @@
 
 #include <nsm/harmonic_balance/newton_solver.h>
 #include <nsm/harmonic_balance/solution_measures.h>
-#include <nsm/scene/scene.h>
+#include <nsm/scene/contact_parameters.h>
+#include <nsm/scene/continuation_parameters.h>
 
 #include <memory>
 #include <optional>
@@ -125,11 +126,11 @@ namespace nsm
   };
 
   /// Omega min <= omega <= Omega max.
-  bool in_omega_range(const Scene::Continuation &continuation, double omega);
+  bool in_omega_range(const ContinuationParameters &continuation, double omega);
 
   /// +1 where the branch leaves grazing upwards in Omega (the physical force
   /// sign), -1 with the paper's eq. (5): the one place this is derived.
-  double branch_direction(const Scene::Contact &contact);
+  double branch_direction(const ContactParameters &contact);
 
   /// The internal resonance nearest to omega (resonances not empty).
   const InternalResonance &nearest_resonance(const std::vector<InternalResonance> &resonances,

@@ -44,7 +44,7 @@ namespace nsm
   /// Newton for a guess far from the solution (a leap's, or a point solved
   /// again on another model): a line search and leap_iteration_factor times
   /// the iterations.
-  Scene::HarmonicBalance leap_parameters(Scene::HarmonicBalance params);
+  HarmonicBalanceParameters leap_parameters(HarmonicBalanceParameters params);
 
   /// The first point of the segment the backbone's last point belongs to.
   std::size_t last_segment_start(const Backbone &backbone);

@@ -5,22 +5,26 @@
 // the whole scene.
 #pragma once
 
-#include <nsm/scene/scene.h>
+#include <nsm/scene/contact_parameters.h>
+#include <nsm/scene/continuation_parameters.h>
+#include <nsm/scene/harmonic_balance_parameters.h>
 
 #include <string>
 #include <vector>
 
 namespace nsm
 {
+  struct Scene;
+
   struct BranchParameters
   {
     explicit BranchParameters(const Scene &scene);
 
-    Scene::Contact          contact;
-    Scene::HarmonicBalance  harmonic_balance;
-    Scene::Continuation     continuation;
-    double                  progress_every; ///< seconds; 0 = never (Output/Progress every)
+    ContactParameters         contact;
+    HarmonicBalanceParameters harmonic_balance;
+    ContinuationParameters    continuation;
+    double                    progress_every; ///< seconds; 0 = never (Output/Progress every)
     /// Scene::computation_entries: a resumed run must share them (checkpoint.h).
-    std::vector<std::string> computation_entries;
+    std::vector<std::string>  computation_entries;
   };
 } // namespace nsm

@@ -12,7 +12,7 @@ namespace nsm
   /// solution itself, or whose contact fraction changed by more than `Max
   /// contact change`, has jumped to another branch (over a fold), not followed
   /// it.
-  bool stays_on_branch(const BackbonePoint &from, const BackbonePoint &to, const Scene::Continuation &c);
+  bool stays_on_branch(const BackbonePoint &from, const BackbonePoint &to, const ContinuationParameters &c);
 
   /// Steps from the backbone's last point; the step grows by 1.5 after a
   /// solve of at most 4 iterations, up to the context's max_step(), and is

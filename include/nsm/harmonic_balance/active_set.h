@@ -10,11 +10,11 @@
 // Gram matrix follows from those integrals (structured_gram.h).
 #pragma once
 
-#include <nsm/scene/scene.h>
 #include <nsm/harmonic_balance/series_samples.h>
 #include <nsm/harmonic_balance/structured_gram.h>
 #include <nsm/harmonic_balance/trigonometric.h>
 #include <nsm/harmonic_balance/trigonometric_series.h>
+#include <nsm/scene/harmonic_balance_parameters.h>
 
 #include <vector>
 

@@ -21,7 +21,8 @@
 #include <nsm/harmonic_balance/active_set.h>
 #include <nsm/model/contact_law.h>
 #include <nsm/model/receptance.h>
-#include <nsm/scene/scene.h>
+#include <nsm/scene/contact_parameters.h>
+#include <nsm/scene/harmonic_balance_parameters.h>
 #include <nsm/harmonic_balance/solution_measures.h>
 #include <nsm/harmonic_balance/trigonometric.h>
 
@@ -52,7 +53,7 @@ namespace nsm
   class HarmonicBalance
   {
   public:
-    HarmonicBalance(const Scene::HarmonicBalance &params, const Scene::Contact &contact,
+    HarmonicBalance(const HarmonicBalanceParameters &params, const ContactParameters &contact,
                     const Receptance &receptance);
 
     /// Unknowns: x_0 (mean), then per harmonic k cos (cosine basis) or sin

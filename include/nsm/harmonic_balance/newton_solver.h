@@ -2,7 +2,7 @@
 #pragma once
 
 #include <nsm/harmonic_balance/harmonic_balance.h>
-#include <nsm/scene/scene.h>
+#include <nsm/scene/harmonic_balance_parameters.h>
 
 #include <memory>
 #include <vector>
@@ -45,7 +45,7 @@ namespace nsm
   class NewtonSolver
   {
   public:
-    NewtonSolver(HarmonicBalance &hb, const Scene::HarmonicBalance &params);
+    NewtonSolver(HarmonicBalance &hb, const HarmonicBalanceParameters &params);
     ~NewtonSolver();
     NewtonResult solve(double omega, const std::vector<double> &guess);
 

@@ -4,7 +4,7 @@
 #pragma once
 
 #include <nsm/harmonic_balance/harmonic_balance.h>
-#include <nsm/scene/scene.h>
+#include <nsm/scene/harmonic_balance_parameters.h>
 
 #include <LOCA_LAPACK.H>
 #include <NOX.H>
@@ -106,8 +106,8 @@ namespace nsm
   /// `tightening`: LOCA tests the norm of its extended (arclength) system,
   /// so it gets a tighter tolerance for the HB residual to meet the scene's.
   Teuchos::RCP<NOX::StatusTest::Generic>
-  newton_status(const Scene::HarmonicBalance &params, double tightening = 1.0);
+  newton_status(const HarmonicBalanceParameters &params, double tightening = 1.0);
 
   /// Full Newton directions with the scene's line search; only errors printed.
-  void set_newton_parameters(Teuchos::ParameterList &nox, const Scene::HarmonicBalance &params);
+  void set_newton_parameters(Teuchos::ParameterList &nox, const HarmonicBalanceParameters &params);
 } // namespace nsm

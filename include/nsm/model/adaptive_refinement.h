@@ -19,7 +19,7 @@ namespace nsm
   /// weighted equally. Returns one line per step for the run summary, and
   /// reports them to `progress` as they come.
   std::vector<std::string> refine_adaptively(Discretisation              &discretisation,
-                                             const Scene::Discretisation &params,
+                                             const DiscretisationParameters &params,
                                              double                       band_max,
                                              Progress                    *progress = nullptr);
 } // namespace nsm

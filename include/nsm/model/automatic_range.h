@@ -5,7 +5,8 @@
 #pragma once
 
 #include <nsm/model/discretisation.h>
-#include <nsm/scene/scene.h>
+#include <nsm/scene/contact_parameters.h>
+#include <nsm/scene/continuation_parameters.h>
 
 #include <string>
 #include <vector>
@@ -33,7 +34,7 @@ namespace nsm
   };
 
   ModeFrequencies mode_frequencies(const Discretisation &discretisation, unsigned int mode,
-                                   const Scene::Contact &contact);
+                                   const ContactParameters &contact);
 
   /// Share of the way from w_j to the bilinear estimate at which an
   /// automatic range ends. On the uniform bar the energy there is 40 E_g
@@ -47,6 +48,6 @@ namespace nsm
   /// Energy max = Energy max over grazing x E_g. Returns a summary note for
   /// each value set. Throws InputError naming the parameter when Omega min or
   /// a field frequency (Output/Fields at) lies beyond the automatic Omega max.
-  std::vector<std::string> resolve_automatic_range(Scene::Continuation &c, const Scene::Contact &contact,
+  std::vector<std::string> resolve_automatic_range(ContinuationParameters &c, const ContactParameters &contact,
                                                    const std::vector<double> &fields_at, const Discretisation &d);
 } // namespace nsm

@@ -6,13 +6,14 @@
 
 #include <nsm/model/bar_model.h>
 #include <nsm/model/discretisation.h>
-#include <nsm/scene/scene.h>
 
 #include <string>
 #include <vector>
 
 namespace nsm
 {
+  struct Scene;
+
   /// The eigenfrequencies up to which Cells = 0 resolves the band: the
   /// chosen mesh's agree with twice its cells' to this. In the band check's
   /// measurements halving the cells moved the main points' energy by 1 to 43

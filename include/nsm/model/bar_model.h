@@ -1,7 +1,7 @@
 // The physical bar: material, length and the cross-section law A(x).
 #pragma once
 
-#include <nsm/scene/scene.h>
+#include <nsm/scene/bar_parameters.h>
 
 #include <memory>
 #include <vector>
@@ -19,7 +19,7 @@ namespace nsm
   public:
     /// Parses the cross-section expression; throws InputError if it is
     /// malformed or not positive at a fine sampling of [0, L].
-    explicit BarModel(const Scene::Bar &bar);
+    explicit BarModel(const BarParameters &bar);
     ~BarModel();
 
     double length() const { return length_; }

@@ -14,7 +14,7 @@
 // bar in -x) and s = -1 for the paper's eq. (5) read literally.
 #pragma once
 
-#include <nsm/scene/scene.h>
+#include <nsm/scene/contact_parameters.h>
 
 #include <string>
 #include <vector>
@@ -24,7 +24,7 @@ namespace nsm
   class ContactLaw
   {
   public:
-    explicit ContactLaw(const Scene::Contact &contact);
+    explicit ContactLaw(const ContactParameters &contact);
 
     /// g0.
     double gap() const { return gap_; }

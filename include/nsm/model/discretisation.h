@@ -3,7 +3,7 @@
 #pragma once
 
 #include <nsm/model/bar_model.h>
-#include <nsm/scene/scene.h>
+#include <nsm/scene/discretisation_parameters.h>
 
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_q.h>
@@ -19,7 +19,7 @@ namespace nsm
   class Discretisation
   {
   public:
-    Discretisation(const BarModel &bar, const Scene::Discretisation &params);
+    Discretisation(const BarModel &bar, const DiscretisationParameters &params);
 
     /// The same mesh with another FE degree (the adaptive error estimate
     /// compares degrees p and p + 1), each cell split `halvings` times (the
@@ -54,7 +54,7 @@ namespace nsm
     std::vector<double> support_points() const;
 
   private:
-    void make_mesh(const Scene::Discretisation &params);
+    void make_mesh(const DiscretisationParameters &params);
     void setup_and_assemble();
 
     const BarModel              &bar_;

@@ -4,6 +4,7 @@
 
 #include <nsm/model/discretisation.h>
 #include <nsm/model/spectrum.h>
+#include <nsm/scene/receptance_parameters.h>
 
 #include <deal.II/lac/vector.h>
 
@@ -24,7 +25,7 @@ namespace nsm
     /// `omega_max`: the largest frequency this receptance will be asked for;
     /// the poles below it are counted for the phase angle.
     Receptance(const Discretisation      &discretisation,
-               const Scene::Receptance   &params,
+               const ReceptanceParameters   &params,
                double                     omega_max);
 
     ReceptanceValue operator()(double omega) const;

@@ -1,7 +1,7 @@
 // The plots of a run or a study, drawn by the shipped Python script.
 #pragma once
 
-#include <nsm/scene/scene.h>
+#include <nsm/scene/contact_parameters.h>
 
 #include <string>
 #include <vector>
@@ -29,5 +29,5 @@ namespace nsm
   /// computed). A plot
   /// is an output like any other: its failure never discards the files
   /// computed, and is reported to the caller, not thrown.
-  PlotResult make_plots(const Scene::Contact &contact, const std::string &directory, const std::string &caption);
+  PlotResult make_plots(const ContactParameters &contact, const std::string &directory, const std::string &caption);
 } // namespace nsm

@@ -4,7 +4,8 @@
 
 #include <nsm/continuation/continuation.h>
 #include <nsm/base/csv.h>
-#include <nsm/scene/scene.h>
+#include <nsm/scene/contact_parameters.h>
+#include <nsm/scene/output_parameters.h>
 #include <nsm/verification/periodic_orbit.h>
 #include <nsm/verification/time_verification.h>
 
@@ -26,7 +27,7 @@ namespace nsm
 
   /// receptance.csv: gamma and d gamma / d omega^2 at Output/Receptance
   /// frequencies.
-  CsvTable receptance_table(const Receptance &receptance, const Scene::Output &output);
+  CsvTable receptance_table(const Receptance &receptance, const OutputParameters &output);
 
   /// backbone.csv: one row per point; energy_error_estimate if `estimates`
   /// (one per point, NaN: an empty cell) is not empty; the verification columns if
@@ -48,7 +49,7 @@ namespace nsm
   /// grazing.csv: the traced mode j, w_j and its grazing energy E_g =
   /// w_j^2 g0^2 / (2 phi_j(L)^2), the linear mode's energy with u(L) = g0
   /// (the plots' energy scale).
-  CsvTable grazing_table(const Discretisation &discretisation, unsigned int mode, const Scene::Contact &contact);
+  CsvTable grazing_table(const Discretisation &discretisation, unsigned int mode, const ContactParameters &contact);
 
   /// resonances.csv: the internal resonances w_j / k in the range.
   CsvTable resonance_table(const std::vector<InternalResonance> &resonances);

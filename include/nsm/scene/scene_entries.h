@@ -2,6 +2,8 @@
 // values as text, range checks with one-line messages, and named options.
 #pragma once
 
+#include <nsm/scene/parameter_limits.h>
+
 #include <deal.II/base/parameter_handler.h>
 
 #include <string>
@@ -10,12 +12,23 @@
 
 namespace nsm::scene_entries
 {
+  /// The names every subsection's declare and parse use.
+  using dealii::ParameterHandler;
+  namespace Patterns = dealii::Patterns;
+
   /// The shortest text that reads back as the same double.
   std::string format_value(double value);
 
   inline std::string text(const double value) { return format_value(value); }
   inline std::string text(const unsigned int value) { return std::to_string(value); }
   inline std::string text(const bool value) { return value ? "true" : "false"; }
+
+  /// The pattern of a dimensional input (L, E, rho, g0, alpha, k):
+  /// [1 / magnitude_limit, magnitude_limit].
+  inline dealii::Patterns::Double dimensional()
+  {
+    return dealii::Patterns::Double(1 / magnitude_limit, magnitude_limit);
+  }
 
   /// Throws InputError "parameter 'P' = value is out of range: allowed A"
   /// unless `ok`.

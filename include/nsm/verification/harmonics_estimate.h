@@ -6,7 +6,7 @@
 #include <nsm/continuation/branch_parameters.h>
 #include <nsm/harmonic_balance/harmonic_balance.h>
 #include <nsm/harmonic_balance/newton_solver.h>
-#include <nsm/scene/scene.h>
+#include <nsm/scene/harmonic_balance_parameters.h>
 
 #include <string>
 #include <vector>
@@ -30,7 +30,7 @@ namespace nsm
   class SameMotionSolve
   {
   public:
-    SameMotionSolve(HarmonicBalance &model, const Scene::HarmonicBalance &params);
+    SameMotionSolve(HarmonicBalance &model, const HarmonicBalanceParameters &params);
 
     /// |E / E_point - 1| of the solution found, NaN if Newton finds no
     /// contact motion or one more than same_motion_contact_change away.

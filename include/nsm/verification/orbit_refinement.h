@@ -8,6 +8,7 @@
 #include <nsm/model/discretisation.h>
 #include <nsm/verification/fields.h>
 #include <nsm/verification/periodic_orbit.h>
+#include <nsm/scene/output_parameters.h>
 
 #include <optional>
 #include <string>
@@ -25,7 +26,7 @@ namespace nsm
   /// Shoots from a point's HB motion at t = 0, `field` (and, if that fails,
   /// from `fallback`, a nearby orbit's displacement, when not empty).
   PeriodicOrbit refine_point(const PeriodicField &field, const Discretisation &discretisation, const ContactLaw &law,
-                             const Scene::Output &output, const dealii::Vector<double> &fallback);
+                             const OutputParameters &output, const dealii::Vector<double> &fallback);
 
   /// The orbits of every Refine every-th main point (empty for the others),
   /// each tried from its own HB point and then from the last orbit found.
@@ -34,7 +35,7 @@ namespace nsm
   std::vector<std::optional<PeriodicOrbit>> refine_backbone(HarmonicBalance      &hb,
                                                             const Discretisation &discretisation,
                                                             const Backbone       &backbone,
-                                                            const Scene::Output  &output,
+                                                            const OutputParameters  &output,
                                                             Progress             &progress,
                                                             std::vector<std::optional<PeriodicOrbit>> known = {});
 
@@ -43,5 +44,5 @@ namespace nsm
 
   /// "refinement in time: ..." for the run summary.
   std::string refinement_summary(const Backbone &backbone, const std::vector<std::optional<PeriodicOrbit>> &orbits,
-                                 const Scene::Output &output);
+                                 const OutputParameters &output);
 } // namespace nsm

@@ -4,6 +4,7 @@
 
 #include <nsm/continuation/backbone.h>
 #include <nsm/verification/periodic_orbit.h>
+#include <nsm/scene/output_parameters.h>
 
 #include <iosfwd>
 #include <optional>
@@ -21,7 +22,7 @@ namespace nsm
   /// the Refine every they were selected with.
   void write_refinement_checkpoint(std::ostream &out, const Backbone &backbone,
                                    const std::vector<std::optional<PeriodicOrbit>> &orbits,
-                                   const Scene::Output &output);
+                                   const OutputParameters &output);
 
   /// The orbits at `path` for `backbone`, one slot per point, `stable` judged
   /// again against Stability margin; all empty if there is no file, or if it
@@ -30,6 +31,6 @@ namespace nsm
   /// the backbone's. `dofs`: the length of an orbit's displacement.
   std::vector<std::optional<PeriodicOrbit>> read_refinement_checkpoint(const std::string   &path,
                                                                        const Backbone      &backbone,
-                                                                       const Scene::Output &output,
+                                                                       const OutputParameters &output,
                                                                        unsigned int         dofs);
 } // namespace nsm

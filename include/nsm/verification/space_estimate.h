@@ -12,7 +12,7 @@
 #include <nsm/model/band_cells.h>
 #include <nsm/model/discretisation.h>
 #include <nsm/model/receptance.h>
-#include <nsm/scene/scene.h>
+#include <nsm/scene/receptance_parameters.h>
 
 #include <memory>
 #include <string>
@@ -25,7 +25,7 @@ namespace nsm
   public:
     /// FE_Q(p) on the model's mesh with every cell halved, and its
     /// receptance up to the band M Omega max of `branch`.
-    SpaceReference(const Discretisation &model, const Scene::Receptance &receptance,
+    SpaceReference(const Discretisation &model, const ReceptanceParameters &receptance,
                    const BranchParameters &branch);
 
     /// The model's eigenfrequencies up to M Omega max against the reference's.

@@ -15,7 +15,10 @@
 #include <nsm/model/bar_model.h>
 #include <nsm/model/discretisation.h>
 #include <nsm/model/receptance.h>
-#include <nsm/scene/scene.h>
+#include <nsm/scene/contact_parameters.h>
+#include <nsm/scene/discretisation_parameters.h>
+#include <nsm/scene/harmonic_balance_parameters.h>
+#include <nsm/scene/receptance_parameters.h>
 
 #include <functional>
 #include <memory>
@@ -43,12 +46,12 @@ namespace nsm
     /// that `band` reads off the initial mesh, with progress lines every
     /// `progress_every` seconds (0: none). Returns the refinement's notes.
     /// The mesh refers to `bar`, which must outlive the runner's use of it.
-    std::vector<std::string> mesh(const BarModel &bar, const Scene::Discretisation &parameters,
+    std::vector<std::string> mesh(const BarModel &bar, const DiscretisationParameters &parameters,
                                   const std::function<double(const Discretisation &)> &band,
                                   double progress_every = 0);
 
     /// "receptance set-up": gamma(w) of the contact node up to `band`.
-    void set_up_receptance(const Scene::Receptance &parameters, double band);
+    void set_up_receptance(const ReceptanceParameters &parameters, double band);
 
     /// Reads the checkpoint a continuation goes on from (with the model's
     /// harmonic balance, to check it was written for it).
@@ -57,7 +60,7 @@ namespace nsm
     /// "harmonic balance": the harmonic balance on the receptance, the
     /// internal resonances below the branch, and the backbone, traced from
     /// grazing or, given `resume`, on from the checkpoint it reads.
-    void harmonic_balance(const Scene::HarmonicBalance &parameters, const Scene::Contact &contact,
+    void harmonic_balance(const HarmonicBalanceParameters &parameters, const ContactParameters &contact,
                           const BranchParameters &branch, const Resume &resume = {});
 
     Discretisation                       &discretisation() { return *discretisation_; }

@@ -13,6 +13,7 @@
 #include <nsm/base/band_cholesky.h>
 #include <nsm/model/discretisation.h>
 #include <nsm/verification/fields.h>
+#include <nsm/scene/output_parameters.h>
 
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
@@ -97,7 +98,7 @@ namespace nsm
   /// Verifies a field's point: its state at t = 0 made admissible, integrated
   /// against the wall of `law` with the Output/Verify settings.
   PointVerification verify_in_time(const PeriodicField &field, const Discretisation &discretisation,
-                                   const ContactLaw &law, const Scene::Output &output);
+                                   const ContactLaw &law, const OutputParameters &output);
 
   /// Verifies every Verify every-th backbone point and every Fields every-th
   /// (the fields' points), against hb's contact law; empty for the others.
@@ -107,7 +108,7 @@ namespace nsm
     HarmonicBalance                                     &hb,
     const Discretisation                                &discretisation,
     const Backbone                                      &backbone,
-    const Scene::Output                                 &output,
+    const OutputParameters                                 &output,
     Progress                                            &progress,
     const std::vector<std::optional<PointVerification>> &known = {});
 } // namespace nsm

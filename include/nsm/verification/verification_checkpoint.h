@@ -20,7 +20,7 @@ namespace nsm
   /// they were computed with.
   void write_verification_checkpoint(std::ostream &out, const Backbone &backbone,
                                      const std::vector<std::optional<PointVerification>> &verifications,
-                                     const Scene::Output &output);
+                                     const OutputParameters &output);
 
   /// The results at `path` for `backbone`, one slot per point, `verified`
   /// judged again against Verify tolerance; all empty if there is no file, or
@@ -29,5 +29,5 @@ namespace nsm
   /// point that is not the backbone's.
   std::vector<std::optional<PointVerification>> read_verification_checkpoint(const std::string   &path,
                                                                              const Backbone      &backbone,
-                                                                             const Scene::Output &output);
+                                                                             const OutputParameters &output);
 } // namespace nsm

@@ -1,4 +1,5 @@
-#include <nsm/scene/scene.h>
+#include <nsm/scene/continuation_parameters.h>
+#include <nsm/scene/parameter_limits.h>
 #include <nsm/scene/scene_entries.h>
 
 #include <deal.II/base/parameter_handler.h>
@@ -9,8 +10,6 @@ namespace nsm
 {
   namespace
   {
-    using dealii::ParameterHandler;
-    namespace Patterns = dealii::Patterns;
     using namespace scene_entries;
 
     const Options<ContinuationMethod> continuation_methods = {
@@ -18,9 +17,9 @@ namespace nsm
       {"arclength", ContinuationMethod::arclength}};
   } // namespace
 
-  void Scene::Continuation::declare(ParameterHandler &prm)
+  void ContinuationParameters::declare(ParameterHandler &prm)
   {
-    const Continuation d;
+    const ContinuationParameters d;
     prm.enter_subsection("Continuation");
     prm.declare_entry("Method",
                       name_of(d.method, continuation_methods),
@@ -139,7 +138,7 @@ namespace nsm
     prm.leave_subsection();
   }
 
-  void Scene::Continuation::parse(ParameterHandler &prm)
+  void ContinuationParameters::parse(ParameterHandler &prm)
   {
     prm.enter_subsection("Continuation");
     method    = selected(prm.get("Method"), continuation_methods);

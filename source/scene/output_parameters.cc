@@ -1,5 +1,7 @@
+#include <nsm/base/errors.h>
 #include <nsm/base/text.h>
-#include <nsm/scene/scene.h>
+#include <nsm/scene/output_parameters.h>
+#include <nsm/scene/parameter_limits.h>
 #include <nsm/scene/scene_entries.h>
 
 #include <deal.II/base/parameter_handler.h>
@@ -10,14 +12,54 @@ namespace nsm
 {
   namespace
   {
-    using dealii::ParameterHandler;
-    namespace Patterns = dealii::Patterns;
     using namespace scene_entries;
   } // namespace
 
-  void Scene::Output::declare(ParameterHandler &prm)
+  std::vector<double> parse_frequency_list(const std::string &text,
+                                           const std::string &parameter)
   {
-    const Output d;
+    std::vector<double> values;
+    std::stringstream   items(text);
+    std::string         item;
+    while (std::getline(items, item, ','))
+      {
+        item = trim(item);
+        if (item.empty())
+          continue;
+        std::vector<std::string> parts;
+        std::stringstream        fields(item);
+        std::string              field;
+        while (std::getline(fields, field, ':'))
+          parts.push_back(trim(field));
+        if (parts.size() == 1)
+          values.push_back(parse_double(parts[0], parameter));
+        else if (parts.size() == 3)
+          {
+            const double a = parse_double(parts[0], parameter);
+            const double b = parse_double(parts[1], parameter);
+            const double n = parse_double(parts[2], parameter);
+            require(n >= 2 && n <= 1e6 && n == std::floor(n) && b > a,
+                    parameter,
+                    "ranges a:b:n with a < b and an integer n in [2, 1e6]",
+                    "'" + item + "'");
+            for (unsigned int i = 0; i < n; ++i)
+              values.push_back(a + (b - a) * i / (n - 1));
+          }
+        else
+          throw InputError("parameter '" + parameter + "': '" + item +
+                           "' is neither a number nor a range a:b:n");
+      }
+    for (const double w : values)
+      require(w >= 0 && w <= frequency_limit,
+              parameter,
+              "frequencies in [0, " + format_value(frequency_limit) + "]",
+              format_value(w));
+    return values;
+  }
+
+  void OutputParameters::declare(ParameterHandler &prm)
+  {
+    const OutputParameters d;
     prm.enter_subsection("Output");
     prm.declare_entry("Directory",
                       d.directory,
@@ -127,7 +169,7 @@ namespace nsm
     prm.leave_subsection();
   }
 
-  void Scene::Output::parse(ParameterHandler &prm)
+  void OutputParameters::parse(ParameterHandler &prm)
   {
     prm.enter_subsection("Output");
     directory = prm.get("Directory");

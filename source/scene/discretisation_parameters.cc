@@ -1,4 +1,5 @@
-#include <nsm/scene/scene.h>
+#include <nsm/scene/discretisation_parameters.h>
+#include <nsm/scene/parameter_limits.h>
 #include <nsm/scene/scene_entries.h>
 
 #include <deal.II/base/parameter_handler.h>
@@ -10,8 +11,6 @@ namespace nsm
 {
   namespace
   {
-    using dealii::ParameterHandler;
-    namespace Patterns = dealii::Patterns;
     using namespace scene_entries;
 
     const Options<Refinement> refinements = {{"none", Refinement::none},
@@ -21,7 +20,7 @@ namespace nsm
                                                  {"redistributed", ContactMass::redistributed}};
 
     /// Smallest cell of a graded mesh relative to L (make_mesh's sizes).
-    double graded_smallest_cell(const Scene::Discretisation &d, const unsigned int layers)
+    double graded_smallest_cell(const DiscretisationParameters &d, const unsigned int layers)
     {
       double total = d.cells - layers;
       for (unsigned int i = 1; i <= layers; ++i)
@@ -29,7 +28,7 @@ namespace nsm
       return std::pow(d.graded_ratio, layers) / total;
     }
 
-    void require_graded_cells_above_roundoff(const Scene::Discretisation &d)
+    void require_graded_cells_above_roundoff(const DiscretisationParameters &d)
     {
       if (graded_smallest_cell(d, d.graded_layers) >= d.smallest_cell())
         return;
@@ -47,7 +46,7 @@ namespace nsm
     }
     /// Graded refinement with no layer, or with cells that do not shrink, is
     /// the uniform mesh: a scene that asks for grading gets it or an error.
-    void require_grading_refines(const Scene::Discretisation &d)
+    void require_grading_refines(const DiscretisationParameters &d)
     {
       if (d.refinement != Refinement::graded)
         return;
@@ -63,9 +62,9 @@ namespace nsm
     }
   } // namespace
 
-  void Scene::Discretisation::declare(ParameterHandler &prm)
+  void DiscretisationParameters::declare(ParameterHandler &prm)
   {
-    const Discretisation d;
+    const DiscretisationParameters d;
     prm.enter_subsection("Discretisation");
     prm.declare_entry("Degree", text(d.degree), Patterns::Integer(1, 20), "FE_Q degree p.");
     prm.declare_entry("Cells",
@@ -131,7 +130,7 @@ namespace nsm
     prm.leave_subsection();
   }
 
-  void Scene::Discretisation::check_cells() const
+  void DiscretisationParameters::check_cells() const
   {
     require(graded_layers <= cells,
             "Discretisation/Graded/Layers",
@@ -141,7 +140,7 @@ namespace nsm
     require_graded_cells_above_roundoff(*this);
   }
 
-  void Scene::Discretisation::parse(ParameterHandler &prm)
+  void DiscretisationParameters::parse(ParameterHandler &prm)
   {
     prm.enter_subsection("Discretisation");
     degree            = get_unsigned(prm, "Degree");
@@ -170,7 +169,7 @@ namespace nsm
     prm.leave_subsection();
   }
 
-  double Scene::Discretisation::smallest_cell() const
+  double DiscretisationParameters::smallest_cell() const
   {
     return std::numeric_limits<double>::epsilon() * degree * degree / roundoff_limit;
   }
