@@ -138,7 +138,7 @@ namespace nsm
     // '-' is never read as an option.
     const std::string absolute = std::filesystem::absolute(directory, error).string();
     const ProgramEnd  end      = run_program(
-      {NSM_PYTHON, NSM_PLOT_SCRIPT, "--gap", gap.str(), "--wall", contact.wall == Wall::rigid ? "rigid" : "compliant",
+      {NSM_PYTHON, NSM_PLOT_SCRIPT, "--gap", gap.str(), "--wall", wall_name(contact.wall),
        "--caption=" + printable(caption), "--", absolute},
       log_path);
     PlotResult  result;

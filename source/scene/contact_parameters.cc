@@ -14,6 +14,8 @@ namespace nsm
     const Options<Wall> walls = {{"rigid", Wall::rigid}, {"compliant", Wall::compliant}};
   } // namespace
 
+  std::string wall_name(const Wall wall) { return name_of(wall, walls); }
+
   void ContactParameters::declare(ParameterHandler &prm)
   {
     const ContactParameters d;

@@ -3,6 +3,8 @@
 // entries; Scene (scene.h) composes the subsections.
 #pragma once
 
+#include <string>
+
 namespace dealii
 {
   class ParameterHandler;
@@ -35,4 +37,7 @@ namespace nsm
     static void declare(dealii::ParameterHandler &prm);
     void        parse(dealii::ParameterHandler &prm);
   };
+
+  /// The wall's name in Contact/Wall ("rigid", "compliant").
+  std::string wall_name(Wall wall);
 } // namespace nsm
