@@ -5,7 +5,7 @@
 // (sequential_steps.h) and pseudo-arclength (arclength_steps.h) implement
 // it; a new method is a class of its own file, a name in the scene's option
 // list (Continuation/Method) and a line in make_segment_tracer(). What a
-// method keeps between its segments is its own: the driver makes one tracer
+// method keeps past a segment (for a checkpoint or a leap) is its own: the driver makes one tracer
 // per backbone and asks it only what a checkpoint and a leap need.
 #pragma once
 
@@ -36,7 +36,7 @@ namespace nsm
 
     /// The backbone index where the last segment first turned back in Omega,
     /// if the method follows folds (arclength): the leap starts no further
-    /// (leap.h). None: the segment ended at its first fold.
+    /// (leap.h). None: the front is sought up to the segment's last point.
     virtual std::optional<std::size_t> first_fold() const { return std::nullopt; }
   };
 

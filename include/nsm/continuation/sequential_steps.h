@@ -42,7 +42,7 @@ namespace nsm
   SegmentEnd sequential_segment(BranchContext &context, Backbone &backbone, unsigned int segment,
                                 const StepLimits &limits);
 
-  /// The paper's method: sequential_segment, the step carried from segment
+  /// The paper's method: sequential_segment, the step kept past a segment
   /// to segment.
   class SequentialSteps : public SegmentTracer
   {
