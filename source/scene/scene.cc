@@ -3,16 +3,11 @@
 #include <nsm/scene/scene_entries.h>
 #include <nsm/scene/scene_file.h>
 
-#include <deal.II/base/exceptions.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <algorithm>
-#include <cmath>
 #include <filesystem>
-#include <limits>
-#include <sstream>
 #include <tuple>
-#include <utility>
 
 namespace nsm
 {
