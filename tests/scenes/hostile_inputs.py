@@ -2,7 +2,7 @@
 """Hostile and borderline scenes, one table row each (this file's, then
 hostile_round_two.py's).
 
-usage: hostile_inputs.py NSM_BAR [NAME_REGEX ...]
+usage: hostile_inputs.py NSM_BAR [--skip] [NAME_REGEX ...]
 Each row runs nsm-bar in a fresh directory on a scene text and checks: the
 exit code; for a failure, a single line on stderr naming the parameter (and
 the allowed range where the row gives it); that no file is left behind
@@ -20,6 +20,9 @@ import signal
 import subprocess
 import sys
 import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+import setup_runs  # noqa: E402
 
 W1 = 1.919137          # method.md: first clamped-free frequency, 6 digits
 LN3 = math.log(3.0)    # gamma(0) = int dx / (E A) for A = 1.5 - x
@@ -102,13 +105,20 @@ def foreign_directory(_):
         f.write("a user's file\n")
 
 
+def earlier(executable, scene_file):
+    """A setup's run, which must succeed (made once per table for a scene and a
+    directory state: setup_runs.py)."""
+    setup_runs.once(("run", executable, scene_file), lambda: subprocess.run(
+        [executable, scene_file], capture_output=True, check=True))
+
+
 def earlier_run(executable, extra_file=False):
     """A complete earlier output, and (extra_file) a file left in it by hand."""
     def setup(_):
         with open("first.prm", "w") as f:
             f.write(SMALL + output(Directory="out", Spectrum_modes=3,
                                    Receptance_frequencies="0, 1"))
-        subprocess.run([executable, "first.prm"], capture_output=True, check=True)
+        earlier(executable, "first.prm")
         if extra_file:
             with open("out/field_9_tip.csv", "w") as f:
                 f.write("left by hand\n")
@@ -125,7 +135,7 @@ def earlier_study(executable):
     def setup(_):
         with open("first.prm", "w") as f:
             f.write(SMALL + section("Study", Spectrum_modes=2) + output(Directory="out"))
-        subprocess.run([executable, "first.prm"], capture_output=True, check=True)
+        earlier(executable, "first.prm")
     return setup
 
 
@@ -155,7 +165,7 @@ def killed_run(executable):
     def setup(_):
         with open("first.prm", "w") as f:
             f.write(SMALL + spectrum_scene("out", 3))
-        subprocess.run([executable, "first.prm"], capture_output=True, check=True)
+        earlier(executable, "first.prm")
         before = snapshot("out")
         with open("second.prm", "w") as f:
             f.write(BACKBONE + output(Directory="out", Backbone="true", Fields_every=1,
@@ -535,14 +545,16 @@ def run_row(executable, row):
 
 
 def main():
-    """usage: hostile_inputs.py NSM_BAR [NAME_REGEX ...]: the rows whose name
-    matches one of the patterns (default: all)."""
+    """usage: hostile_inputs.py NSM_BAR [--skip] [NAME_REGEX ...]: the rows
+    whose name matches one of the patterns (default: all); with --skip, the
+    rows whose name matches none of them."""
     import hostile_round_two
     executable = os.path.abspath(sys.argv[1])
-    patterns = sys.argv[2:]
+    skip = sys.argv[2:3] == ["--skip"]
+    patterns = sys.argv[3:] if skip else sys.argv[2:]
     failures = []
     for row in rows(executable) + hostile_round_two.new_rows(executable):
-        if patterns and not any(re.search(p, row["name"]) for p in patterns):
+        if patterns and any(re.search(p, row["name"]) for p in patterns) == skip:
             continue
         start = time.time()
         try:

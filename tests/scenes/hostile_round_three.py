@@ -37,6 +37,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from hostile_inputs import SMALL, listing, output, row_directory, run_row, section  # noqa: E402
 from hostile_round_two import SANITIZED, limits, prepare_run, read, write  # noqa: E402
 from stop_signals import blocked_writing_stderr, full_pipe  # noqa: E402
+import setup_runs  # noqa: E402
 
 BACKBONE = SMALL + section("Continuation", Omega_min=1.5, Omega_max=1.93, Energy_max=1e-3)
 PLOTTED = BACKBONE + output(Directory="out", Backbone="true", Plots="true")
@@ -116,8 +117,15 @@ def wait_for(condition, what, process, limit=300):
 
 def stopped_run(executable, scene=ANNOUNCED, name="first.prm", room_pages=0):
     """A run of `scene` into out stopped by SIGINT at its first progress line
-    that finds no room in `room_pages` pages: out holds continuation.resume."""
+    that finds no room in `room_pages` pages: out holds continuation.resume
+    (made once per table for these arguments and a directory state:
+    setup_runs.py)."""
     write(name, scene)
+    setup_runs.once(("stopped", executable, name, room_pages), lambda: stop_at_a_progress_line(
+        executable, name, room_pages))
+
+
+def stop_at_a_progress_line(executable, name, room_pages):
     read_end, write_end = full_pipe(room_pages)
     process = subprocess.Popen([executable, name], stdout=subprocess.DEVNULL, stderr=write_end)
     os.close(write_end)

@@ -26,6 +26,8 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+import setup_runs  # noqa: E402
 from hostile_inputs import (BACKBONE, SMALL, complete, listing, output,  # noqa: E402
                             read_rows, section, snapshot, spectrum_scene)
 
@@ -62,9 +64,11 @@ def limits(fsize=None, nofile=None, address_space=None, sigxfsz=signal.SIG_DFL):
 
 
 def prepare_run(executable, scene_file):
-    """A run made by a setup: must succeed, within SETUP_TIMEOUT, under the cap."""
-    subprocess.run([executable, scene_file], capture_output=True, check=True,
-                   timeout=SETUP_TIMEOUT, preexec_fn=cap_memory)
+    """A run made by a setup: must succeed, within SETUP_TIMEOUT, under the cap
+    (made once per table for a scene and a directory state: setup_runs.py)."""
+    setup_runs.once(("run", executable, scene_file), lambda: subprocess.run(
+        [executable, scene_file], capture_output=True, check=True, timeout=SETUP_TIMEOUT,
+        preexec_fn=cap_memory))
 
 
 def write(path, text):

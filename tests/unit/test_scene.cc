@@ -10,6 +10,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <set>
 
 #include "scene_helpers.h"
 
@@ -156,8 +157,21 @@ TEST(Scene, EveryBadInputNamesItsParameterAndRange)
 
 TEST(Scene, ExecutableRejectsBadInputWithoutWritingOutput)
 {
+  // The test above holds every message; a run stops at any of them the same
+  // way (exit 2, no output), so the program runs one bad input per place that
+  // raises one: the parameter file's parser, a pattern, a selection, a list,
+  // the bar's section, the mesh's grading, and the checks within and between
+  // subsections.
+  const std::set<std::string> run = {"unknown_parameter", "length_text",  "wall_unknown",
+                                     "frequency_text",    "section_negative", "grading_extreme",
+                                     "samples_few",       "omega_order",  "refine_compliant",
+                                     "fields_without_contact"};
+  std::size_t ran = 0;
   for (const BadInput &bad : bad_inputs())
     {
+      if (run.count(bad.name) == 0)
+        continue;
+      ++ran;
       const std::string directory = "rejected_" + bad.name;
       std::filesystem::remove_all(directory);
       const std::string path = testing_helpers::write_scene(
@@ -171,6 +185,7 @@ TEST(Scene, ExecutableRejectsBadInputWithoutWritingOutput)
       EXPECT_EQ(WEXITSTATUS(status), 2) << bad.name;
       EXPECT_FALSE(std::filesystem::exists(directory)) << bad.name;
     }
+  EXPECT_EQ(ran, run.size()) << "a name above is not a bad input's";
 }
 
 TEST(Scene, BadSectionIsRejectedEvenWithNothingRequested)
