@@ -193,6 +193,59 @@ TEST(SequentialSteps, ATracerCarriesItsStepOverMaxStepsAndGoesOnAsIfUninterrupte
   EXPECT_NE(third.backbone.points[8].omega, q[8].omega);
 }
 
+TEST(ArclengthSteps, ATracerCarriesItsApproachStepOverMaxStepsAndGoesOnAsIfUninterrupted)
+{
+  // The uniform bar from grazing (pi / 2) to a range that starts above it:
+  // sequential steps approach Omega min = 1.62, then arclength goes on to
+  // 1.7. Traced whole, and again in two runs: the first ends at Max steps = 5
+  // within the approach, the second (a fresh tracer, as a resumed run has)
+  // goes on from its points with the approach step the first kept. Every
+  // point must be the whole run's, bit for bit.
+  auto scene = testing_helpers::hb_scene("1", 10);
+  scene.continuation.method     = nsm::ContinuationMethod::arclength;
+  scene.continuation.omega_min  = 1.62;
+  scene.continuation.omega_max  = 1.7;
+  scene.continuation.energy_max = 1e-3;
+  Tracing             whole(scene);
+  nsm::ArclengthSteps whole_method;
+  ASSERT_EQ(whole_method.trace(whole.context, whole.backbone, 0), nsm::SegmentEnd::range);
+  EXPECT_FALSE(whole_method.resume_step().has_value()); // the approach is over
+  const auto &q = whole.backbone.points;
+  const auto  approach =
+    std::find_if(q.begin(), q.end(), [](const nsm::BackbonePoint &p) { return p.omega >= 1.62; }) - q.begin();
+  ASSERT_GT(approach, 6); // the approach takes more than Max steps below
+  ASSERT_GT(q.size(), static_cast<std::size_t>(approach) + 3);
+
+  scene.continuation.max_steps = 5;
+  Tracing             first(scene);
+  nsm::ArclengthSteps first_method;
+  ASSERT_EQ(first_method.trace(first.context, first.backbone, 0), nsm::SegmentEnd::max_steps);
+  ASSERT_EQ(first.backbone.points.size(), 5u);
+  ASSERT_TRUE(first_method.resume_step().has_value());
+
+  scene.continuation.max_steps = 2000;
+  Tracing second(scene);
+  second.backbone.points = first.backbone.points;
+  nsm::ArclengthSteps second_method;
+  second_method.resume_with(first_method.resume_step());
+  ASSERT_EQ(second_method.trace(second.context, second.backbone, 0), nsm::SegmentEnd::range);
+  const auto &p = second.backbone.points;
+  ASSERT_EQ(p.size(), q.size());
+  for (std::size_t i = 0; i < p.size(); ++i)
+    {
+      EXPECT_EQ(p[i].omega, q[i].omega) << i;
+      EXPECT_EQ(p[i].x, q[i].x) << i;
+    }
+
+  // Without the carried step the approach starts again from Initial step:
+  // its points differ from the whole run's.
+  Tracing third(scene);
+  third.backbone.points = first.backbone.points;
+  nsm::ArclengthSteps third_method;
+  ASSERT_EQ(third_method.trace(third.context, third.backbone, 0), nsm::SegmentEnd::range);
+  EXPECT_NE(third.backbone.points[5].omega, q[5].omega);
+}
+
 TEST(SequentialSteps, AFillingSegmentEndsBeforeItsFarSideAndBelowItsTongueThreshold)
 {
   // The uniform branch of the test above, with the limits of a gap being

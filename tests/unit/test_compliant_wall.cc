@@ -194,39 +194,46 @@ TEST(CompliantWall, TimeIntegrationClosesItsOrbitsAndNotAnotherWalls)
 TEST(CompliantWall, AutomaticRangeEndsShortOfTheSpringsBilinearLimit)
 {
   // Held by a spring k at x = L, the uniform bar (E A = rho A = L = 1) has
-  // u = sin(w x) with u'(1) + k u(1) = 0: w cos(w) + k sin(w) = 0, its first
-  // root in (pi / 2, pi). Solved here by bisection; FE_Q(10) x 10 gives w to
-  // about 1e-12, so 1e-9 is the rounding of the eigensolver, not the mesh.
-  const auto held_exact = [](const double k) {
-    double lo = M_PI / 2, hi = M_PI;
+  // u = sin(w x) with u'(1) + k u(1) = 0: w cos(w) + k sin(w) = 0, whose root
+  // for mode m lies in ((m - 1/2) pi, m pi), where the free bar's mode m is at
+  // its lower end and the clamped bar's at its upper. Solved here by
+  // bisection; FE_Q(10) x 10 gives w to about 1e-12 up to mode 2, so 1e-9 is
+  // the rounding of the eigensolver, not the mesh.
+  const auto held_exact = [](const double k, const unsigned int mode) {
+    double       lo = (mode - 0.5) * M_PI, hi = mode * M_PI;
+    const double at_lo = k * std::sin(lo); // the sign the equation has at lo
     for (int i = 0; i < 200; ++i)
       {
         const double mid = (lo + hi) / 2;
-        (mid * std::cos(mid) + k * std::sin(mid) > 0 ? lo : hi) = mid;
+        ((mid * std::cos(mid) + k * std::sin(mid)) * at_lo > 0 ? lo : hi) = mid;
       }
     return lo;
   };
   nsm::Scene scene = compliant_uniform(1, 10, 2.0);
   const testing_helpers::HbModel model(scene);
-  for (const double k : {0.3, 1.0, 30.0})
-    {
-      scene.contact.stiffness        = k;
-      const nsm::ModeFrequencies f   = nsm::mode_frequencies(model.discretisation, 1, scene.contact);
-      EXPECT_TRUE(f.on_spring);
-      EXPECT_NEAR(f.free, M_PI / 2, 1e-9);
-      EXPECT_NEAR(f.held, held_exact(k), 1e-9) << k;
-      EXPECT_NEAR(f.bilinear, 2 * f.free * f.held / (f.free + f.held), 1e-14);
-      // The limit lies between grazing and the rigid wall's 2 pi / 3.
-      EXPECT_GT(f.bilinear, M_PI / 2) << k;
-      EXPECT_LT(f.bilinear, 2 * M_PI / 3) << k;
+  for (const unsigned int mode : {1u, 2u})
+    for (const double k : {0.3, 1.0, 30.0})
+      {
+        scene.contact.stiffness      = k;
+        scene.continuation.mode      = mode;
+        const nsm::ModeFrequencies f = nsm::mode_frequencies(model.discretisation, mode, scene.contact);
+        const double free = (mode - 0.5) * M_PI, clamped = mode * M_PI;
+        EXPECT_TRUE(f.on_spring);
+        EXPECT_NEAR(f.free, free, 1e-9);
+        EXPECT_NEAR(f.held, held_exact(k, mode), 1e-9) << k << ", mode " << mode;
+        EXPECT_NEAR(f.bilinear, 2 * f.free * f.held / (f.free + f.held), 1e-14);
+        // The limit lies between grazing and the rigid wall's limit.
+        EXPECT_GT(f.bilinear, free) << k;
+        EXPECT_LT(f.bilinear, 2 * free * clamped / (free + clamped)) << k;
 
-      nsm::ContinuationParameters c = scene.continuation;
-      c.omega_max                = 0;
-      const auto notes           = nsm::resolve_automatic_range(c, scene.contact, {}, model.discretisation);
-      EXPECT_NEAR(c.omega_max, f.free + nsm::automatic_range_share * (f.bilinear - f.free), 1e-14) << k;
-      ASSERT_FALSE(notes.empty());
-      EXPECT_NE(notes[0].find("on the wall's spring"), std::string::npos) << notes[0];
-    }
+        nsm::ContinuationParameters c = scene.continuation;
+        c.omega_max                   = 0;
+        const auto notes = nsm::resolve_automatic_range(c, scene.contact, {}, model.discretisation);
+        EXPECT_NEAR(c.omega_max, f.free + nsm::automatic_range_share * (f.bilinear - f.free), 1e-14) << k;
+        ASSERT_FALSE(notes.empty());
+        EXPECT_NE(notes[0].find("on the wall's spring"), std::string::npos) << notes[0];
+      }
+  scene.continuation.mode = 1;
   // With eq. (5)'s sign the spring would pull the bar: the rigid wall's
   // clamped-clamped pi is kept.
   scene.contact.sign = nsm::ForceSign::seed_eq5;
