@@ -167,24 +167,44 @@ namespace nsm
       chain.pop_back();
     }
 
+    /// Walks a JSON text up to `end`: `mark(i)` at each character outside
+    /// strings but white space, `string(start, i)` at the closing quote (at
+    /// i) of each string that began at `start`. True if `end` lies inside a
+    /// string.
+    template <typename Mark, typename String>
+    bool walk_json(const std::string &text, const std::size_t end, Mark mark, String string)
+    {
+      bool        quoted = false;
+      std::size_t start  = 0;
+      for (std::size_t i = 0; i < end; ++i)
+        if (quoted)
+          {
+            if (text[i] == '\\')
+              ++i; // an escaped character, '"' too
+            else if (text[i] == '"')
+              quoted = false, string(start, i);
+          }
+        else if (text[i] == '"')
+          quoted = true, start = i + 1;
+        else if (!std::isspace(static_cast<unsigned char>(text[i])))
+          mark(i);
+      return quoted;
+    }
+
     /// The deepest nesting of a JSON text: brackets and braces outside
     /// strings.
     std::size_t json_depth(const std::string &text)
     {
       std::size_t depth = 0, deepest = 0;
-      bool        quoted = false, escaped = false;
-      for (const char c : text)
-        if (quoted)
-          {
-            quoted  = escaped || c != '"';
-            escaped = !escaped && c == '\\';
-          }
-        else if (c == '"')
-          quoted = true;
-        else if (c == '{' || c == '[')
-          deepest = std::max(deepest, ++depth);
-        else if ((c == '}' || c == ']') && depth > 0)
-          --depth;
+      walk_json(
+        text, text.size(),
+        [&](const std::size_t i) {
+          if (text[i] == '{' || text[i] == '[')
+            deepest = std::max(deepest, ++depth);
+          else if ((text[i] == '}' || text[i] == ']') && depth > 0)
+            --depth;
+        },
+        [](std::size_t, std::size_t) {});
       return deepest;
     }
 
@@ -236,30 +256,24 @@ namespace nsm
     {
       std::vector<std::string> keys{""}; // the key of each open object; the outermost has none
       std::string              key, string;
-      std::size_t              start = 0;
-      bool                     quoted = false, value = false; ///< in a string; that string is a value
-      char                     previous = 0; ///< the last character outside strings but white space
-      for (std::size_t i = 0; i < position; ++i)
-        if (quoted)
-          {
-            if (text[i] == '\\')
-              ++i; // an escaped character, '"' too
-            else if (text[i] == '"')
-              quoted = false, string = text.substr(start, i - start), previous = '"';
-          }
-        else if (!std::isspace(static_cast<unsigned char>(text[i])))
-          {
-            if (text[i] == '"')
-              quoted = true, start = i + 1, value = previous == ':';
-            else if (text[i] == ':')
-              key = string;
-            else if (text[i] == '{')
-              keys.push_back(key);
-            else if (text[i] == '}' && keys.size() > 1)
-              keys.pop_back();
-            previous = text[i];
-          }
-      if (!quoted || !value)
+      char previous = 0; ///< the last character outside strings but white space ('"' after a string)
+      const bool quoted = walk_json(
+        text, position,
+        [&](const std::size_t i) {
+          if (text[i] == ':')
+            key = string;
+          else if (text[i] == '{')
+            keys.push_back(key);
+          else if (text[i] == '}' && keys.size() > 1)
+            keys.pop_back();
+          previous = text[i];
+        },
+        [&](const std::size_t start, const std::size_t i) {
+          string   = text.substr(start, i - start);
+          previous = '"';
+        });
+      // Inside a string, `previous` is what came before it: a value follows ':'.
+      if (!quoted || previous != ':')
         return "";
       // deal.II's own fields of an entry are not part of its name.
       static const std::set<std::string> fields = {"value", "default_value", "documentation", "pattern",

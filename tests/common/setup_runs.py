@@ -15,8 +15,9 @@ import os
 import shutil
 import tempfile
 
-_store = None   # a folder of this process's own, removed at exit
-_runs = {}      # key -> folder holding the working directory after the run
+_home = os.getcwd()  # the test's working directory, where the store is made
+_store = None        # a folder of this process's own there, removed at exit
+_runs = {}           # key -> folder holding the working directory after the run
 
 
 def _state(directory):
@@ -76,7 +77,7 @@ def once(key, run):
     if _state(".") is None:
         return
     if _store is None:
-        _store = tempfile.mkdtemp(prefix="nsm-setup-runs-")
+        _store = tempfile.mkdtemp(prefix="setup-runs-", dir=_home)
         atexit.register(shutil.rmtree, _store, ignore_errors=True)
     kept = tempfile.mkdtemp(dir=_store)
     _copy_entries(".", kept)
