@@ -221,8 +221,10 @@ MUTATIONS = [
 
 
 def run(command, cwd, log):
+    # A unit test suite (one CTest test) stops at its first failing test.
     with open(log, "w") as out:
-        return subprocess.run(command, cwd=cwd, stdout=out, stderr=subprocess.STDOUT).returncode
+        return subprocess.run(command, cwd=cwd, stdout=out, stderr=subprocess.STDOUT,
+                              env={**os.environ, "GTEST_FAIL_FAST": "1"}).returncode
 
 
 def failed_tests(build, log):
@@ -230,7 +232,7 @@ def failed_tests(build, log):
     # memory and input safety, which these mutations leave alone, and
     # mutations.texts fails on every planted mutation by design.
     # A mutation is caught by its first failing test: each run stops there,
-    # and the unit tests (seconds each) run before the scene and hard-case
+    # and the unit test suites (seconds each) run before the scene and hard-case
     # runs (up to a minute each), which CTest would otherwise start first.
     failures = []
     for stage, selection in (("unit", ["-E", r"memcheck|hostile|^mutations\.|^scene\.|^hard\."]),
