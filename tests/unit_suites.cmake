@@ -30,6 +30,10 @@ foreach(line IN LISTS lines)
     if(test IN_LIST alone)
       list(APPEND left_out_${suite} "${test}")
     endif()
+  elseif(NOT line STREQUAL "")
+    # A parameterised or typed test ("Instance/Suite.") would be run by no
+    # CTest test: the names above are all this file knows.
+    message(FATAL_ERROR "${EXECUTABLE} --gtest_list_tests: a line read as no suite and no test: '${line}'")
   endif()
 endforeach()
 foreach(test IN LISTS alone)

@@ -108,7 +108,7 @@ def foreign_directory(_):
 def earlier(executable, scene_file):
     """A setup's run, which must succeed (made once per table for a scene and a
     directory state: setup_runs.py)."""
-    setup_runs.once(("run", executable, scene_file), lambda: subprocess.run(
+    setup_runs.once(("uncapped run", executable, scene_file), lambda: subprocess.run(
         [executable, scene_file], capture_output=True, check=True))
 
 
