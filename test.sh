@@ -30,7 +30,7 @@ ctest --test-dir build --output-on-failure --timeout 900 -j "$(nproc)"
 # checked_suite DIR CMAKE_OPTIONS EXCLUDED_TESTS [CTEST_OPTIONS...].
 checked_suite() {
   echo "building nsm-bar and the unit tests in $1/ (log in build.log)"
-  cmake -S . -B "$1" -DNSM_FAST_START=ON $2 >> build.log 2>&1 || { tail -50 build.log; exit 1; }
+  cmake -S . -B "$1" $(generator "$1") -DNSM_FAST_START=ON $2 >> build.log 2>&1 || { tail -50 build.log; exit 1; }
   cmake --build "$1" -j "$(nproc)" --target nsm-bar unit_tests >> build.log 2>&1 \
     || { tail -50 build.log; exit 1; }
   ctest --test-dir "$1" --output-on-failure --timeout 900 -j "$(nproc)" -E "$3" "${@:4}"
