@@ -12,10 +12,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <cstdio>
 #include <regex>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "exact_bar.h"
 #include "hb_model.h"
@@ -145,105 +147,92 @@ TEST(SequentialSteps, UniformSegmentEndsExactlyAtOmegaMaxOnOneBranch)
     }
 }
 
+namespace
+{
+  /// What a traced-whole run and one stopped at Max steps leave.
+  struct StoppedRun
+  {
+    std::vector<nsm::BackbonePoint> whole;   ///< the points of the run traced whole
+    std::optional<double>           carried; ///< the step the stopped run kept
+    double                          max_step; ///< the context's largest step
+  };
+
+  /// `scene` traced whole by a Method, and again in two runs: the first ends
+  /// at Max steps = `stop_at` points, the second (a fresh tracer, as a
+  /// resumed run has) goes on from its points with the step the first kept.
+  /// Every point must be the whole run's, bit for bit. Without the kept step
+  /// a third run starts again from Initial step: its point `stop_at` must
+  /// differ from the whole run's.
+  template <typename Method>
+  StoppedRun expect_resumed_as_whole(nsm::Scene scene, const unsigned int stop_at)
+  {
+    Tracing whole(scene);
+    Method  whole_method;
+    EXPECT_EQ(whole_method.trace(whole.context, whole.backbone, 0), nsm::SegmentEnd::range);
+    EXPECT_FALSE(whole_method.resume_step().has_value()); // nothing to go on with after the range
+    const auto &q = whole.backbone.points;
+    EXPECT_GT(q.size(), stop_at + 4u);
+
+    scene.continuation.max_steps = stop_at;
+    Tracing first(scene);
+    Method  first_method;
+    EXPECT_EQ(first_method.trace(first.context, first.backbone, 0), nsm::SegmentEnd::max_steps);
+    EXPECT_EQ(first.backbone.points.size(), stop_at);
+    EXPECT_TRUE(first_method.resume_step().has_value());
+
+    scene.continuation.max_steps = 2000;
+    Tracing second(scene);
+    second.backbone.points = first.backbone.points;
+    Method second_method;
+    second_method.resume_with(first_method.resume_step());
+    EXPECT_EQ(second_method.trace(second.context, second.backbone, 0), nsm::SegmentEnd::range);
+    const auto &p = second.backbone.points;
+    EXPECT_EQ(p.size(), q.size());
+    for (std::size_t i = 0; i < std::min(p.size(), q.size()); ++i)
+      {
+        EXPECT_EQ(p[i].omega, q[i].omega) << i;
+        EXPECT_EQ(p[i].x, q[i].x) << i;
+      }
+
+    Tracing third(scene);
+    third.backbone.points = first.backbone.points;
+    Method third_method;
+    EXPECT_EQ(third_method.trace(third.context, third.backbone, 0), nsm::SegmentEnd::range);
+    if (third.backbone.points.size() > stop_at && q.size() > stop_at)
+      EXPECT_NE(third.backbone.points[stop_at].omega, q[stop_at].omega);
+    return {q, first_method.resume_step(), first.context.max_step()};
+  }
+} // namespace
+
 TEST(SequentialSteps, ATracerCarriesItsStepOverMaxStepsAndGoesOnAsIfUninterrupted)
 {
-  // The uniform branch of the test above, traced whole, and traced again in
-  // two runs: the first ends at Max steps = 8 points, the second (a fresh
-  // tracer, as a resumed run has) goes on from its points with the step the
-  // first kept. Every point must be the whole run's, bit for bit.
+  // The uniform branch of the test above, stopped after 8 points.
   auto scene = testing_helpers::hb_scene("1", 10);
   scene.continuation.omega_max  = 1.6;
   scene.continuation.energy_max = 1e-5;
-  Tracing              whole(scene);
-  nsm::SequentialSteps whole_method;
-  ASSERT_EQ(whole_method.trace(whole.context, whole.backbone, 0), nsm::SegmentEnd::range);
-  EXPECT_FALSE(whole_method.resume_step().has_value()); // nothing to go on with after the range
-  ASSERT_GT(whole.backbone.points.size(), 12u);
-
-  scene.continuation.max_steps = 8;
-  Tracing              first(scene);
-  nsm::SequentialSteps first_method;
-  ASSERT_EQ(first_method.trace(first.context, first.backbone, 0), nsm::SegmentEnd::max_steps);
-  ASSERT_EQ(first.backbone.points.size(), 8u);
-  ASSERT_TRUE(first_method.resume_step().has_value());
+  const StoppedRun run = expect_resumed_as_whole<nsm::SequentialSteps>(scene, 8);
   // A step the whole run took next: at least Min step, at most max_step().
-  EXPECT_GE(*first_method.resume_step(), scene.continuation.min_step);
-  EXPECT_LE(*first_method.resume_step(), first.context.max_step());
-
-  scene.continuation.max_steps = 2000;
-  Tracing second(scene);
-  second.backbone.points = first.backbone.points;
-  nsm::SequentialSteps second_method;
-  second_method.resume_with(first_method.resume_step());
-  ASSERT_EQ(second_method.trace(second.context, second.backbone, 0), nsm::SegmentEnd::range);
-  const auto &p = second.backbone.points, &q = whole.backbone.points;
-  ASSERT_EQ(p.size(), q.size());
-  for (std::size_t i = 0; i < p.size(); ++i)
-    {
-      EXPECT_EQ(p[i].omega, q[i].omega) << i;
-      EXPECT_EQ(p[i].x, q[i].x) << i;
-    }
-
-  // Without the carried step the second run starts again from Initial step:
-  // its points differ from the whole run's.
-  Tracing third(scene);
-  third.backbone.points = first.backbone.points;
-  nsm::SequentialSteps third_method;
-  ASSERT_EQ(third_method.trace(third.context, third.backbone, 0), nsm::SegmentEnd::range);
-  EXPECT_NE(third.backbone.points[8].omega, q[8].omega);
+  ASSERT_TRUE(run.carried.has_value());
+  EXPECT_GE(*run.carried, scene.continuation.min_step);
+  EXPECT_LE(*run.carried, run.max_step);
 }
 
 TEST(ArclengthSteps, ATracerCarriesItsApproachStepOverMaxStepsAndGoesOnAsIfUninterrupted)
 {
   // The uniform bar from grazing (pi / 2) to a range that starts above it:
   // sequential steps approach Omega min = 1.62, then arclength goes on to
-  // 1.7. Traced whole, and again in two runs: the first ends at Max steps = 5
-  // within the approach, the second (a fresh tracer, as a resumed run has)
-  // goes on from its points with the approach step the first kept. Every
-  // point must be the whole run's, bit for bit.
+  // 1.7. Stopped after 5 points, within the approach.
   auto scene = testing_helpers::hb_scene("1", 10);
   scene.continuation.method     = nsm::ContinuationMethod::arclength;
   scene.continuation.omega_min  = 1.62;
   scene.continuation.omega_max  = 1.7;
   scene.continuation.energy_max = 1e-3;
-  Tracing             whole(scene);
-  nsm::ArclengthSteps whole_method;
-  ASSERT_EQ(whole_method.trace(whole.context, whole.backbone, 0), nsm::SegmentEnd::range);
-  EXPECT_FALSE(whole_method.resume_step().has_value()); // the approach is over
-  const auto &q = whole.backbone.points;
-  const auto  approach =
-    std::find_if(q.begin(), q.end(), [](const nsm::BackbonePoint &p) { return p.omega >= 1.62; }) - q.begin();
-  ASSERT_GT(approach, 6); // the approach takes more than Max steps below
-  ASSERT_GT(q.size(), static_cast<std::size_t>(approach) + 3);
-
-  scene.continuation.max_steps = 5;
-  Tracing             first(scene);
-  nsm::ArclengthSteps first_method;
-  ASSERT_EQ(first_method.trace(first.context, first.backbone, 0), nsm::SegmentEnd::max_steps);
-  ASSERT_EQ(first.backbone.points.size(), 5u);
-  ASSERT_TRUE(first_method.resume_step().has_value());
-
-  scene.continuation.max_steps = 2000;
-  Tracing second(scene);
-  second.backbone.points = first.backbone.points;
-  nsm::ArclengthSteps second_method;
-  second_method.resume_with(first_method.resume_step());
-  ASSERT_EQ(second_method.trace(second.context, second.backbone, 0), nsm::SegmentEnd::range);
-  const auto &p = second.backbone.points;
-  ASSERT_EQ(p.size(), q.size());
-  for (std::size_t i = 0; i < p.size(); ++i)
-    {
-      EXPECT_EQ(p[i].omega, q[i].omega) << i;
-      EXPECT_EQ(p[i].x, q[i].x) << i;
-    }
-
-  // Without the carried step the approach starts again from Initial step:
-  // its points differ from the whole run's.
-  Tracing third(scene);
-  third.backbone.points = first.backbone.points;
-  nsm::ArclengthSteps third_method;
-  ASSERT_EQ(third_method.trace(third.context, third.backbone, 0), nsm::SegmentEnd::range);
-  EXPECT_NE(third.backbone.points[5].omega, q[5].omega);
+  const StoppedRun run = expect_resumed_as_whole<nsm::ArclengthSteps>(scene, 5);
+  const auto approach = std::find_if(run.whole.begin(), run.whole.end(),
+                                     [](const nsm::BackbonePoint &p) { return p.omega >= 1.62; }) -
+                        run.whole.begin();
+  EXPECT_GT(approach, 6); // the approach takes more points than the stopped run
+  EXPECT_GT(run.whole.size(), static_cast<std::size_t>(approach) + 3);
 }
 
 TEST(SequentialSteps, AFillingSegmentEndsBeforeItsFarSideAndBelowItsTongueThreshold)
