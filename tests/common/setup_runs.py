@@ -52,15 +52,6 @@ def _state(directory):
     return digest.hexdigest()
 
 
-def _copy_entries(source, target):
-    for name in os.listdir(source):
-        path = os.path.join(source, name)
-        if os.path.isdir(path) and not os.path.islink(path):
-            shutil.copytree(path, os.path.join(target, name), symlinks=True)
-        else:
-            shutil.copy2(path, os.path.join(target, name), follow_symlinks=False)
-
-
 def _clear(directory):
     for name in os.listdir(directory):
         path = os.path.join(directory, name)
@@ -94,7 +85,7 @@ def once(key, run):
     full_key = (key, before)
     if full_key in _runs:
         _clear(".")
-        _copy_entries(_runs[full_key], ".")
+        shutil.copytree(_runs[full_key], ".", symlinks=True, dirs_exist_ok=True)
         return
     run()
     if _state(".") is None:
@@ -104,5 +95,5 @@ def once(key, run):
         _store = tempfile.mkdtemp(prefix=f"setup-runs-{os.getpid()}-", dir=_home)
         atexit.register(shutil.rmtree, _store, ignore_errors=True)
     kept = tempfile.mkdtemp(dir=_store)
-    _copy_entries(".", kept)
+    shutil.copytree(".", kept, symlinks=True, dirs_exist_ok=True)
     _runs[full_key] = kept

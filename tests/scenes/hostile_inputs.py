@@ -21,9 +21,6 @@ import subprocess
 import sys
 import time
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
-import setup_runs  # noqa: E402
-
 W1 = 1.919137          # method.md: first clamped-free frequency, 6 digits
 LN3 = math.log(3.0)    # gamma(0) = int dx / (E A) for A = 1.5 - x
 
@@ -105,11 +102,11 @@ def foreign_directory(_):
         f.write("a user's file\n")
 
 
-def earlier(executable, scene_file):
-    """A setup's run, which must succeed (made once per table for a scene and a
-    directory state: setup_runs.py)."""
-    setup_runs.once(("uncapped run", executable, scene_file), lambda: subprocess.run(
-        [executable, scene_file], capture_output=True, check=True))
+def prepare_run(executable, scene_file):
+    """hostile_round_two.prepare_run, imported at the call (it imports this
+    file)."""
+    import hostile_round_two
+    hostile_round_two.prepare_run(executable, scene_file)
 
 
 def earlier_run(executable, extra_file=False):
@@ -118,7 +115,7 @@ def earlier_run(executable, extra_file=False):
         with open("first.prm", "w") as f:
             f.write(SMALL + output(Directory="out", Spectrum_modes=3,
                                    Receptance_frequencies="0, 1"))
-        earlier(executable, "first.prm")
+        prepare_run(executable, "first.prm")
         if extra_file:
             with open("out/field_9_tip.csv", "w") as f:
                 f.write("left by hand\n")
@@ -135,7 +132,7 @@ def earlier_study(executable):
     def setup(_):
         with open("first.prm", "w") as f:
             f.write(SMALL + section("Study", Spectrum_modes=2) + output(Directory="out"))
-        earlier(executable, "first.prm")
+        prepare_run(executable, "first.prm")
     return setup
 
 
@@ -165,7 +162,7 @@ def killed_run(executable):
     def setup(_):
         with open("first.prm", "w") as f:
             f.write(SMALL + spectrum_scene("out", 3))
-        earlier(executable, "first.prm")
+        prepare_run(executable, "first.prm")
         before = snapshot("out")
         with open("second.prm", "w") as f:
             f.write(BACKBONE + output(Directory="out", Backbone="true", Fields_every=1,

@@ -1,17 +1,11 @@
 // The unit tests' main: one thread, as every nsm-bar run (use_one_thread),
 // so that what the tests compute is what the program computes; failed
 // Asserts (Debug builds) throw, as in the program; a run whose every test was
-// skipped exits 77.
+// skipped exits NSM_UNIT_SKIPPED_EXIT_CODE (tests/CMakeLists.txt).
 #include <nsm/base/assertions.h>
 #include <nsm/base/threads.h>
 
 #include <gtest/gtest.h>
-
-namespace
-{
-  /// The exit code of a run that skipped every test (automake's 77).
-  constexpr int skipped_exit_code = 77;
-} // namespace
 
 int main(int argc, char **argv)
 {
@@ -25,6 +19,6 @@ int main(int argc, char **argv)
   // tests/unit_suites.cmake).
   const ::testing::UnitTest &unit = *::testing::UnitTest::GetInstance();
   if (status == 0 && unit.skipped_test_count() > 0 && unit.successful_test_count() == 0)
-    return skipped_exit_code;
+    return NSM_UNIT_SKIPPED_EXIT_CODE;
   return status;
 }
