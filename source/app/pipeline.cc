@@ -58,7 +58,10 @@ namespace nsm
       std::ostringstream s;
       s.precision(6);
       s << "field at Omega = " << p.omega;
-      if (p.branch == Branch::other)
+      if (p.branch == Branch::other && p.measures.leading_harmonic != 1)
+        s << " is on another family, not on the main branch (its contact end swings mostly at harmonic "
+          << p.measures.leading_harmonic << ", not at Omega)";
+      else if (p.branch == Branch::other)
         s << " is on another family, not on the main branch (contact fraction " << p.measures.contact_fraction
           << ", below the mode's before it by more than Main contact drop)";
       else

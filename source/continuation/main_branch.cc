@@ -33,6 +33,13 @@ namespace nsm
     {
       return energy > (1 + share) * envelope;
     }
+
+    /// The mode moves at W: its fundamental carries the most energy. A point
+    /// led by another harmonic is a higher mode's motion at k W, of another family.
+    bool moves_at_omega(const BackbonePoint &point)
+    {
+      return point.measures.leading_harmonic == 1;
+    }
   } // namespace
 
   double harmonic_excess(const std::vector<double> &energies, const unsigned int k)
@@ -178,7 +185,7 @@ namespace nsm
     for (const std::size_t i : along_omega(points, direction))
       {
         const double contact = points[i].measures.contact_fraction;
-        if (contact < most - drop)
+        if (contact < most - drop || (own[i] && !moves_at_omega(points[i])))
           family[i] = false;
         else if (own[i])
           most = std::max(most, contact);
@@ -281,10 +288,12 @@ namespace nsm
     const auto  &c         = params.continuation;
     const double direction = branch_direction(params.contact);
     const double least     = std::min(point.measures.energy, envelope_at(points, point.omega, direction));
+    const bool   above     = exceeds_envelope(point.measures.energy, least, c.tongue_share);
     if (point.measures.contact_fraction <
-        most_contact_before(points, point.omega, direction, c.tongue_share) - c.main_contact_drop)
+          most_contact_before(points, point.omega, direction, c.tongue_share) - c.main_contact_drop ||
+        (!above && !moves_at_omega(point)))
       mark(point, Branch::other);
-    else if (!exceeds_envelope(point.measures.energy, least, c.tongue_share))
+    else if (!above)
       mark(point, Branch::main);
     else
       mark_excursion(point, tongue_resonance(hb, point), c.mode, point.omega, point.omega);

@@ -108,6 +108,14 @@ namespace nsm
     result.energy_spread = (e_max - e_min) / result.energy;
   }
 
+  unsigned int leading_harmonic(const TrigonometricBasis &functions, const std::vector<double> &coefficients)
+  {
+    std::vector<double> square(functions.size() + 1, 0.0);
+    for (unsigned int i = 0; i < functions.size(); ++i)
+      square[functions.order[i]] += coefficients[i] * coefficients[i];
+    return std::max_element(square.begin() + 1, square.end()) - square.begin();
+  }
+
   std::vector<double> SolutionMeasures::harmonic_energies(const PhasedSolution &solution) const
   {
     // a^2 (gamma + 2 w^2 gamma') / 4 per cosine or sine (a_0^2 gamma(0) / 2),
@@ -139,6 +147,7 @@ namespace nsm
         force[i]        = solution.scale * x[i] * p.cos;
         displacement[i] = law.displacement_coefficient(solution.scale * x[i], p.sin);
       }
+    result.leading_harmonic = leading_harmonic(functions, displacement);
     samples.sample(force, lambdas);
     samples.sample(displacement, us);
     for (unsigned int t = 0; t < count; ++t)

@@ -67,7 +67,7 @@ namespace nsm
     CsvTable table{"backbone.csv",
                    {"segment", "Omega", "energy", "energy_spread", "max_contact_force", "max_contact_displacement",
                     "contact_fraction", "newton_iterations", "residual", "branch",
-                    "resonance_mode", "resonance_harmonic"},
+                    "resonance_mode", "resonance_harmonic", "leading_harmonic"},
                    {}};
     if (!estimates.empty())
       table.columns.push_back("energy_error_estimate");
@@ -89,7 +89,8 @@ namespace nsm
                               p.measures.max_contact_displacement,
                               p.measures.contact_fraction, double(p.newton_iterations),
                               p.residual, branch_name(p.branch),
-                              double(p.resonance.mode), double(p.resonance.harmonic)});
+                              double(p.resonance.mode), double(p.resonance.harmonic),
+                              double(p.measures.leading_harmonic)});
         if (!estimates.empty())
           table.rows.back().push_back(std::isfinite(estimates[i]) ? CsvCell(estimates[i]) : CsvCell(std::string()));
         if (!bar_amplitudes.empty())

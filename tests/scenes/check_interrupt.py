@@ -55,8 +55,8 @@ def main():
         failures.append("the summary does not say the error estimate was left out")
     with open("whole/backbone.csv") as f:
         expected = [line.rsplit(",", 1)[0] for line in f.read().splitlines()]
-    if not expected[0].endswith(",resonance_harmonic"):
-        failures.append(f"the whole run's last column but one is not resonance_harmonic: {expected[0]}")
+    if not expected[0].endswith(",leading_harmonic"):
+        failures.append(f"the whole run's last column but one is not leading_harmonic: {expected[0]}")
     with open("stopped/backbone.csv") as f:
         stopped = f.read().splitlines()
     if not 2 <= len(stopped) < len(expected) or stopped != expected[:len(stopped)]:

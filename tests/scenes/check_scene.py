@@ -109,13 +109,14 @@ def check_backbone(name, below_w1, summary):
     points = table(f"{name}/backbone.csv",
                    ["segment", "Omega", "energy", "energy_spread", "max_contact_force",
                     "max_contact_displacement", "contact_fraction", "newton_iterations", "residual", "branch",
-                    "resonance_mode", "resonance_harmonic", "energy_error_estimate"], {"energy_error_estimate"})
+                    "resonance_mode", "resonance_harmonic", "leading_harmonic", "energy_error_estimate"],
+                   {"energy_error_estimate"})
     assert len(points) > 20, len(points)
     check_estimates(points, summary)
     segments = [p[0] for p in points]
     assert segments == sorted(segments), "segments are numbered along the branch"
     for (segment, omega, energy, spread, force, amplitude, fraction, iterations, residual, branch, mode,
-         harmonic, _) in points:
+         harmonic, leading, _) in points:
         # A contact motion reaches the wall: its end's amplitude is g0 or
         # more, less the truncation's overshoot (2 %, as the tip check).
         assert amplitude >= 0.98e-3, amplitude
@@ -123,6 +124,8 @@ def check_backbone(name, below_w1, summary):
         # map's, or none where no w_j / k lies near them
         assert (mode, harmonic) == (0, 0) if branch != 1 else ((mode, harmonic) == (0, 0)
                                                                or (mode >= 1 and harmonic >= 3))
+        # the mode's contact end swings once a period: a main point is led by its fundamental
+        assert leading >= 1 and (leading == 1 or branch != 0), (omega, leading)
         assert (omega < W1) if below_w1 else (omega > W1), omega
         assert energy > 0 and force > 0 and 0 < fraction < 1
         assert residual <= TOLERANCE, residual

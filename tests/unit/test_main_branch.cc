@@ -317,6 +317,7 @@ namespace
   {
     unsigned int segment;
     double       omega, energy, contact;
+    unsigned int leading = 1; ///< the harmonic that leads the contact end's swing
   };
 
   std::vector<nsm::BackbonePoint> planted(const std::vector<Planted> &rows)
@@ -329,6 +330,7 @@ namespace
         p.omega                     = r.omega;
         p.measures.energy           = r.energy;
         p.measures.contact_fraction = r.contact;
+        p.measures.leading_harmonic = r.leading;
         points.push_back(p);
       }
     return points;
@@ -417,6 +419,56 @@ TEST(MainBranch, AFamilyOfLessEnergyDoesNotHideTheMode)
   EXPECT_EQ(main_of(points, 0.05), (std::vector<bool>{true, true, true, false, false}));
   // With the envelope rule 1.2 and 1.3 are above the low family.
   EXPECT_EQ(main_of(points, 1.0), (std::vector<bool>{true, false, false, true, true}));
+}
+
+// A leap beyond the mode's fold lands, far above it in energy but within Main
+// contact drop, on a motion whose contact end swings at harmonic 15: a higher
+// mode's nonsmooth motion at 15 W (the seed bar's mode 2 at 5.274, with the
+// automatic range). Nothing lies beyond it, so it is the envelope: only its
+// leading harmonic tells it from the mode.
+TEST(MainBranch, ALandingLedByAnotherHarmonicIsNotMain)
+{
+  std::vector<Planted> rows = {{0, 1.00, 1.00, 0.02}, {0, 1.05, 1.05, 0.05}, {0, 1.10, 1.10, 0.08},
+                               {1, 1.15, 20.0, 0.07, 15}, {1, 1.20, 21.0, 0.08, 15}};
+  const std::vector<bool> mode = {true, true, true, false, false};
+  EXPECT_EQ(nsm::main_family(planted(rows), 1.0, 0.02, 0.05), mode);
+  EXPECT_EQ(main_of(planted(rows), 0.05), mode);
+  // Led by the fundamental, the same landing continues the mode.
+  rows[3].leading = rows[4].leading = 1;
+  EXPECT_EQ(main_of(planted(rows), 0.05), std::vector<bool>(rows.size(), true));
+}
+
+// Near an internal resonance harmonic k of the motion drives a higher mode:
+// at a tongue's top harmonic 3 may lead the contact end's swing. A climb that
+// comes back down within its segment lies above its own envelope, so it stays
+// in the mode's family, as tongue points, and the mode goes on beyond it.
+TEST(MainBranch, ATongueLedByItsResonantHarmonicStaysInTheFamily)
+{
+  const auto points = planted({{0, 1.00, 1.00, 0.02}, {0, 1.05, 1.05, 0.05}, {0, 1.08, 1.60, 0.06, 3},
+                               {0, 1.09, 2.50, 0.07, 3}, {0, 1.10, 1.10, 0.08}, {0, 1.15, 1.15, 0.10}});
+  EXPECT_EQ(nsm::main_family(points, 1.0, 0.02, 0.05), std::vector<bool>(points.size(), true));
+  EXPECT_EQ(main_of(points, 0.05), (std::vector<bool>{true, true, false, false, true, true}));
+}
+
+// The leading harmonic of a series: the largest sum of squares of harmonic
+// k's cosine and sine coefficients, k >= 1 (the mean left out).
+TEST(MainBranch, TheLeadingHarmonicHasTheLargestAmplitude)
+{
+  const nsm::TrigonometricBasis functions = nsm::harmonic_basis(3, true);
+  const auto series = [&](const double mean, const double c1, const double c2, const double s2) {
+    std::vector<double> coefficients(functions.size(), 0.0);
+    for (unsigned int i = 0; i < functions.size(); ++i)
+      {
+        const unsigned int k = functions.order[i];
+        coefficients[i] = k == 0 ? mean : k == 1 ? (functions.sine[i] ? 0.0 : c1) : k == 2 ? (functions.sine[i] ? s2 : c2) : 0.1;
+      }
+    return coefficients;
+  };
+  EXPECT_EQ(nsm::leading_harmonic(functions, series(0.0, 1.0, 0.8, 0.5)), 1u);  // 1 > 0.89
+  EXPECT_EQ(nsm::leading_harmonic(functions, series(0.0, 1.0, 0.8, 0.7)), 2u);  // 1 < 1.13: cosine and sine add
+  EXPECT_EQ(nsm::leading_harmonic(functions, series(5.0, 0.05, 0.0, 0.0)), 3u); // the mean does not count
+  EXPECT_EQ(nsm::leading_harmonic(functions, series(0.0, 0.6, 0.6, 0.0)), 1u);  // equal: the lowest
+  EXPECT_EQ(nsm::leading_harmonic(nsm::TrigonometricBasis{}, {}), 1u);
 }
 
 // A tongue is named w_j / k only near it: a run at 2.123 to 2.125 is not

@@ -7,8 +7,10 @@
 // energy of the mode's family at or beyond its Omega (the monotone lower
 // envelope) is a tongue point; an envelope point whose contact fraction lies
 // more than Main contact drop below the most contact of the main points
-// before it is of another family, and leaves the envelope (main_family);
-// every other point is on the main branch. A tongue is named after the
+// before it is of another family, and so is a point on its own segment's
+// envelope whose contact end swings mostly at a harmonic k > 1 (a higher
+// mode's motion at k W): both leave the envelope (main_family); every other
+// point is on the main branch. A tongue is named after the
 // harmonic k >= 3 that stands out most of the spectrum at its highest point
 // and the mode j nearest to k W, if w_j / k lies near its Omega; an excursion
 // that names only the branch's own fundamental is main.
@@ -66,7 +68,10 @@ namespace nsm
 
   /// Per point, in order: true if it belongs to the mode's family. In the
   /// direction of continuation, a point whose contact fraction lies more
-  /// than `drop` below the most contact before it leaves the family; the
+  /// than `drop` below the most contact before it leaves the family, and so
+  /// does a point on its own segment's envelope led by a harmonic other than
+  /// the fundamental (a tongue's top may be led by its resonant harmonic:
+  /// it lies above its segment's envelope, and stays); the
   /// most contact counts the family's points that lie on their own
   /// segment's lower envelope (a tongue's climb that comes back down within
   /// its segment does not count), so that another family of less energy
@@ -86,7 +91,9 @@ namespace nsm
 
   /// Labels one point solved off the backbone (a field at a given Omega) by
   /// the same rule against the labelled `points`: other if its contact
-  /// fraction lies more than Main contact drop below most_contact_before it; a tongue point, named from its own
+  /// fraction lies more than Main contact drop below most_contact_before it,
+  /// or if it is not above the envelope and a harmonic other than the
+  /// fundamental leads its contact end; a tongue point, named from its own
   /// spectrum, if its energy exceeds (1 + Tongue share) times the least
   /// energy of their main and tongue points at or beyond its Omega and it
   /// names an internal resonance; else main.

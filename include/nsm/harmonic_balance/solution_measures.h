@@ -24,7 +24,15 @@ namespace nsm
     double min_force;         ///< min lambda / max lambda (both walls: >= 0)
     double min_gap;           ///< min g / g0 (rigid wall: >= 0; compliant: its deepest penetration)
     double max_complementarity; ///< max |lambda g| / (max lambda g0) (rigid wall: 0)
+    /// The harmonic k >= 1 of the largest amplitude of u(L, t): 1 on the
+    /// mode's main branch, whose contact end swings once a period.
+    unsigned int leading_harmonic = 1;
   };
+
+  /// The harmonic k >= 1 whose cosine and sine coefficients of `functions`
+  /// have the largest sum of squares (the lowest of equal ones); 1 if the
+  /// basis holds none.
+  unsigned int leading_harmonic(const TrigonometricBasis &functions, const std::vector<double> &coefficients);
 
   /// gamma(k W) = tan(theta) at the frequency of harmonic k.
   struct HarmonicPhase
