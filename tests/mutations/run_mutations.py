@@ -128,6 +128,8 @@ MUTATIONS = [
      "if (contact < most - drop || (own[i] && !moves_at_omega(points[i])))", "if (false)"),
     ("main points led by any harmonic", "source/continuation/main_branch.cc",
      "return point.measures.leading_harmonic == 1;", "return true;"),
+    ("a field led by another harmonic said to lack contact", "source/app/pipeline.cc",
+     "if (p.branch == Branch::other && p.measures.leading_harmonic != 1)", "if (false)"),
     ("the leading harmonic counts the mean", "source/harmonic_balance/solution_measures.cc",
      "std::max_element(square.begin() + 1, square.end())", "std::max_element(square.begin(), square.end())"),
     ("tongues named whatever their distance from w_j / k", "source/continuation/main_branch.cc",
