@@ -11,7 +11,7 @@ namespace nsm
 {
   namespace
   {
-    constexpr const char *format_line = "nsm-bar continuation checkpoint 3";
+    constexpr const char *format_line = "nsm-bar continuation checkpoint 4";
 
     /// The interrupted run's entries must be the scene's: the first that
     /// differs is named with both values.
@@ -136,7 +136,8 @@ namespace nsm
       out << ' ' << exact(omega);
     out << "\ngaps " << c.gap_searches.size() << '\n';
     for (const GapSearch &g : c.gap_searches)
-      out << exact(g.from) << ' ' << exact(g.to) << ' ' << g.starts << ' ' << g.other_family << ' ' << g.tongue
+      out << exact(g.from) << ' ' << exact(g.to) << ' ' << g.starts << ' ' << g.other_family << ' '
+          << g.other_harmonic << ' ' << g.tongue
           << ' ' << g.above_energy_max << ' ' << exact(g.most_contact) << ' ' << exact(g.contact_before) << ' '
           << (g.landed ? exact(*g.landed) : std::string("-")) << '\n';
     out << "points " << c.points.size() << '\n';
@@ -202,6 +203,7 @@ namespace nsm
         g.to             = reader.number(line);
         g.starts         = reader.count(line, 1000 * max_points);
         g.other_family   = reader.count(line, 1000 * max_points);
+        g.other_harmonic = reader.count(line, g.other_family);
         g.tongue         = reader.count(line, 1000 * max_points);
         g.above_energy_max = reader.count(line, 1000 * max_points);
         g.most_contact   = reader.number(line);

@@ -125,7 +125,10 @@ namespace nsm
             if (point.branch == Branch::other)
               {
                 ++search.other_family;
-                search.most_contact = std::max(search.most_contact, point.measures.contact_fraction);
+                if (point.measures.leading_harmonic != 1)
+                  ++search.other_harmonic;
+                else
+                  search.most_contact = std::max(search.most_contact, point.measures.contact_fraction);
               }
             else
               ++search.tongue;

@@ -2,13 +2,18 @@
 // (continuation/gap_filling.h), on the seed bar at M = 80 (FE_Q(10) x 20),
 // where the plain sequential run leaves main gaps up to 0.06 wide
 // (tests/benchmarks/study_coverage: Newton finds main solutions in all of them).
+#include <nsm/base/checkpoint_reader.h>
 #include <nsm/continuation/branch_context.h>
+#include <nsm/continuation/checkpoint.h>
 #include <nsm/continuation/main_branch.h>
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
 
 #include "hb_model.h"
 
@@ -102,4 +107,31 @@ TEST(GapFilling, FillsTheMainBranchWhereNewtonFindsItAndKeepsTheTracedPoints)
   // The search is not empty: the remaining gaps hold guesses, and some converge (on tongues).
   EXPECT_GT(tried, 0u);
   EXPECT_GT(converged, 0u);
+}
+
+// A gap search's record goes through an interrupted run's checkpoint whole:
+// the resumed run's Result block says what the search found, the other
+// families led by a harmonic k > 1 counted apart from those of less contact.
+TEST(GapFilling, ASearchsRecordGoesThroughTheCheckpoint)
+{
+  testing_helpers::HbModel model(testing_helpers::seed_scene(nsm::ForceSign::physical, 1.5, 2.2));
+  nsm::ContinuationCheckpoint written;
+  written.points       = {model.backbone().points.front()};
+  written.gap_searches = {{2.06, 2.11, 51, 7, 3, 2, 1, 0.14, 0.24, 2.0875}, {2.15, 2.2, 9, 2, 2, 0, 0, 0, 0.3, {}}};
+  const std::string path = ::testing::TempDir() + "gap_search.resume";
+  nsm::write_checksummed(path, [&](std::ostream &out) {
+    nsm::write_checkpoint(out, written, model.branch.computation_entries, model.hb);
+  });
+  const nsm::ContinuationCheckpoint read = nsm::read_checkpoint(path, model.branch, model.hb);
+  ASSERT_EQ(read.gap_searches.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i)
+    {
+      const nsm::GapSearch &a = written.gap_searches[i], &b = read.gap_searches[i];
+      EXPECT_EQ(std::vector<double>({a.from, a.to, a.most_contact, a.contact_before}),
+                std::vector<double>({b.from, b.to, b.most_contact, b.contact_before}));
+      EXPECT_EQ(std::vector<unsigned int>({a.starts, a.other_family, a.other_harmonic, a.tongue, a.above_energy_max}),
+                std::vector<unsigned int>({b.starts, b.other_family, b.other_harmonic, b.tongue, b.above_energy_max}));
+      EXPECT_EQ(a.landed, b.landed);
+    }
+  std::remove(path.c_str());
 }

@@ -87,10 +87,11 @@ namespace nsm
   {
     double       from, to;             ///< Omega of the main points around it, or the range's end
     unsigned int starts          = 0;  ///< Newton solves from the predicted mode
-    unsigned int other_family    = 0;  ///< converged with less contact than the mode before the gap
+    unsigned int other_family    = 0;  ///< converged on another family (either rule of label_point)
+    unsigned int other_harmonic  = 0;  ///< of those, led by a harmonic other than the fundamental
     unsigned int tongue          = 0;  ///< converged above the envelope (a tongue's flank)
     unsigned int above_energy_max = 0; ///< converged above Energy max (not kept)
-    double       most_contact    = 0;  ///< the most contact of the other families found
+    double       most_contact    = 0;  ///< the most contact of the other families led by the fundamental
     double       contact_before  = 0;  ///< the mode's most contact before the gap
     std::optional<double> landed;      ///< where the segment traced into the gap began
   };
