@@ -3,6 +3,7 @@
 #include <nsm/model/bar_model.h>
 #include <nsm/continuation/checkpoint.h>
 #include <nsm/continuation/continuation.h>
+#include <nsm/continuation/main_branch.h>
 #include <nsm/output/field_output.h>
 #include <nsm/verification/fields.h>
 #include <nsm/harmonic_balance/harmonic_balance.h>
@@ -58,7 +59,7 @@ namespace nsm
       std::ostringstream s;
       s.precision(6);
       s << "field at Omega = " << p.omega;
-      if (p.branch == Branch::other && p.measures.leading_harmonic != 1)
+      if (p.branch == Branch::other && !moves_at_omega(p))
         s << " is on another family, not on the main branch (its contact end swings mostly at harmonic "
           << p.measures.leading_harmonic << ", not at Omega)";
       else if (p.branch == Branch::other)

@@ -125,7 +125,7 @@ namespace nsm
             if (point.branch == Branch::other)
               {
                 ++search.other_family;
-                if (point.measures.leading_harmonic != 1)
+                if (!moves_at_omega(point))
                   ++search.other_harmonic;
                 else
                   search.most_contact = std::max(search.most_contact, point.measures.contact_fraction);

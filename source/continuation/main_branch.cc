@@ -33,14 +33,12 @@ namespace nsm
     {
       return energy > (1 + share) * envelope;
     }
-
-    /// The mode moves at W: its fundamental carries the most energy. A point
-    /// led by another harmonic is a higher mode's motion at k W, of another family.
-    bool moves_at_omega(const BackbonePoint &point)
-    {
-      return point.measures.leading_harmonic == 1;
-    }
   } // namespace
+
+  bool moves_at_omega(const BackbonePoint &point)
+  {
+    return point.measures.leading_harmonic == 1;
+  }
 
   double harmonic_excess(const std::vector<double> &energies, const unsigned int k)
   {

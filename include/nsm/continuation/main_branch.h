@@ -66,6 +66,11 @@ namespace nsm
                                  const std::vector<bool>          &above,
                                  const std::vector<bool>          &among = {});
 
+  /// The mode's contact end swings once a period: true if the point's
+  /// fundamental leads the contact end's swing. A point led by a harmonic
+  /// k > 1 is a higher mode's motion at k W, or a tongue's top.
+  bool moves_at_omega(const BackbonePoint &point);
+
   /// Per point, in order: true if it belongs to the mode's family. In the
   /// direction of continuation, a point whose contact fraction lies more
   /// than `drop` below the most contact before it leaves the family, and so
