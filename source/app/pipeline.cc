@@ -60,8 +60,8 @@ namespace nsm
       s.precision(6);
       s << "field at Omega = " << p.omega;
       if (p.branch == Branch::other && !moves_at_omega(p))
-        s << " is on another family, not on the main branch (its contact end swings mostly at harmonic "
-          << p.measures.leading_harmonic << ", not at Omega)";
+        s << " is on another family, not on the main branch (harmonic " << p.measures.leading_harmonic
+          << ", not the fundamental, leads its contact end's swing)";
       else if (p.branch == Branch::other)
         s << " is on another family, not on the main branch (contact fraction " << p.measures.contact_fraction
           << ", below the mode's before it by more than Main contact drop)";

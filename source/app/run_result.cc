@@ -115,12 +115,23 @@ namespace nsm
       const unsigned int failed = record->starts - record->other_family - record->tongue - record->above_energy_max;
       s << record->starts << " Newton starts from the predicted mode: " << record->other_family
         << " converged on other families";
+      // Those led by the fundamental with their most contact, those led by a
+      // higher harmonic counted apart: "(N of contact ...; K led by ...)".
       const unsigned int by_contact = record->other_family - record->other_harmonic;
+      const char        *open       = " (";
       if (by_contact > 0)
-        s << " (contact fraction at most " << record->most_contact << ", the mode's " << record->contact_before
-          << " before the gap" << (record->other_harmonic > 0 ? "; " : ")");
+        {
+          s << open;
+          if (record->other_harmonic > 0)
+            s << by_contact << " of ";
+          s << "contact fraction at most " << record->most_contact << ", the mode's " << record->contact_before
+            << " before the gap";
+          open = "; ";
+        }
       if (record->other_harmonic > 0)
-        s << (by_contact > 0 ? "" : " (") << record->other_harmonic << " led by a harmonic k > 1)";
+        s << open << record->other_harmonic << " led by a harmonic k > 1";
+      if (record->other_family > 0)
+        s << ")";
       s << ", " << record->tongue << " on tongues, ";
       if (record->above_energy_max > 0)
         s << record->above_energy_max << " above Energy max, ";

@@ -188,6 +188,16 @@ namespace nsm
         else if (own[i])
           most = std::max(most, contact);
       }
+    // A point the family's envelope passes through is main unless a higher
+    // harmonic leads it; without it the envelope may pass through another.
+    for (bool removed = true; removed;)
+      {
+        removed                     = false;
+        const std::vector<bool> on = on_envelope(points, direction, share, family);
+        for (std::size_t i = 0; i < points.size(); ++i)
+          if (on[i] && !moves_at_omega(points[i]))
+            family[i] = false, removed = true;
+      }
     return family;
   }
 
@@ -218,12 +228,16 @@ namespace nsm
     }
 
     /// A point of the mode's family above its envelope whose excursion, over
-    /// Omega in [lo, hi], names r: main if r is the branch's own fundamental,
-    /// else a tongue point, named if w_j / k lies near.
+    /// Omega in [lo, hi], names r: main if r is the branch's own fundamental
+    /// (other if a higher harmonic leads the point), else a tongue point,
+    /// named if w_j / k lies near.
     void mark_excursion(BackbonePoint &point, const InternalResonance &r, const unsigned int mode, const double lo,
                         const double hi)
     {
-      is_own_fundamental(r, mode) ? mark(point, Branch::main) : mark(point, Branch::tongue, named_if_near(r, lo, hi));
+      if (!is_own_fundamental(r, mode))
+        mark(point, Branch::tongue, named_if_near(r, lo, hi));
+      else
+        mark(point, moves_at_omega(point) ? Branch::main : Branch::other);
     }
 
     /// Labels the run [first, end) of the main family's points off its

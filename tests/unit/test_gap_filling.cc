@@ -2,6 +2,7 @@
 // (continuation/gap_filling.h), on the seed bar at M = 80 (FE_Q(10) x 20),
 // where the plain sequential run leaves main gaps up to 0.06 wide
 // (tests/benchmarks/study_coverage: Newton finds main solutions in all of them).
+#include <nsm/app/run_result.h>
 #include <nsm/base/checkpoint_reader.h>
 #include <nsm/continuation/branch_context.h>
 #include <nsm/continuation/checkpoint.h>
@@ -109,9 +110,9 @@ TEST(GapFilling, FillsTheMainBranchWhereNewtonFindsItAndKeepsTheTracedPoints)
   EXPECT_GT(converged, 0u);
 }
 
-// A gap search's record goes through an interrupted run's checkpoint whole:
-// the resumed run's Result block says what the search found, the other
-// families led by a harmonic k > 1 counted apart from those of less contact.
+// A gap search's record goes through an interrupted run's checkpoint whole,
+// the other families led by a harmonic k > 1 counted apart from those of less
+// contact.
 TEST(GapFilling, ASearchsRecordGoesThroughTheCheckpoint)
 {
   testing_helpers::HbModel model(testing_helpers::seed_scene(nsm::ForceSign::physical, 1.5, 2.2));
@@ -134,4 +135,40 @@ TEST(GapFilling, ASearchsRecordGoesThroughTheCheckpoint)
       EXPECT_EQ(a.landed, b.landed);
     }
   std::remove(path.c_str());
+}
+
+// The Result block names a gap with what its search found: the other families
+// led by the fundamental with their most contact, those led by a higher
+// harmonic counted apart, in every combination.
+TEST(GapFilling, TheResultBlockCountsTheLandingsLedByAHigherHarmonicApart)
+{
+  nsm::Scene scene                        = testing_helpers::seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
+  scene.continuation.fill_gaps_wider_than = 0.02;
+  const nsm::BarModel bar(scene.bar);
+  nsm::Backbone       backbone;
+  for (const double omega : {1.6, 1.7})
+    {
+      nsm::BackbonePoint p{};
+      p.omega                     = omega;
+      p.measures.energy           = 1e-6;
+      p.measures.contact_fraction = 0.1;
+      backbone.points.push_back(p);
+    }
+  backbone.end = nsm::BackboneEnd::lost;
+  const auto gap_line = [&](const unsigned int other, const unsigned int led) {
+    backbone.gap_searches = {{1.6, 1.7, 10, other, led, 1, 0, 0.12, 0.3, {}}};
+    for (const std::string &line : nsm::backbone_result(backbone, bar, scene.contact, scene.continuation))
+      if (line.find("no main point from Omega = 1.6 to 1.7: ") != std::string::npos)
+        return line.substr(line.find(": ") + 2);
+    return std::string("no line");
+  };
+  const std::string found = "10 Newton starts from the predicted mode: ";
+  EXPECT_EQ(gap_line(0, 0), found + "0 converged on other families, 1 on tongues, 9 did not converge");
+  EXPECT_EQ(gap_line(3, 0), found + "3 converged on other families (contact fraction at most 0.12, the mode's 0.3 "
+                                    "before the gap), 1 on tongues, 6 did not converge");
+  EXPECT_EQ(gap_line(3, 3), found + "3 converged on other families (3 led by a harmonic k > 1), 1 on tongues, "
+                                    "6 did not converge");
+  EXPECT_EQ(gap_line(5, 2), found + "5 converged on other families (3 of contact fraction at most 0.12, the "
+                                    "mode's 0.3 before the gap; 2 led by a harmonic k > 1), 1 on tongues, 4 did "
+                                    "not converge");
 }

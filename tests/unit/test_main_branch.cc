@@ -436,6 +436,33 @@ TEST(MainBranch, ALandingLedByAnotherHarmonicIsNotMain)
   // Led by the fundamental, the same landing continues the mode.
   rows[3].leading = rows[4].leading = 1;
   EXPECT_EQ(main_of(planted(rows), 0.05), std::vector<bool>(rows.size(), true));
+  // A landing whose energy first falls: its first point lies above its own
+  // segment's envelope, then alone on the family's once the others leave.
+  rows = {{0, 1.00, 1.00, 0.02}, {0, 1.05, 1.05, 0.05}, {0, 1.10, 1.10, 0.08},
+          {1, 1.15, 22.0, 0.07, 15}, {1, 1.20, 20.0, 0.08, 15}, {1, 1.25, 21.0, 0.08, 15}};
+  EXPECT_EQ(main_of(planted(rows), 0.05), (std::vector<bool>{true, true, true, false, false, false}));
+}
+
+// With fewer than 4 harmonics no harmonic k >= 3 can stand out, and an
+// excursion above the envelope names the branch's own fundamental: it is
+// main, unless a higher harmonic leads it (M = 2 on the seed bar just above
+// w_1 = 1.919).
+TEST(MainBranch, AnExcursionOfTheOwnFundamentalLedByAHigherHarmonicIsOther)
+{
+  nsm::Scene scene                 = testing_helpers::seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
+  scene.harmonic_balance.harmonics = 2;
+  testing_helpers::HbModel model(scene);
+  for (const unsigned int leading : {1u, 2u})
+    {
+      auto points = planted({{0, 1.925, 1.00, 0.02}, {0, 1.930, 1.50, 0.05, leading}, {0, 1.935, 1.02, 0.06},
+                             {0, 1.940, 1.05, 0.07}});
+      for (nsm::BackbonePoint &p : points)
+        p.x.assign(model.hb.n_unknowns(), 0.0);
+      nsm::label_branches(model.hb, model.branch, points);
+      EXPECT_EQ(points[1].branch, leading == 1 ? nsm::Branch::main : nsm::Branch::other) << leading;
+      for (const std::size_t i : {0u, 2u, 3u})
+        EXPECT_EQ(points[i].branch, nsm::Branch::main) << i;
+    }
 }
 
 // Near an internal resonance harmonic k of the motion drives a higher mode:

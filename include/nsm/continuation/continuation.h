@@ -38,8 +38,8 @@ namespace nsm
   /// `main_only`). Otherwise
   /// (omega in the gap a leap left), unless `main_only`, Newton with a line
   /// search, as a leap, from the nearest points below and above and from the
-  /// impulsive guess. The point is labelled main or tongue against the
-  /// backbone's envelope (label_point). Throws NumericalError if nothing
+  /// impulsive guess. The point is labelled main, tongue or other against
+  /// the labelled backbone (label_point). Throws NumericalError if nothing
   /// converges.
   BackbonePoint solve_on_branch(HarmonicBalance        &hb,
                                 const BranchParameters &params,

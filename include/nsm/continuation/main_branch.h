@@ -8,8 +8,8 @@
 // envelope) is a tongue point; an envelope point whose contact fraction lies
 // more than Main contact drop below the most contact of the main points
 // before it is of another family, and so is a point on its own segment's
-// envelope whose contact end swings mostly at a harmonic k > 1 (a higher
-// mode's motion at k W): both leave the envelope (main_family); every other
+// envelope whose contact end's swing a harmonic k > 1 leads (a higher mode's
+// motion at k W): both leave the envelope (main_family); every other
 // point is on the main branch. A tongue is named after the
 // harmonic k >= 3 that stands out most of the spectrum at its highest point
 // and the mode j nearest to k W, if w_j / k lies near its Omega; an excursion
@@ -76,7 +76,8 @@ namespace nsm
   /// than `drop` below the most contact before it leaves the family, and so
   /// does a point on its own segment's envelope led by a harmonic other than
   /// the fundamental (a tongue's top may be led by its resonant harmonic:
-  /// it lies above its segment's envelope, and stays); the
+  /// it lies above its segment's envelope, and stays), and then every point
+  /// of the family's envelope led so, until none is; the
   /// most contact counts the family's points that lie on their own
   /// segment's lower envelope (a tongue's climb that comes back down within
   /// its segment does not count), so that another family of less energy
@@ -90,8 +91,9 @@ namespace nsm
   /// share, Main contact drop, direction and Mode). Points off the main
   /// family are other; tongue points are the family's points above its
   /// envelope or behind the front. A run whose resonance is the fundamental
-  /// at the branch's own mode is main: nothing resonates there. A run is
-  /// named w_j / k only within resonance_name_tolerance of its Omega.
+  /// at the branch's own mode is main: nothing resonates there (its points
+  /// led by a higher harmonic are other). A run is named w_j / k only within
+  /// resonance_name_tolerance of its Omega. Every main point moves_at_omega.
   void label_branches(HarmonicBalance &hb, const BranchParameters &params, std::vector<BackbonePoint> &points);
 
   /// Labels one point solved off the backbone (a field at a given Omega) by
