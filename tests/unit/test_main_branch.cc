@@ -482,13 +482,12 @@ TEST(MainBranch, ATongueLedByItsResonantHarmonicStaysInTheFamily)
 TEST(MainBranch, TheLeadingHarmonicHasTheLargestAmplitude)
 {
   const nsm::TrigonometricBasis functions = nsm::harmonic_basis(3, true);
+  // Per harmonic k = 0..3: its cosine's and its sine's coefficient.
   const auto series = [&](const double mean, const double c1, const double c2, const double s2) {
-    std::vector<double> coefficients(functions.size(), 0.0);
+    const double        cosine[] = {mean, c1, c2, 0.1}, sine[] = {0.0, 0.0, s2, 0.1};
+    std::vector<double> coefficients(functions.size());
     for (unsigned int i = 0; i < functions.size(); ++i)
-      {
-        const unsigned int k = functions.order[i];
-        coefficients[i] = k == 0 ? mean : k == 1 ? (functions.sine[i] ? 0.0 : c1) : k == 2 ? (functions.sine[i] ? s2 : c2) : 0.1;
-      }
+      coefficients[i] = (functions.sine[i] ? sine : cosine)[functions.order[i]];
     return coefficients;
   };
   EXPECT_EQ(nsm::leading_harmonic(functions, series(0.0, 1.0, 0.8, 0.5)), 1u);  // 1 > 0.89
