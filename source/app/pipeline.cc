@@ -32,6 +32,7 @@
 #include <deal.II/base/multithread_info.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <memory>
@@ -618,6 +619,28 @@ namespace nsm
     }
   } // namespace
 
+  namespace
+  {
+    /// The scene file (canonical) whose default folder the run writes, or ""
+    /// for an explicit Output/Directory. A run of an output's own record
+    /// (DIR/parameters.prm) into DIR would replace the output it reruns:
+    /// refused, naming --output, unless it resumes that output.
+    std::string default_folder_of(const Scene &scene, const bool resume)
+    {
+      namespace fs = std::filesystem;
+      std::error_code error;
+      const fs::path  file = fs::canonical(scene.origin, error);
+      if (error)
+        return "";
+      if (!resume && file.parent_path() == fs::weakly_canonical(scene.output.directory, error) && !error)
+        throw InputError("scene '" + printable(scene.origin) + "' is the record of the output in '" +
+                         printable(scene.output.directory) +
+                         "': rerun it into another folder with --output DIR (so that the two can be compared), or "
+                         "go on with a stopped run with nsm-bar " + printable(scene.output.directory) + " --resume");
+      return scene.output.directory_is_default ? file.string() : "";
+    }
+  } // namespace
+
   RunReport run_scene(const Scene &scene, const bool resume, const std::string &command_line)
   {
     const bool needs_spectrum   = scene.output.spectrum_modes > 0;
@@ -637,12 +660,12 @@ namespace nsm
       }
 
     // Checked before any work: an unwritable directory is known now.
-    const std::size_t memory = estimated_memory(scene);
-    check_memory(memory, scene.resources, scene.discretisation);
+    const MemoryEstimate memory = estimated_memory(scene);
+    check_memory(memory, scene.resources);
     if (!resume && std::ifstream(scene.output.directory + "/" + checkpoint_file).good())
       report.notes.push_back("Output/Directory held a stopped run's " + std::string(checkpoint_file) +
                              ": this run started again and replaces it (--resume goes on from one)");
-    OutputDirectory output(scene.output.directory);
+    OutputDirectory output(scene.output.directory, default_folder_of(scene, resume));
     report.notes.push_back(memory_note(memory, scene.resources));
     SceneRun        run(scene, report, resume);
     run.mesh(bar);

@@ -20,6 +20,16 @@ namespace nsm
     constexpr double bytes_per_nonzero = 40;
     /// The process itself, its libraries loaded (measured: 163 MiB).
     constexpr double process_bytes = 200.0 * (1 << 20);
+    /// What each backbone point keeps (its unknowns, its measures, the M / 2
+    /// estimate's point, the tables' rows), over the point and per unknown:
+    /// peaks measured at 2,000 and 20,000 points (FE_Q(10) x 7, M = 40 and
+    /// 80) grew by 2.0 and 2.6 KiB a point, 1.4 KiB and 15 bytes per unknown;
+    /// doubled, for the vectors' growth by doubling.
+    constexpr double bytes_per_point         = 4096;
+    constexpr double bytes_per_point_unknown = 32;
+    /// Each receptance frequency's row (measured: 166 bytes, from 3e5 and
+    /// 1e6 frequencies), rounded up and doubled.
+    constexpr double bytes_per_frequency = 384;
 
     /// A line "Name: value kB" of a /proc file, in bytes; 0 if absent.
     double proc_value(const std::string &file, const std::string &name)
@@ -42,27 +52,41 @@ namespace nsm
     }
   } // namespace
 
-  std::size_t estimated_memory(const Scene &scene)
+  MemoryEstimate estimated_memory(const Scene &scene)
   {
     const auto  &d     = scene.discretisation;
     const auto  &o     = scene.output;
     const double cells = largest_cells(d), dofs = cells * d.degree + 1;
+    MemoryEstimate estimate;
+    const auto     add = [&](const double bytes, const char *drivers) {
+      estimate.bytes += bytes;
+      if (bytes > estimate.largest_part)
+        {
+          estimate.largest_part = bytes;
+          estimate.drivers      = drivers;
+        }
+    };
     // The mesh, K and M, and band copies of the pencil and its factors.
-    double bytes = process_bytes + bytes_per_cell * cells + bytes_per_nonzero * dofs * (2 * d.degree + 1) +
-                   8.0 * dofs * (3 * d.degree + 1) * 3;
+    add(bytes_per_cell * cells + bytes_per_nonzero * dofs * (2 * d.degree + 1) + 8.0 * dofs * (3 * d.degree + 1) * 3,
+        "Discretisation/Cells and Discretisation/Degree");
+    add(bytes_per_frequency * double(o.receptance_frequencies.size()), "Output/Receptance frequencies");
     if (o.backbone || o.fields())
       {
         const double m = scene.harmonic_balance.harmonics + 1;
         const double n = scene.harmonic_balance.basis == HarmonicBasis::full ? 2 * m - 1 : m;
         const double samples = std::max<double>(scene.harmonic_balance.samples(), 8 * m);
-        bytes += 8 * (6 * n * n + 4 * n * samples);
+        add(8 * (6 * n * n + 4 * n * samples), "Harmonic balance/Harmonics");
+        add(double(scene.continuation.max_steps) * (bytes_per_point + bytes_per_point_unknown * n),
+            "Continuation/Max steps");
         // Each field keeps one nodal vector per basis function, and its
         // space-time samples.
         const double fields =
           o.fields_at.size() + (o.fields_every > 0 ? double(scene.continuation.max_steps) / o.fields_every : 0);
-        bytes += fields * 8 * dofs * (n + 2.0 * scene.field_time_samples());
+        add(fields * 8 * dofs * (n + 2.0 * scene.field_time_samples()),
+            "Output/Fields at, Output/Fields every and Output/Field time samples");
       }
-    return static_cast<std::size_t>(std::min(bytes, 1e19));
+    estimate.bytes = std::min(estimate.bytes + process_bytes, 1e19);
+    return estimate;
   }
 
   std::size_t available_memory(const ResourcesParameters &resources)
@@ -80,28 +104,27 @@ namespace nsm
     return available > 0 ? static_cast<std::size_t>(available) : 0;
   }
 
-  void check_memory(const std::size_t bytes, const ResourcesParameters &resources, const DiscretisationParameters &d)
+  void check_memory(const MemoryEstimate &need, const ResourcesParameters &resources)
   {
-    const double need = bytes, have = available_memory(resources);
-    if (need <= have)
+    const double have = available_memory(resources);
+    if (need.bytes <= have)
       return;
     std::ostringstream s;
     s.precision(3);
-    s << "the scene needs about " << need / (1 << 20) << " MiB of memory (an estimate from "
-      << "Discretisation/Cells = " << d.cells << " and Discretisation/Degree = " << d.degree
-      << ", Harmonic balance/Harmonics and the fields asked for), more than the "
+    s << "the scene needs about " << need.bytes / (1 << 20) << " MiB of memory (an estimate; "
+      << need.largest_part / (1 << 20) << " MiB of it for " << need.drivers << "), more than the "
       << have / (1 << 20) << " MiB "
       << (resources.memory_limit > 0 ? "of Resources/Memory limit" :
                                              "the machine has available (or the process's address-space limit allows)")
-      << ": reduce Discretisation/Cells or Discretisation/Degree";
+      << ": reduce " << need.drivers;
     throw InputError(s.str());
   }
 
-  std::string memory_note(const std::size_t need, const ResourcesParameters &resources)
+  std::string memory_note(const MemoryEstimate &need, const ResourcesParameters &resources)
   {
     std::ostringstream s;
     s.precision(3);
-    s << "memory: about " << need / double(1 << 20) << " MiB estimated at the peak, "
+    s << "memory: about " << need.bytes / double(1 << 20) << " MiB estimated at the peak, "
       << available_memory(resources) / double(1 << 20) << " MiB available";
     return s.str();
   }

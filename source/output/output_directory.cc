@@ -140,6 +140,42 @@ namespace nsm
         }
     }
 
+    /// The scene file whose default folder `target` holds the output of, as
+    /// its manifest records it; "" if none is recorded.
+    std::string default_folder_owner(const fs::path &target)
+    {
+      const std::string note = OutputDirectory::default_folder_note;
+      for (const std::string &line : listed_files(target / OutputDirectory::manifest))
+        if (line.rfind(note, 0) == 0)
+          return line.substr(note.size());
+      return "";
+    }
+
+    /// A default folder (output/NAME) holds only its own scene file's output.
+    void check_default_owner(const fs::path &target, const std::string &name, const std::string &scene)
+    {
+      std::error_code error;
+      if (scene.empty() || !fs::is_regular_file(fs::symlink_status(target / OutputDirectory::manifest, error)))
+        return;
+      const std::string owner = default_folder_owner(target);
+      if (owner == printable(scene))
+        return;
+      throw InputError("parameter 'Output/Directory' is not set, and its default '" + printable(name) + "' holds " +
+                       (owner.empty() ? std::string("an output written under an explicit Output/Directory") :
+                                        "the output of the scene file '" + owner + "'") +
+                       ", not of '" + printable(scene) +
+                       "': set Output/Directory (or --output) for this scene, so that neither replaces the other");
+    }
+
+    /// The device and inode of `path`, {0, 0} if it does not exist.
+    std::pair<unsigned long, unsigned long> identity(const fs::path &path)
+    {
+      struct stat status{};
+      if (lstat(path.c_str(), &status) != 0)
+        return {0, 0};
+      return {static_cast<unsigned long>(status.st_dev), static_cast<unsigned long>(status.st_ino)};
+    }
+
     /// A short, stable name for the target's staging siblings (FNV-1a), so
     /// that a target name of up to NAME_MAX characters still has one.
     std::string staging_prefix(const std::string &name)
@@ -317,7 +353,8 @@ namespace nsm
     return error ? previous : kept;
   }
 
-  OutputDirectory::OutputDirectory(const std::string &target)
+  OutputDirectory::OutputDirectory(const std::string &target, const std::string &default_of)
+    : default_of_(default_of)
   {
     if (has_control_character(target))
       throw directory_error(target, "holds a control character: allowed, a path without them");
@@ -336,6 +373,8 @@ namespace nsm
     if (fs::is_directory(parent, error))
       clear_dead_siblings(parent, prefix, path);
     check_target(path, target);
+    check_default_owner(path, target, default_of_);
+    identity_        = identity(path);
     created_parents_ = missing_folders(parent);
     fs::create_directories(parent, error);
     try
@@ -429,6 +468,8 @@ namespace nsm
           out << f.substr(prefix.size()) << '\n';
           listed.insert(f.substr(prefix.size()));
         }
+      if (!default_of_.empty())
+        out << default_folder_note << printable(default_of_) << '\n';
       for (const std::string &note : notes)
         out << "/ " << printable(note) << '\n';
     });
@@ -436,8 +477,20 @@ namespace nsm
     bool                           had_previous  = false;
     int                            previous_lock = -1;
     const std::vector<std::string> paths         = final_paths(files);
+    const fs::path                 parent        = fs::path(staging_).parent_path();
+    // The check that no other run swapped its output in meanwhile and this
+    // run's swap are one step for every run into the parent folder.
+    const int parent_lock = lock_directory(parent, true);
+    const auto unlock_parent = [&] {
+      if (parent_lock >= 0)
+        close(parent_lock);
+    };
     try
       {
+        if (identity(target_) != identity_)
+          throw OutputError("another run wrote its output into " + printable(target_) +
+                            " while this one ran: that output is kept, and this run's is not (give each run a "
+                            "directory of its own: Output/Directory or --output)");
         // Checked again: another run may have written into the directory
         // since this one began (a study writes in place).
         try
@@ -448,7 +501,6 @@ namespace nsm
           {
             throw OutputError(std::string(e.what()) + " (it changed during the run); the new output is not kept");
           }
-        const fs::path    parent = fs::path(staging_).parent_path();
         const std::string aside =
           (parent / (staging_prefix(fs::path(target_).filename().string()) + "aside-" + unique_token())).string();
         if ((had_previous = fs::exists(fs::symlink_status(target_))))
@@ -465,8 +517,15 @@ namespace nsm
       {
         if (previous_lock >= 0)
           close(previous_lock);
+        unlock_parent();
         throw OutputError("cannot move the new output into " + printable(target_) + ": " + e.what());
       }
+    catch (...)
+      {
+        unlock_parent();
+        throw;
+      }
+    unlock_parent();
     committed_ = true;
     // The previous output, if any, now at the staging name: its own files go,
     // a file of the user's that appeared after the last check goes back.

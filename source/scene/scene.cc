@@ -119,6 +119,10 @@ namespace nsm
       std::string name = std::filesystem::path(scene_file).stem().string();
       if (name.empty() || name == "." || name == "..")
         name = "scene";
+      if (!is_valid_utf8(name))
+        throw InputError("parameter 'Output/Directory' is empty, and its default output/NAME would take NAME from "
+                         "the scene file's name, which is not UTF-8 text ('" + printable(name) +
+                         "'): set Output/Directory (or --output) to a UTF-8 path");
       return "output/" + name;
     }
   } // namespace
@@ -136,7 +140,10 @@ namespace nsm
         scene.continuation.parse(prm);
         scene.output.parse(prm);
         if (scene.output.directory.empty())
-          scene.output.directory = default_directory(origin);
+          {
+            scene.output.directory            = default_directory(origin);
+            scene.output.directory_is_default = true;
+          }
         scene.origin = origin;
         scene.resources.parse(prm);
         scene.check_consistency(is_study);

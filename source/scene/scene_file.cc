@@ -527,6 +527,37 @@ namespace nsm
       }
   }
 
+  void check_record_reads_back(const dealii::ParameterHandler &prm, const std::string &record)
+  {
+    const std::vector<DeclaredEntry> entries = declared_entries(prm);
+    dealii::ParameterHandler         text;
+    for (const DeclaredEntry &entry : entries)
+      in_sections(text, entry, [&] {
+        text.declare_entry(entry.name, entry.default_value, dealii::Patterns::Anything());
+      });
+    std::string why;
+    try
+      {
+        text.parse_input_from_string(record, "parameters.prm");
+      }
+    catch (const dealii::ExceptionBase &e)
+      {
+        why = one_line_message(e);
+      }
+    for (const DeclaredEntry &entry : entries)
+      {
+        std::string value = entry.value;
+        if (why.empty())
+          in_sections(text, entry, [&] { value = text.get(entry.name); });
+        if (value != entry.value || !why.empty())
+          throw InputError("parameter '" + entry.path() + "' = '" + printable(entry.value) +
+                           "' cannot be written to the run's record (parameters.prm) so that it reads back the "
+                           "same" + (why.empty() ? " (it reads back as '" + printable(value) + "')" : "") +
+                           ": allowed, a value without '#', without a backslash at its end and without white space "
+                           "at either end" + (overridden(entry.path()) ? " (set on the command line)" : ""));
+      }
+  }
+
   void require_allowed(const dealii::ParameterHandler &prm, const std::vector<AllowedCheck> &checks)
   {
     if (checks.empty())

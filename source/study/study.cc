@@ -32,7 +32,7 @@ namespace nsm
     /// Throws InputError if the run of `scene` needs more memory than is available.
     void check_scene_memory(const Scene &scene)
     {
-      check_memory(estimated_memory(scene), scene.resources, scene.discretisation);
+      check_memory(estimated_memory(scene), scene.resources);
     }
 
     namespace fs = std::filesystem;

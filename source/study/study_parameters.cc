@@ -1,6 +1,8 @@
 #include <nsm/scene/scene.h>
 #include <nsm/scene/scene_entries.h>
 #include <nsm/scene/scene_file.h>
+#include <nsm/base/errors.h>
+#include <nsm/base/text.h>
 #include <nsm/study/study_parameters.h>
 
 #include <deal.II/base/parameter_handler.h>
@@ -230,6 +232,14 @@ namespace nsm
     std::ostringstream text;
     prm.print_parameters(text, dealii::ParameterHandler::ShortPRM);
     scene.scene.parameter_file = text.str();
+    try
+      {
+        check_record_reads_back(prm, scene.scene.parameter_file);
+      }
+    catch (const InputError &e)
+      {
+        throw InputError("scene '" + printable(path) + "': " + e.what());
+      }
     return scene;
   }
 

@@ -14,22 +14,31 @@ namespace nsm
 {
   struct Scene;
 
-  /// Bytes the run of `scene` needs at its peak, an upper estimate: the mesh
-  /// and the sparse stiffness and mass matrices (measured per cell and per
-  /// nonzero on this code), the band factors, the harmonic balance's dense
-  /// matrices and samples, and the fields kept for output.
-  std::size_t estimated_memory(const Scene &scene);
+  /// The memory a run needs at its peak, and its largest part.
+  struct MemoryEstimate
+  {
+    double      bytes        = 0;
+    double      largest_part = 0;
+    std::string drivers; ///< the entries that set the largest part
+  };
+
+  /// The run of `scene`, an upper estimate: the mesh and the sparse
+  /// stiffness and mass matrices (measured per cell and per nonzero on this
+  /// code), the band factors, the receptance frequencies' rows, the harmonic
+  /// balance's dense matrices and samples, the backbone's points (up to
+  /// Continuation/Max steps) and the fields kept for output.
+  MemoryEstimate estimated_memory(const Scene &scene);
 
   /// Bytes the run may use: Resources/Memory limit if set, else the memory
   /// the machine has available (MemAvailable), and never more than the
   /// process's address-space limit leaves.
   std::size_t available_memory(const ResourcesParameters &resources);
 
-  /// Throws InputError, naming the entries that drive the estimate (`d`'s
-  /// Cells and Degree), if `need` bytes are more than is available.
-  void check_memory(std::size_t need, const ResourcesParameters &resources, const DiscretisationParameters &d);
+  /// Throws InputError, naming the entries that drive the estimate's largest
+  /// part, if `need` is more than is available.
+  void check_memory(const MemoryEstimate &need, const ResourcesParameters &resources);
 
   /// "memory: about N MiB estimated at the peak, M MiB available", for the
   /// run summary.
-  std::string memory_note(std::size_t need, const ResourcesParameters &resources);
+  std::string memory_note(const MemoryEstimate &need, const ResourcesParameters &resources);
 } // namespace nsm

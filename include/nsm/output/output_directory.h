@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace nsm
@@ -26,7 +27,14 @@ namespace nsm
     /// be missing, empty, or an earlier run's output (it holds the manifest),
     /// so that no file nsm-bar did not write is ever replaced. Throws
     /// InputError naming Output/Directory.
-    explicit OutputDirectory(const std::string &target);
+    ///
+    /// `default_of`, if not empty, is the scene file (its canonical path)
+    /// whose default folder (output/NAME) the target is: the manifest records
+    /// it, and a target holding an output that another scene file made, or
+    /// that was made under an explicit Output/Directory, is refused, so that
+    /// two scene files with one NAME (a/x.prm and b/x.prm, x.prm and x.json)
+    /// never replace each other's output.
+    explicit OutputDirectory(const std::string &target, const std::string &default_of = "");
     ~OutputDirectory();
     OutputDirectory(const OutputDirectory &) = delete;
     OutputDirectory &operator=(const OutputDirectory &) = delete;
@@ -43,15 +51,25 @@ namespace nsm
     /// list (a plot stopped half-way), swaps it in and removes the files of
     /// the previous output that its manifest lists; a file of the user's that
     /// appeared meanwhile is moved back into the directory. Returns the
-    /// files' final paths. Throws OutputError.
+    /// files' final paths. Throws OutputError, also when another run
+    /// replaced the directory since this one began (two runs into one
+    /// folder at once): the other run's output stays, this one's is not
+    /// kept.
     std::vector<std::string> commit(const std::vector<std::string> &files,
                                     const std::vector<std::string> &notes = {});
 
     /// The file every nsm-bar output directory holds: the files it lists.
     static constexpr const char *manifest = "nsm-bar.manifest";
+    /// The manifest's note that names the scene file whose default folder
+    /// the directory is, followed by its canonical path.
+    static constexpr const char *default_folder_note = "/ default folder of ";
 
   private:
     std::string              target_;
+    std::string              default_of_; ///< the scene file whose default folder this is, or ""
+    /// The target's device and inode when this run began ({0, 0}: it did not
+    /// exist): a swap finds another run's output by a change of either.
+    std::pair<unsigned long, unsigned long> identity_{0, 0};
     std::string              staging_;
     int                      lock_ = -1; ///< the staging directory, locked while this run lives
     std::vector<std::string> created_parents_; ///< made for the target, deepest first

@@ -19,6 +19,10 @@ namespace nsm
     /// extension (Scene::from_parameters), so that scenes without a
     /// Directory never write into one folder.
     std::string         directory;
+    /// The directory is the default output/NAME: it belongs to the scene
+    /// file that made it (output/output_directory.h), and another scene file
+    /// with the same NAME is refused it.
+    bool                directory_is_default = false;
     unsigned int        spectrum_modes = 0;
     std::vector<double> receptance_frequencies;
     bool                backbone       = false;

@@ -30,6 +30,15 @@ namespace nsm
   /// allowed values in words. Throws InputError.
   void read_scene_file(const std::string &path, dealii::ParameterHandler &prm);
 
+  /// Checks that `record`, the PRM text a run writes as its record
+  /// (parameters.prm), reads back with every entry of `prm` equal to its
+  /// value: deal.II's PRM starts a comment at '#', joins a line ending in a
+  /// backslash to the next and trims white space around a value, so a value
+  /// holding one of these (given through --set, --output or a JSON or XML
+  /// scene) would rerun another scene, or write into another folder. Throws
+  /// InputError naming the first entry that does not read back.
+  void check_record_reads_back(const dealii::ParameterHandler &prm, const std::string &record);
+
   /// A value given on the command line (`--set "Section/Entry=value"`), for
   /// the entry Section/Subsection/Name.
   struct ParameterOverride
