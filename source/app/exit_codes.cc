@@ -1,6 +1,7 @@
 #include <nsm/app/exit_codes.h>
 #include <nsm/base/assertions.h>
 #include <nsm/base/errors.h>
+#include <nsm/base/interruption.h>
 #include <nsm/base/text.h>
 
 #include <iostream>
@@ -33,6 +34,12 @@ namespace nsm
         if (says_input_errors)
           print_error("input error: ", e.what());
         return exit_codes::input;
+      }
+    catch (const StopRequested &e)
+      {
+        std::cerr << "nsm-bar: stopped by " << stop_signal_name(e.signal) << " in " << e.what()
+                  << ", before any point was computed: no output written\n";
+        return stop_exit_code(e.signal);
       }
     catch (const OutputError &e)
       {

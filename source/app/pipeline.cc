@@ -632,11 +632,13 @@ namespace nsm
       const fs::path  file = fs::canonical(scene.origin, error);
       if (error)
         return "";
-      if (!resume && file.parent_path() == fs::weakly_canonical(scene.output.directory, error) && !error)
-        throw InputError("scene '" + printable(scene.origin) + "' is the record of the output in '" +
-                         printable(scene.output.directory) +
-                         "': rerun it into another folder with --output DIR (so that the two can be compared), or "
-                         "go on with a stopped run with nsm-bar " + printable(scene.output.directory) + " --resume");
+      if (!resume && file.filename() == "parameters.prm" &&
+          file.parent_path() == fs::weakly_canonical(scene.output.directory, error) && !error)
+        throw InputError("parameter 'Output/Directory' = '" + printable(scene.output.directory) +
+                         "' holds the output whose record is this scene, " + printable(scene.origin) +
+                         ", which the run would replace: rerun it into another folder with --output DIR (so that "
+                         "the two can be compared), or go on with a stopped run with nsm-bar " +
+                         printable(scene.output.directory) + " --resume");
       return scene.output.directory_is_default ? file.string() : "";
     }
   } // namespace

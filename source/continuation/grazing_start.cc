@@ -4,6 +4,7 @@
 #include <nsm/continuation/grazing_start.h>
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace nsm
@@ -24,6 +25,23 @@ namespace nsm
         << " is out of range: allowed " << (up ? "above" : "below") << " Omega = " << start
         << ", where the branch of clamped-free mode " << mode << " (w = " << w << ") leaves grazing "
         << (up ? "upwards (Contact/Force sign = physical)" : "downwards (Contact/Force sign = seed-eq5)");
+      throw InputError(s.str());
+    }
+
+    /// Steps are absolute: one of Min step must move Omega near w by more
+    /// than its rounding, or every step near the branch is lost in it (a bar
+    /// of length 1e-20 has w_1 = 1.6e20, where Omega's spacing is 3e4).
+    void check_steps_resolve(const ContinuationParameters &c, const double w)
+    {
+      const double resolution = continuation_constants::step_ulps * std::numeric_limits<double>::epsilon() * w;
+      if (c.min_step >= resolution)
+        return;
+      std::ostringstream s;
+      s.precision(3);
+      s << "parameter 'Continuation/Min step' = " << c.min_step << " is out of range: allowed at least " << resolution
+        << " here, where the branch starts at w = " << w << " (" << static_cast<int>(continuation_constants::step_ulps)
+        << " times Omega's rounding there): the steps are absolute, so scale Initial step, Min step and Max step "
+           "with the frequencies that Bar/Length, Young modulus and Density set";
       throw InputError(s.str());
     }
 
@@ -66,6 +84,7 @@ namespace nsm
                                             " (clamped-free modes below " + band + ")"));
       }
     const double w = std::sqrt(poles[mode - 1]);
+    check_steps_resolve(c, w);
     // The contact lasts a vanishing share of the period at grazing; Search
     // reach (5 %) of w_j away the branch is far beyond its grazing end. A
     // start before the range is traced up to it; one beyond it has no point

@@ -18,7 +18,17 @@ namespace nsm
     {
       on_spring = contact.wall == Wall::compliant && contact.sign == ForceSign::physical;
       if (!on_spring)
-        return std::sqrt(lowest_eigenvalues(BandedPencil(d, EndCondition::clamped_clamped), mode)[mode - 1]);
+        {
+          const BandedPencil held(d, EndCondition::clamped_clamped);
+          if (int(mode) > held.finite)
+            throw InputError("parameter 'Discretisation/Cells' = " + std::to_string(d.n_cells()) +
+                             " is out of range: the automatic range (Continuation/Omega max = 0 or Energy max = 0) "
+                             "reads mode " + std::to_string(mode) + " of the bar held at both ends, which a mesh of "
+                             "Cells x Degree = " + std::to_string(d.n_cells()) + " x " +
+                             std::to_string(d.fe().degree) + " does not have: allowed Cells x Degree >= Mode + 1 = " +
+                             std::to_string(mode + 1) + ", or set Omega max and Energy max");
+          return std::sqrt(lowest_eigenvalues(held, mode)[mode - 1]);
+        }
       BandedPencil spring(d, EndCondition::clamped_free);
       spring.entry(spring.k, spring.contact_row, spring.contact_row) += contact.stiffness;
       return std::sqrt(lowest_eigenvalues(spring, mode)[mode - 1]);
@@ -69,6 +79,14 @@ namespace nsm
                         std::to_string(c.mode) + " = " + number(f.free) + " clamped-free, " + number(f.held) +
                         (f.on_spring ? " on the wall's spring" : " clamped-clamped") + ", bilinear limit " +
                         number(f.bilinear) + ")");
+        if (contact.wall == Wall::compliant && contact.sign == ForceSign::physical &&
+            c.omega_max <= f.free * (1 + c.grazing_offset))
+          throw InputError("parameter 'Contact/Wall stiffness' = " + number(contact.stiffness) +
+                           " is out of range: the wall's spring holds the bar at w = " + number(f.held) +
+                           ", so little above w_" + std::to_string(c.mode) + " = " + number(f.free) +
+                           " that the automatic range (Continuation/Omega max = 0) ends at " + number(c.omega_max) +
+                           ", before the branch leaves grazing at " + number(f.free * (1 + c.grazing_offset)) +
+                           ": allowed a stiffer wall, or set Continuation/Omega max above that");
         if (!(c.omega_min < c.omega_max))
           throw InputError("parameter 'Continuation/Omega min' = " + number(c.omega_min) +
                            " is out of range: allowed below the automatic Omega max = " + number(c.omega_max) +

@@ -1,4 +1,6 @@
 #include <nsm/base/errors.h>
+#include <nsm/base/interruption.h>
+#include <nsm/base/progress.h>
 #include <nsm/base/text.h>
 #include <nsm/model/automatic_range.h>
 #include <nsm/model/band_cells.h>
@@ -34,11 +36,54 @@ namespace nsm
     return b;
   }
 
+  double continuum_modes_below(const BarModel &bar, const double top)
+  {
+    const double travel_time = bar.length() * std::sqrt(bar.density() / bar.young_modulus());
+    return top * travel_time / M_PI + 0.5;
+  }
+
+  namespace
+  {
+    /// Refuses, before any mesh is built, a band that even the largest mesh
+    /// cannot hold: each of its modes needs a degree of freedom at least.
+    void check_band_reachable(const BarModel &bar, const Scene &scene, const double top)
+    {
+      unsigned int largest = std::max(1u, scene.discretisation.graded_layers);
+      while (2 * largest <= most_cells / 2)
+        largest *= 2;
+      const double modes     = continuum_modes_below(bar, top);
+      const double most_dofs = double(largest) * scene.discretisation.degree;
+      if (modes <= most_dofs)
+        return;
+      std::ostringstream s;
+      s.precision(3);
+      s << "parameter 'Discretisation/Cells' = 0 chooses the cells for the band [0, M Omega max] = [0, " << top
+        << "], which holds about " << modes << " modes of the bar (w_j ~ (j - 1/2) pi c / L), more than the " << most_dofs
+        << " degrees of freedom of the largest mesh it tries (" << largest << " cells of FE_Q("
+        << scene.discretisation.degree << ")): lower Harmonic balance/Harmonics or Continuation/Omega max, or set Cells";
+      throw InputError(s.str());
+    }
+
+    /// A stop signal ends the search: no mesh is chosen yet, nothing computed.
+    void answer_stop()
+    {
+      if (const int signal = point_stop_signal(); signal != 0)
+        throw StopRequested(signal, "the search for the band's cells (Discretisation/Cells = 0)");
+    }
+  } // namespace
+
   BandCells cells_for_band(const BarModel &bar, const Scene &scene)
   {
     BandCells choice;
+    // The automatic range needs mode j's clamped-clamped frequency: a mesh
+    // with fewer modes than Mode + 1 is not a candidate.
+    const unsigned int least_dofs = scene.continuation.mode + 1;
+    Progress           progress("cells for the band", scene.output.progress_every);
     for (unsigned int cells = std::max(1u, scene.discretisation.graded_layers); cells <= most_cells / 2; cells *= 2)
       {
+        if (cells * scene.discretisation.degree < least_dofs)
+          continue;
+        answer_stop();
         Scene candidate                = scene;
         candidate.discretisation.cells = cells;
         const Discretisation coarse(bar, candidate.discretisation);
@@ -49,13 +94,24 @@ namespace nsm
           throw InputError("parameter 'Discretisation/Cells' = 0 is out of range: chooses the cells for the band "
                            "[0, M Omega max] of a backbone, a field or receptance.csv, and the scene asks for none; "
                            "allowed an integer in [1, 1000000]");
+        check_band_reachable(bar, scene, top);
+        answer_stop();
         const Discretisation fine(coarse, coarse.fe().degree, 1);
         choice.cells     = cells;
         choice.agreement = band_agreement(coarse, fine, top);
         choice.tried.push_back(cells);
         if (choice.agreement.error <= band_tolerance)
           return choice;
+        progress.update([&] {
+          std::ostringstream s;
+          s.precision(2);
+          s << cells << " cells of FE_Q(" << scene.discretisation.degree << ") agree with twice the cells to "
+            << choice.agreement.error << " up to " << significant(top, 4) << " (" << choice.agreement.modes
+            << " modes; wanted " << band_tolerance << "): trying " << 2 * cells;
+          return s.str();
+        });
       }
+    answer_stop();
     std::ostringstream s;
     s << "Discretisation/Cells = 0: no mesh up to " << choice.cells << " cells of FE_Q("
       << scene.discretisation.degree << ") resolves the band to " << band_tolerance

@@ -34,6 +34,19 @@ namespace nsm
     using std::runtime_error::runtime_error;
   };
 
+  /// A stop signal that arrived in a stage before the first point of the
+  /// continuation (the search for the band's cells): nothing is computed yet
+  /// that could be kept, so the run ends with no output (exit 128 + signal).
+  class StopRequested : public std::runtime_error
+  {
+  public:
+    StopRequested(const int signal, const std::string &stage)
+      : std::runtime_error(stage)
+      , signal(signal)
+    {}
+    int signal;
+  };
+
   /// A broken invariant of nsm-bar's own logic: a bug, not the scene's or
   /// the numerics' fault (base/assertions.h).
   class LogicError : public std::logic_error

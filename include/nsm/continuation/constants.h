@@ -22,6 +22,9 @@ namespace nsm::continuation_constants
   /// by this factor up to Search reach: a doubling search covers the reach
   /// in a few solves.
   constexpr double search_growth = 2;
+  /// The fewest units of Omega's rounding a step of Min step must span near
+  /// the branch's start: below it the steps' arithmetic is rounding alone.
+  constexpr double step_ulps = 1024;
   /// LOCA's adaptive step size control: its default aggressiveness.
   constexpr double loca_aggressiveness = 1.0;
   /// LOCA tests the norm of its extended (arclength) system: its corrector

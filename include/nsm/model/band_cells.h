@@ -35,11 +35,20 @@ namespace nsm
   /// and a mode with none there counts as 2 top / w_j,fine - 1 (a lower bound).
   BandAgreement band_agreement(const Discretisation &coarse, const Discretisation &fine, double top);
 
+  /// How many clamped-free modes the continuum bar has below `top`:
+  /// w_j ~ (j - 1/2) pi / tau, tau = L sqrt(rho / E) the wave's travel time
+  /// (asymptotically exact in j for a smooth section of one material).
+  double continuum_modes_below(const BarModel &bar, double top);
+
   /// Discretisation/Cells = 0: the fewest cells, doubling from max(1, Graded/
   /// Layers), whose eigenfrequencies up to the scene's receptance band agree
   /// with twice as many cells' to band_tolerance (an automatic Omega max is
-  /// read off each candidate). Throws InputError if the scene needs no band,
-  /// NumericalError if no mesh up to the Cells bound reaches it.
+  /// read off each candidate; a mesh with fewer than Mode + 1 modes is
+  /// skipped). Throws InputError if the scene needs no band or one with more
+  /// modes than the largest mesh has degrees of freedom (before building
+  /// it), NumericalError if no mesh up to the Cells bound reaches it, and
+  /// StopRequested at a stop signal, between candidates. Prints a progress
+  /// line per candidate every Output/Progress every seconds.
   struct BandCells
   {
     unsigned int              cells = 0;
