@@ -50,7 +50,8 @@ namespace nsm
                            "' is neither a number nor a range a:b:n");
       }
     for (const double w : values)
-      require(w >= 0 && w <= frequency_limit,
+      if (!(w >= 0 && w <= frequency_limit)) // the value formatted only when refused: a list holds up to 1e6
+        require(false,
               parameter,
               "frequencies in [0, " + format_value(frequency_limit) + "]",
               format_value(w));

@@ -130,6 +130,10 @@ namespace nsm
       const fs::file_status status = fs::status(path, error);
       if (!fs::exists(status))
         throw InputError("scene '" + shown(path) + "' does not exist");
+      if (fs::is_directory(status))
+        throw InputError("scene '" + shown(path) + "' is a folder, not a scene file: nsm-bar " + shown(path) +
+                         " --resume goes on with a stopped run from its record (parameters.prm), and nsm-bar " +
+                         shown(path) + "/parameters.prm --output NEW runs that record again");
       if (!fs::is_regular_file(status))
         throw InputError("scene '" + shown(path) + "' is not a regular file");
       if (!std::ifstream(path))

@@ -385,7 +385,7 @@ def rows(executable):
         dict(name="tolerance_loose", scene=section("Harmonic balance", Tolerance=1) +
              spectrum_scene(), code=2, words=["Harmonic balance/Tolerance", "1e-06"]),
         dict(name="scene_directory", scene=None, setup=scene_is_directory, code=2,
-             words=["scene.prm", "not a regular file"]),
+             words=["scene.prm", "is a folder"]),
         dict(name="garbage_xml", scene=None, setup=garbage("xml"), code=2,
              words=["scene.xml"]),
         dict(name="garbage_json", scene=None, setup=garbage("json"), code=2,

@@ -1,0 +1,271 @@
+#!/usr/bin/env python3
+"""The fourth table of hostile cases, one class of defect per block: values
+the record would not read back, default folders two scene files share, a
+record rerun into its own folder, two runs into one folder at once, memory
+that grows with the points and the receptance frequencies, a range the
+branch never reaches, the search for the band's cells (hangs, exit 3, stop
+signals), degenerate lengths and walls, and messages.
+
+usage: hostile_round_four.py NSM_BAR [NAME_REGEX ...]
+Rows run as hostile_inputs.py's do (its run_row: exit code, one line on
+stderr naming the parameter, nothing left behind but `leaves`, refusals
+before any work); a row with `runner` is run by that function instead. It
+prints the number of cases per class at the end.
+"""
+import collections
+import os
+import re
+import signal
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from hostile_inputs import SMALL, output, row_directory, run_row, section  # noqa: E402
+from hostile_round_three import complete, wait_for  # noqa: E402
+from hostile_round_two import read, write  # noqa: E402
+
+SPECTRUM = SMALL + output(Spectrum_modes=2)
+BACKBONE = SMALL + section("Continuation", Omega_max=2.0, Energy_max=1e-3) + output(Backbone="true")
+# A continuation that announces each point (Progress every tiny), so that a
+# row can act once it runs.
+ANNOUNCED = SMALL + section("Continuation", Omega_max=2.0, Energy_max=1e-3) + \
+    output(Backbone="true", Progress_every=1e-9)
+
+
+def run(executable, scene_file, *args):
+    return subprocess.run([executable, scene_file, *args], capture_output=True, text=True, errors="replace")
+
+
+def first_output(executable, scene_file, scene=SPECTRUM, *args):
+    """A setup: a complete run of `scene` from `scene_file` (folders made)."""
+    def setup(_):
+        os.makedirs(os.path.dirname(scene_file) or ".", exist_ok=True)
+        write(scene_file, scene)
+        result = run(executable, scene_file, *args)
+        assert result.returncode == 0, result.stderr
+    return setup
+
+
+def untouched(directory, scene_file):
+    """A check: `directory` still holds the whole output the setup wrote from
+    `scene_file` (its manifest names that file's default folder)."""
+    def check(_):
+        assert complete(directory), f"{directory} is not a whole output"
+        manifest = read(os.path.join(directory, "nsm-bar.manifest"))
+        assert os.path.abspath(scene_file) in manifest, f"{directory} was replaced:\n{manifest}"
+    return check
+
+
+def reads_back(row):
+    """A check: the record of a run reads back the directory it wrote."""
+    record = read("out/parameters.prm")
+    assert re.search(r"set Directory\s+= out\n", record), record
+
+
+# ---- 4. two runs into one folder at once -------------------------------------
+
+def overlapping_runs(row, executable):
+    """Run A stops (SIGSTOP) once its continuation runs, run B into the same
+    folder runs whole meanwhile, then A goes on: B's output is kept, and A
+    fails (exit 5) without replacing it."""
+    write("a.prm", ANNOUNCED + output(Directory="same"))
+    write("b.prm", row["scene"])
+    a = subprocess.Popen([executable, "a.prm"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    line = a.stderr.readline()
+    assert "nsm-bar:" in line, f"run A said no progress line: {line!r}"
+    a.send_signal(signal.SIGSTOP)
+    b = run(executable, "b.prm")
+    a.send_signal(signal.SIGCONT)
+    rest = a.communicate()[1]
+    assert b.returncode == 0, f"run B: exit {b.returncode}: {b.stderr}"
+    assert a.returncode == 5, f"run A: exit {a.returncode}, expected 5: {rest}"
+    assert "another run" in rest and "Output/Directory" in rest, rest
+    assert complete("same"), "same is not a whole output"
+    assert "b.prm" in read("same/summary.txt").splitlines()[0], "B's output was replaced"
+    leftovers = [n for n in os.listdir(".") if n.startswith(".nsm-bar-")]
+    assert not leftovers, f"staging folders left: {leftovers}"
+
+
+# ---- 7. a stop while the band's cells are sought ------------------------------
+
+def stop_during_cells_search(row, executable):
+    """SIGTERM at the search's first progress line ends the run within
+    seconds (exit 143), with no output and no staging folder."""
+    write("scene.prm", row["scene"])
+    process = subprocess.Popen([executable, "scene.prm"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                               text=True)
+    wait_for(lambda: "cells for the band" in process.stderr.readline(), "a line of the search", process)
+    process.send_signal(signal.SIGTERM)
+    asked = time.time()
+    try:
+        stderr = process.communicate(timeout=60)[1]
+    except subprocess.TimeoutExpired:
+        process.kill()
+        raise AssertionError("no exit within 60 s of SIGTERM")
+    waited = time.time() - asked
+    assert process.returncode == 143, f"exit {process.returncode}: {stderr}"
+    assert "stopped by SIGTERM" in stderr and "no output written" in stderr, stderr
+    assert not os.path.exists("out"), "an output was written"
+    leftovers = [n for n in os.listdir(".") if n.startswith(".nsm-bar-")]
+    assert not leftovers, f"staging folders left: {leftovers}"
+    print(f"     answered SIGTERM in {waited:.1f} s")
+
+
+# ---- 9. messages -------------------------------------------------------------
+
+def earlier_output_with_record(executable):
+    """A setup: out holds a complete run (and its record, out/parameters.prm)."""
+    def setup(row):
+        first_output(executable, "first.prm", SPECTRUM + output(Directory="out"))(row)
+    return setup
+
+
+def new_rows(executable):
+    one_mesh = section("Discretisation", Degree=10, Cells=7)
+    return [
+        # ---- 1. values the record does not read back -------------------------
+        # old: run into results#M10, recorded as results: its record rerun
+        # replaced another run's output.
+        dict(name="hash_in_directory", cls=1, scene=SPECTRUM, args=["--output", "results#M10"], code=2,
+             words=["Output/Directory", "record", "'#'"], before_work=True),
+        dict(name="backslash_ending_directory", cls=1, scene=SPECTRUM, args=["--output", "out\\"], code=2,
+             words=["Output/Directory", "backslash"], before_work=True),
+        dict(name="spaces_around_directory", cls=1, scene=SPECTRUM, args=["--output", "  out  sp  "], code=2,
+             words=["Output/Directory", "white space"], before_work=True),
+        dict(name="tab_ending_directory", cls=1, scene=SPECTRUM, args=["--output", "out\t"], code=2,
+             words=["Output/Directory"], before_work=True),
+        dict(name="space_ending_cross_section", cls=1, scene=SPECTRUM, args=["--set", "Bar/Cross section=1.5 - x "],
+             code=2, words=["Bar/Cross section", "white space"], before_work=True),
+        dict(name="hash_in_cross_section", cls=1, scene=SPECTRUM, args=["--set", "Bar/Cross section=1.5 - x#c"],
+             code=2, words=["Bar/Cross section", "'#'"], before_work=True),
+        dict(name="hash_in_json_value", cls=1, scene_file="scene.json",
+             scene='{"Output": {"Directory": "res#1", "Spectrum modes": "2"}, '
+                   '"Discretisation": {"Degree": "10", "Cells": "7"}}',
+             code=2, words=["Output/Directory", "'#'"], before_work=True),
+        dict(name="plain_directory_reads_back", cls=1, scene=SPECTRUM, args=["--output", "out"], code=0,
+             leaves={"out"}, check=reads_back),
+        # ---- 2. default folders of two scene files -----------------------------
+        # old: the second run replaced the first's output/x, exit 0.
+        dict(name="same_name_other_folder", cls=2, scene=None, scene_file="b/x.prm",
+             setup=lambda row: first_output(executable, "a/x.prm")(row) or
+             os.makedirs("b") or write("b/x.prm", SPECTRUM), code=2, words=["Output/Directory", "a/x.prm"],
+             leaves={"a", "b", "output"}, before_work=True, check=untouched("output/x", "a/x.prm")),
+        dict(name="prm_and_json", cls=2, scene_file="x.json",
+             scene='{"Output": {"Spectrum modes": "2"}, "Discretisation": {"Degree": "10", "Cells": "7"}}',
+             setup=first_output(executable, "x.prm"), code=2, words=["Output/Directory", "x.prm"],
+             leaves={"x.prm", "output"}, before_work=True, check=untouched("output/x", "x.prm")),
+        dict(name="dot_names", cls=2, scene=SPECTRUM, scene_file="...prm", setup=first_output(executable, "..prm"),
+             code=2, words=["Output/Directory", "..prm"], leaves={"..prm", "output"}, before_work=True,
+             check=untouched("output/scene", "..prm")),
+        dict(name="explicit_then_default", cls=2, scene=SPECTRUM, scene_file="x.prm",
+             setup=first_output(executable, "y.prm", SPECTRUM + output(Directory="output/x")), code=2,
+             words=["Output/Directory", "explicit"], leaves={"y.prm", "output"}, before_work=True),
+        # The same scene file rerun replaces its own default folder.
+        dict(name="same_scene_again", cls=2, scene=SPECTRUM, scene_file="x.prm",
+             setup=first_output(executable, "x.prm"), code=0, leaves={"output"},
+             check=untouched("output/x", "x.prm")),
+        # ---- 3. a record rerun into its own folder -----------------------------
+        # old: nsm-bar out/parameters.prm replaced out, exit 0.
+        dict(name="record_rerun_in_place", cls=3, scene=None, scene_file="out/parameters.prm",
+             setup=earlier_output_with_record(executable), code=2, words=["Output/Directory", "--output"],
+             leaves={"out", "first.prm"}, before_work=True),
+        dict(name="record_rerun_elsewhere", cls=3, scene=None, scene_file="out/parameters.prm",
+             setup=earlier_output_with_record(executable), args=["--output", "again"], code=0,
+             leaves={"out", "first.prm", "again"}),
+        # ---- 4. two runs into one folder at once ------------------------------
+        # old: both exit 0, the last to finish won.
+        dict(name="two_runs_one_folder", cls=4, scene=SPECTRUM + output(Directory="same"),
+             runner=overlapping_runs),
+        dict(name="two_runs_one_new_folder_backbones", cls=4, scene=BACKBONE + output(Directory="same"),
+             runner=overlapping_runs),
+        # ---- 5. memory that grows with points and frequencies ------------------
+        # old: estimated at 200 MiB, peaked at 3.97 GB.
+        dict(name="max_steps_beyond_the_limit", cls=5,
+             scene=BACKBONE + section("Continuation", Max_steps=1000000) + section("Resources", Memory_limit=500),
+             code=2, words=["Continuation/Max steps", "Memory limit"], before_work=True),
+        dict(name="receptance_frequencies_beyond_the_limit", cls=5,
+             scene=SMALL + output(Receptance_frequencies="0:10:1000000") + section("Resources", Memory_limit=300),
+             code=2, words=["Output/Receptance frequencies", "Memory limit"], before_work=True),
+        dict(name="fields_every_beyond_the_limit", cls=5,
+             scene=BACKBONE + section("Continuation", Max_steps=1000000) + output(Fields_every=1) +
+             section("Resources", Memory_limit=1000), code=2, words=["Memory limit"], before_work=True),
+        # ---- 6. a range the branch never reaches --------------------------------
+        # old: exit 0, a header-only backbone.csv, no reason.
+        dict(name="range_above_the_branch", cls=6,
+             scene=SMALL + section("Continuation", Omega_min=2.5, Omega_max=3) + output(Backbone="true"),
+             code=2, words=["Continuation/Omega min", "ends at Omega"]),
+        dict(name="range_far_above", cls=6,
+             scene=SMALL + section("Continuation", Omega_min=1e99, Omega_max=1e100) + output(Backbone="true"),
+             code=2, words=["Continuation/Omega min"]),
+        # ---- 7. the band's cells (Cells = 0) ------------------------------------
+        # old: exit 3 "asked for 1 eigenvalues of a pencil with 0 finite ones".
+        dict(name="cells_0_defaults", cls=7, scene=section("Discretisation", Cells=0) +
+             section("Continuation", Omega_max=2.0) + output(Directory="out", Backbone="true"), code=0,
+             leaves={"out"}),
+        dict(name="one_linear_cell_automatic_range", cls=7, scene=section("Discretisation", Cells=1, Degree=1) +
+             output(Backbone="true"), code=2, words=["Discretisation/Cells", "Mode + 1"], before_work=True),
+        # old: ran until killed (LAPACK on meshes no band fits).
+        dict(name="cells_0_band_1e9", cls=7, scene=section("Discretisation", Cells=0) +
+             section("Harmonic balance", Harmonics=1000) + section("Continuation", Omega_max=1e6) +
+             output(Backbone="true"), code=2, words=["Discretisation/Cells", "modes"], before_work=True,
+             timeout=60),
+        dict(name="cells_0_band_1e103", cls=7, scene=section("Discretisation", Cells=0, Degree=10) +
+             section("Harmonic balance", Harmonics=1000) + section("Continuation", Omega_max=1e100) +
+             output(Backbone="true"), code=2, words=["Discretisation/Cells", "modes"], before_work=True,
+             timeout=60),
+        # old: acknowledged, then ignored for 11 minutes.
+        dict(name="stop_during_cells_search", cls=7, scene=section("Discretisation", Cells=0) +
+             section("Harmonic balance", Harmonics=1000) + output(Directory="out", Backbone="true",
+                                                                  Progress_every=1e-9),
+             runner=stop_during_cells_search),
+        # ---- 8. degenerate lengths and walls ------------------------------------
+        # old: exit 3, "NOX::Solver::LineSearchBased::init - Unable to compute F".
+        dict(name="length_1e-20", cls=8, scene=one_mesh + section("Bar", Length=1e-20) + output(Backbone="true"),
+             code=2, words=["Continuation/Min step", "Bar/Length"]),
+        dict(name="length_1e-15", cls=8, scene=one_mesh + section("Bar", Length=1e-15) + output(Backbone="true"),
+             code=2, words=["Continuation/Min step"]),
+        dict(name="stiffness_1e20", cls=8, scene=one_mesh + section("Bar", Young_modulus=1e20) +
+             output(Backbone="true"), code=2, words=["Continuation/Min step"]),
+        # old: blamed Omega max, which the scene never set.
+        dict(name="wall_stiffness_1e-20", cls=8, scene=one_mesh + section("Contact", Wall="compliant",
+                                                                          Wall_stiffness=1e-20) +
+             output(Backbone="true"), code=2, words=["Contact/Wall stiffness", "automatic range"]),
+        # ---- 9. messages -----------------------------------------------------
+        # old: ran, and its own --resume then refused it blaming --set.
+        dict(name="scene_name_not_utf8", cls=9, scene=SPECTRUM, scene_file="sc\udce9ne.prm", code=2,
+             words=["Output/Directory", "UTF-8"], before_work=True),
+        # old: "is not a regular file" only.
+        dict(name="output_folder_as_scene", cls=9, scene=None, scene_file="out",
+             setup=earlier_output_with_record(executable), code=2, words=["--resume", "parameters.prm"],
+             leaves={"out", "first.prm"}),
+    ]
+
+
+def main():
+    executable = os.path.abspath(sys.argv[1])
+    patterns = sys.argv[2:]
+    failures, counts = [], collections.Counter()
+    for row in new_rows(executable):
+        if patterns and not any(re.search(p, row["name"]) for p in patterns):
+            continue
+        start = time.time()
+        try:
+            if "runner" in row:
+                with row_directory({**row, "scene": None}):
+                    row["runner"](row, executable)
+            else:
+                run_row(executable, row)
+            counts[row["cls"]] += 1
+            print(f"ok   {row['name']} ({time.time() - start:.1f} s)")
+        except Exception as e:  # an assertion, or a row whose setup broke
+            failures.append(str(e))
+            print(f"FAIL {row['name']}: {e}")
+    print("cases per class: " + ", ".join(f"{c}: {n}" for c, n in sorted(counts.items())))
+    if failures:
+        sys.exit(f"{len(failures)} hostile inputs mishandled")
+    print("all hostile inputs handled")
+
+
+if __name__ == "__main__":
+    main()
