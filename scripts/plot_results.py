@@ -4,13 +4,25 @@
 usage: plot_results.py DIRECTORY --gap G0 [--wall rigid|compliant]
 Writes backbone.png (from backbone.csv, tongues.csv, resonances.csv, fields.csv), per
 field k, field_k_spacetime.png and field_k_tip.png, and for a study study.png (from
-study.csv); prints "wrote PATH" per file.
+study.csv); prints "wrote PATH" per file, and "plots done" last.
+
+Every input is read and checked before any plot is drawn: bad input (a file
+that is not UTF-8 CSV with one named column per field of every row, a number
+that is not a finite decimal, an energy <= 0, a missing column, too few rows,
+a bad option) is one line on stderr naming the file, line and column, or the
+option, and exit code 2, with no plot written. A leading UTF-8 byte order
+mark is skipped. Of each file's columns, those doc/output.md describes are
+checked where present; empty cells only where a run leaves them empty.
 """
 import argparse
-import csv
 import glob
 import os
 import re
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from csv_input import BACKBONE, BRANCHES, BadInput, Column, checked, decimal, read_table  # noqa: E402
+import csv_input  # noqa: E402
 
 import matplotlib
 
@@ -19,27 +31,99 @@ import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib import ticker  # noqa: E402
 
 
-TEXT_COLUMNS = ("branch", "verified", "stable")
+PROG = "plot_results.py"
+
+
+def fail(message, code=2):
+    csv_input.fail(PROG, message, code)
+
+
 # The energy error the run summary counts as close: summary_energy_error in
 # source/verification/orbit_refinement.cc, which the summary line prints.
 CLOSE_ENERGY_ERROR = 0.01
 
 
+def required(*names, **rule):
+    return {name: Column(required=True, **rule) for name in names}
+
+
+GRAZING = {**required("mode", whole=True, positive=True), **required("omega", "energy", positive=True)}
+TONGUES = {**required("mode", "harmonic", whole=True), **required("omega_resonance", "foot_omega_begin",
+                                                                  "foot_omega_end"),
+           **required("max_energy", positive=True), "points": Column(whole=True)}
+RESONANCES = {**required("omega"), **required("mode", "harmonic", whole=True)}
+FIELDS = {**required("index", whole=True), **required("Omega"), **required("energy", positive=True),
+          "branch": Column(words=BRANCHES),
+          **{name: Column(whole=True) for name in ("segment", "resonance_mode", "resonance_harmonic")}}
+TIP = {**required("t", "contact_displacement", "contact_force"), "contact_velocity": Column()}
+SPACETIME = required("t", "x", "displacement")
+
+
+class Table(dict):
+    """A CSV file's columns as lists of values (nan in an empty optional
+    cell), with its path and each row's line number for messages."""
+
+    def __init__(self, path, header, rows, columns):
+        super().__init__({name: [row[name] for _, row in rows] for name in header if name in columns})
+        self.path, self.lines = path, [line for line, _ in rows]
+
+    def bad(self, i, column, what):
+        return BadInput(f"{self.path}: line {self.lines[i]}, column {column}: {what}")
+
+
+def one_period(tip):
+    """A tip file's t: one period's samples, from t >= 0 up."""
+    for i, t in enumerate(tip["t"]):
+        if t < 0 or (i and t <= tip["t"][i - 1]):
+            raise tip.bad(i, "t", f"{t!r} is " + ("< 0" if t < 0 else "not above the row before's"))
+
+
+def grid(table):
+    """A space-time file's t (from 0 up) and x: each two values or more."""
+    for i, t in enumerate(table["t"]):
+        if t < 0:
+            raise table.bad(i, "t", f"{t!r} is < 0")
+    for name in ("t", "x"):
+        if len(set(table[name])) < 2:
+            raise BadInput(f"{table.path}: column {name}: fewer than 2 distinct values")
+
+
+# Each input by its name: its columns, its fewest and most rows, a check of the whole.
+RULES = ((r"backbone\.csv", BACKBONE, 0, None, None), (r"grazing\.csv", GRAZING, 1, 1, None),
+         (r"tongues\.csv", TONGUES, 0, None, None), (r"resonances\.csv", RESONANCES, 0, None, None),
+         (r"fields\.csv", FIELDS, 0, None, None), (r"field_\d+_tip\.csv", TIP, 2, None, one_period),
+         (r"field_\d+_spacetime\.csv", SPACETIME, 4, None, grid))
+TABLES = {}  # path: its Table, read and checked once
+
+
 def read(path):
-    """Columns as lists of numbers (nan where empty); the text columns stay text."""
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    return {key: [r[key] if key in TEXT_COLUMNS else float(r[key] or "nan") for r in rows]
-            for key in rows[0]} if rows else {}
+    """The Table of an input named in RULES, checked by its rules."""
+    if path not in TABLES:
+        columns, fewest, most, check = next(rule[1:] for rule in RULES
+                                            if re.fullmatch(rule[0], os.path.basename(path)))
+        header, rows = read_table(path, columns)
+        if len(rows) < fewest or (most is not None and len(rows) > most):
+            needed = f"exactly {fewest}" if fewest == most else f"at least {fewest}"
+            raise BadInput(f"{path}: {len(rows)} data row{'s' * (len(rows) != 1)}, {needed} needed")
+        table = Table(path, header, rows, columns)
+        if check:
+            check(table)
+        TABLES[path] = table
+    return TABLES[path]
 
 
 def save(figure, path):
     """Writes PATH.partial and renames it into place: a plot stopped half-way
     (a kill, a full disk) never leaves a truncated PATH behind."""
     partial = path + ".partial"
-    figure.savefig(partial, dpi=130, bbox_inches="tight", format=os.path.splitext(path)[1][1:])
+    try:
+        figure.savefig(partial, dpi=130, bbox_inches="tight", format=os.path.splitext(path)[1][1:])
+        os.replace(partial, path)
+    except OSError as error:  # a full disk, a file limit, no write permission
+        if os.path.lexists(partial):
+            os.remove(partial)
+        fail(f"{path}: cannot be written: {error.strerror}", code=1)
     plt.close(figure)
-    os.replace(partial, path)
     print("wrote " + path, flush=True)
 
 
@@ -255,13 +339,19 @@ def explain_ringing(top, bottom, tip, gap, peak, rigid):
                  ha="left", va="bottom", transform=top.transAxes, **note)
 
 
+def field_tips(directory):
+    """(k, path) of each field_k_tip.csv (a name with no number in it is none)."""
+    paths = glob.glob(os.path.join(glob.escape(directory), "field_*_tip.csv"))
+    names = [re.fullmatch(r"field_(\d+)_tip\.csv", os.path.basename(path)) for path in paths]
+    return sorted((int(name.group(1)), path) for name, path in zip(names, paths) if name)
+
+
 def field_plots(directory, gap, rigid):
     omegas = {}
     if os.path.exists(os.path.join(directory, "fields.csv")):
         f = read(os.path.join(directory, "fields.csv"))
         omegas = {int(i): w for i, w in zip(f["index"], f["Omega"])}
-    for path in sorted(glob.glob(os.path.join(directory, "field_*_tip.csv"))):
-        index = int(re.search(r"field_(\d+)_tip.csv", path).group(1))
+    for index, path in field_tips(directory):
         title = f"$\\Omega$ = {omegas[index]:.6g}" if index in omegas else f"field {index}"
         tip = read(path)
         period = tip["t"][-1] * len(tip["t"]) / (len(tip["t"]) - 1)
@@ -336,9 +426,28 @@ def energy_partial(row, rows):
     return row.get("energy_error_partial") == "yes" or int(row.get("energy_points") or 0) < most
 
 
+# study.csv: the columns the plot needs; the numbers of its rows whose status is ok.
+STUDY = required("status", "reference", "cells", "harmonics", "dofs", "wall_total_median",
+                 *(column for column, _ in STUDY_ERRORS), text=True)
+STUDY_OK = {**{name: Column(whole=True) for name in ("cells", "harmonics", "dofs")}, "wall_total_median": Column(),
+            "energy_points": Column(empty=True, whole=True),
+            "energy_error_partial": Column(empty=True, words=("yes", "no")),
+            **{column: Column(empty=True) for column, _ in STUDY_ERRORS}}
+
+
+def study_rows(path):
+    """study.csv's rows whose status is ok, as text, their numbers checked."""
+    if path not in TABLES:
+        rows = read_table(path, STUDY)[1]
+        for line, row in rows:
+            if row["status"] == "ok":
+                checked(path, line, dict(row), STUDY_OK)
+        TABLES[path] = [row for _, row in rows if row["status"] == "ok"]
+    return TABLES[path]
+
+
 def study_plot(directory):
-    with open(os.path.join(directory, "study.csv"), newline="") as f:
-        rows = [r for r in csv.DictReader(f) if r["status"] == "ok"]
+    rows = study_rows(os.path.join(directory, "study.csv"))
     if not rows:
         return
     swept = list(rows[0])[:list(rows[0]).index("status")]
@@ -403,17 +512,55 @@ def study_plot(directory):
     save(figure, os.path.join(directory, "study.png"))
 
 
+def gap_value(text):
+    """--gap: a finite decimal number > 0."""
+    value = decimal(text)
+    if value is None or value <= 0:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a finite decimal number > 0")
+    return value
+
+
+class Parser(argparse.ArgumentParser):
+    """Errors in one line (no usage block), exit 2."""
+
+    def error(self, message):
+        fail(message)
+
+
+def read_inputs(directory):
+    """Reads and checks every file the plots draw, before any is drawn."""
+    if not os.path.isdir(directory):
+        raise BadInput(f"{directory}: not a folder")
+    for name in ("backbone.csv", "grazing.csv", "tongues.csv", "resonances.csv", "fields.csv"):
+        if os.path.exists(os.path.join(directory, name)):
+            read(os.path.join(directory, name))
+    for _, path in field_tips(directory):
+        read(path)
+        if os.path.exists(path.replace("_tip.csv", "_spacetime.csv")):
+            read(path.replace("_tip.csv", "_spacetime.csv"))
+    if os.path.exists(os.path.join(directory, "study.csv")):
+        study_rows(os.path.join(directory, "study.csv"))
+
+
 def main():
-    parser = argparse.ArgumentParser()
+    parser = Parser(prog=PROG)
     parser.add_argument("directory")
-    parser.add_argument("--gap", type=float, required=True)
+    parser.add_argument("--gap", type=gap_value, required=True, help="the gap g0: a number > 0")
     parser.add_argument("--wall", choices=("rigid", "compliant"), default="rigid",
                         help="compliant: u(L) > g0 is the spring's compression, not an overshoot")
     parser.add_argument("--caption", default="", help="what run drew the plots: its scene, mesh and M")
     arguments = parser.parse_args()
     global CAPTION
     CAPTION = arguments.caption
-    if os.path.exists(os.path.join(arguments.directory, "backbone.csv")):
+    try:
+        read_inputs(arguments.directory)
+    except BadInput as error:
+        fail(str(error))
+    backbone = os.path.join(arguments.directory, "backbone.csv")
+    if os.path.exists(backbone) and not read(backbone)["Omega"]:
+        # A run stopped before its first point in the range writes the header alone.
+        print(f"{backbone} holds no point: backbone.png not drawn", flush=True)
+    elif os.path.exists(backbone):
         backbone_plot(arguments.directory)
         orbit_error_plot(arguments.directory)
     field_plots(arguments.directory, arguments.gap, arguments.wall == "rigid")

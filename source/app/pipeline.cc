@@ -296,8 +296,11 @@ namespace nsm
       void note_stop(const std::string &verb)
       {
         if (const int signal = point_stop_signal(); signal != 0)
-          report_.result.back() += std::string(" (stopped by ") + stop_signal_name(signal) +
-                                   " before the other points: --resume " + verb + " them)";
+          {
+            cut_short_ = true;
+            report_.result.back() += std::string(" (stopped by ") + stop_signal_name(signal) +
+                                     " before the other points: --resume " + verb + " them)";
+          }
       }
 
       /// Each point's energy error against the same motion with half the
@@ -313,15 +316,33 @@ namespace nsm
           note_stop("estimates");
         });
         if (point_stop_signal() != 0)
-          return;
+          {
+            cut_short_ = true; // the band check is left out
+            return;
+          }
         timed("band check", [&] {
           const SpaceVerdict verdict =
-            space_verdict(space_->band(discretisation()), space_->energy_changes(backbone()),
+            space_verdict(space_->band(discretisation(), used_band()), space_->energy_changes(backbone()),
                           summary.estimated > 0 ? summary.median : std::nan(""), discretisation());
           report_.result.push_back(verdict.summary);
           if (!verdict.warning.empty())
             report_.result.push_back("warning: " + verdict.warning);
         });
+      }
+
+      /// Whether a stop signal left part of the work out: the continuation,
+      /// or a per-point stage, ended before its last point.
+      bool cut_short() const { return cut_short_ || backbone().end == BackboneEnd::interrupted; }
+
+      /// The band the backbone used: M times its highest Omega (M Omega max
+      /// if it has no point).
+      double used_band() const
+      {
+        double omega = 0;
+        for (const BackbonePoint &p : backbone().points)
+          omega = std::max(omega, p.omega);
+        const double top = std::min(omega > 0 ? omega : scene_.continuation.omega_max, scene_.continuation.omega_max);
+        return scene_.harmonic_balance.harmonics * top;
       }
 
       /// The mesh with every cell halved that the band check compares
@@ -590,6 +611,7 @@ namespace nsm
       std::vector<double>             bar_amplitudes_;
       std::vector<double>             estimates_; ///< per point; empty without Output/Error estimate
       std::unique_ptr<SpaceReference> space_;     ///< the band check's model (Output/Error estimate)
+      bool cut_short_ = false; ///< a stop signal ended a stage before its last point
       std::vector<PeriodicField>      fields_;
       CheckpointCompanions            companions_; ///< of the checkpoint resumed from
     };
@@ -715,7 +737,13 @@ namespace nsm
       report.notes.insert(report.notes.begin(), text);
       manifest_notes.push_back(text);
     };
-    if ((report.stopped_by = point_stop_signal()) != 0)
+    // A stop that left nothing out (it came after the last point of every
+    // stage that answers one) ends a complete run: exit 0, no checkpoint.
+    const int stop = point_stop_signal();
+    if (stop != 0 && skipped.empty() && !(needs_backbone && run.cut_short()))
+      report.notes.push_back(std::string("a stop (") + stop_signal_name(stop) +
+                             ") came after the last point of every stage: the run is complete, nothing left out");
+    else if ((report.stopped_by = stop) != 0)
       {
         std::string text = std::string("interrupted by ") + stop_signal_name(report.stopped_by) +
                            ": the output holds what was computed before";

@@ -89,12 +89,14 @@ namespace nsm
 
     /// The logical lines of a PRM text: each trimmed, and one ending in a
     /// backslash joined to the next without it, as deal.II joins them.
-    std::vector<std::string> logical_lines(std::istream &in)
+    std::vector<std::string> logical_lines(std::istream &in, std::vector<std::size_t> *first_lines = nullptr)
     {
       std::vector<std::string> lines;
       bool                     continued = false;
+      std::size_t              number    = 0;
       for (std::string line; std::getline(in, line);)
         {
+          ++number;
           line              = trimmed(line);
           const bool joined = !line.empty() && line.back() == '\\'; // this physical line goes on
           if (joined)
@@ -102,11 +104,23 @@ namespace nsm
           if (continued)
             lines.back() += line;
           else
-            lines.push_back(line);
+            {
+              lines.push_back(line);
+              if (first_lines)
+                first_lines->push_back(number);
+            }
           continued = joined;
         }
       return lines;
     }
+
+    /// Where a line of the flattened text came from: its file and the
+    /// physical line its logical line starts at.
+    struct LineOrigin
+    {
+      std::string file;
+      std::size_t line;
+    };
 
     /// The file an include line names, or nullopt for any other line. Every
     /// line that starts with "include" in any case is one, so that deal.II,
@@ -145,7 +159,8 @@ namespace nsm
     /// flattened texts (names relative to the working directory, as deal.II
     /// reads them). A file included inside itself, by any path to it, is a
     /// cycle; more than max_include_depth nested includes are refused.
-    void flatten(const std::string &path, std::vector<fs::path> &chain, std::ostream &out, std::size_t &files)
+    void flatten(const std::string &path, std::vector<fs::path> &chain, std::ostream &out, std::size_t &files,
+                 std::vector<LineOrigin> &origins)
     {
       if (++files > max_included_files)
         throw InputError("scene '" + shown(chain.empty() ? path : chain.front().string()) + "' includes more than " +
@@ -158,16 +173,21 @@ namespace nsm
         throw InputError("scene '" + shown(chain.front().string()) + "': includes nested deeper than " +
                          std::to_string(max_include_depth) + " at '" + shown(path) + "'");
       chain.push_back(canonical);
-      std::ifstream file(path);
-      for (const std::string &line : logical_lines(file))
-        if (const auto included = included_file(line))
+      std::ifstream            file(path);
+      std::vector<std::size_t> numbers;
+      const std::vector<std::string> lines = logical_lines(file, &numbers);
+      for (std::size_t i = 0; i < lines.size(); ++i)
+        if (const auto included = included_file(lines[i]))
           {
             if (included->empty())
               throw InputError("scene '" + shown(path) + "': an include line names no file");
-            flatten(*included, chain, out, files);
+            flatten(*included, chain, out, files, origins);
           }
         else
-          out << line << '\n';
+          {
+            out << lines[i] << '\n';
+            origins.push_back({path, numbers[i]});
+          }
       chain.pop_back();
     }
 
@@ -410,6 +430,22 @@ namespace nsm
     /// in the current subsection." said with the entry's full path, from the
     /// PRM text's subsections up to line n; other messages as they are. Both
     /// end with where the parameters are listed.
+    /// deal.II's "Line <n> of file <f>: The line <text> could not be parsed
+    /// ..." said with the file and line the text came from, without the text
+    /// (an included file's content is not echoed: `include /etc/hostname`).
+    std::string unparsed_line(const std::string &message, const std::vector<LineOrigin> &origins)
+    {
+      std::smatch match;
+      if (!std::regex_search(message, match, std::regex(R"(Line <(\d+)>.*could not be parsed)")))
+        return "";
+      const unsigned long n = std::stoul(match[1]);
+      if (n == 0 || n > origins.size())
+        return "";
+      const LineOrigin &o = origins[n - 1];
+      return "line " + std::to_string(o.line) + " of '" + shown(o.file) +
+             "' is not a 'set', 'include', 'subsection' or 'end' line";
+    }
+
     std::string undeclared_entry(const std::string &message, const std::string &prm_text)
     {
       const std::string hint = " (nsm-bar --print-parameters lists them)";
@@ -478,14 +514,15 @@ namespace nsm
   {
     const std::string extension = fs::path(path).extension().string();
     const bool        tree_format = extension == ".json" || extension == ".xml";
-    std::stringstream flat;
+    std::stringstream       flat;
+    std::vector<LineOrigin> origins; // of each line of a PRM text's flattened text
     if (tree_format)
       flat.str(checked_tree_text(path, extension == ".json"));
     else
       {
         std::vector<fs::path> chain;
         std::size_t           files = 0;
-        flatten(path, chain, flat, files);
+        flatten(path, chain, flat, files, origins);
       }
 
     // Every entry as text first: deal.II's own pattern errors name neither
@@ -507,8 +544,10 @@ namespace nsm
       }
     catch (const dealii::ExceptionBase &e)
       {
+        const std::string unparsed = unparsed_line(one_line_message(e), origins);
         throw InputError("scene '" + shown(path) + "': " +
-                         undeclared_entry(one_line_message(e), tree_format ? "" : flat.str()));
+                         (!unparsed.empty() ? unparsed :
+                                              undeclared_entry(one_line_message(e), tree_format ? "" : flat.str())));
       }
     catch (const std::exception &e)
       {

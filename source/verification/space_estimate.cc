@@ -28,7 +28,12 @@ namespace nsm
 
   BandAgreement SpaceReference::band(const Discretisation &model) const
   {
-    return band_agreement(model, *reference_, branch_.harmonic_balance.harmonics * branch_.continuation.omega_max);
+    return band(model, branch_.harmonic_balance.harmonics * branch_.continuation.omega_max);
+  }
+
+  BandAgreement SpaceReference::band(const Discretisation &model, const double top) const
+  {
+    return band_agreement(model, *reference_, top);
   }
 
   std::vector<double> SpaceReference::energy_changes(const Backbone &backbone) const
@@ -66,7 +71,7 @@ namespace nsm
     std::ostringstream s;
     s.precision(2);
     s << "spatial error (" << ours << " against " << 2 * model.n_cells()
-      << " cells): eigenfrequencies up to M Omega max = " << significant(band.top, 4) << " (" << band.modes
+      << " cells): eigenfrequencies up to M times the branch's highest Omega = " << significant(band.top, 4) << " (" << band.modes
       << " modes) agree to " << band.error;
     if (changes.empty())
       return {s.str(), ""};

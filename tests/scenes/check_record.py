@@ -98,7 +98,7 @@ def resume_from_record(executable):
     resumed = run([executable, "stopped", "--resume", "--set", "Output/Progress every=1e6"])
     assert "resumed from continuation.resume" in resumed.stdout, resumed.stdout
     assert not os.path.exists("stopped/continuation.resume")
-    assert "not a regular file" in run([executable, "recorded"], code=2).stderr  # a folder alone is no scene
+    assert "is a folder" in run([executable, "recorded"], code=2).stderr  # a folder alone is no scene
     print("nsm-bar DIR --resume went on from the record")
 
 

@@ -121,6 +121,20 @@ def earlier_output_with_record(executable):
     return setup
 
 
+def hostname_not_echoed(row):
+    name = read("/etc/hostname").strip()
+    assert not name or name not in row["stderr"].replace("/etc/hostname", ""), row["stderr"]
+
+
+def band_check_used_band(row):
+    """The band check's band is M times the branch's highest Omega (M = 20
+    here), not M Omega max = 2e101."""
+    line = next(l for l in row["stdout"].splitlines() if "spatial error" in l)
+    top = float(re.search(r"branch's highest Omega = (\S+)", line)[1])
+    highest = max(float(r.split(",")[1]) for r in read("out/backbone.csv").splitlines()[1:])
+    assert abs(top / (20 * highest) - 1) < 1e-3, (line, highest)
+
+
 def new_rows(executable):
     one_mesh = section("Discretisation", Degree=10, Cells=7)
     return [
@@ -235,6 +249,17 @@ def new_rows(executable):
         # old: ran, and its own --resume then refused it blaming --set.
         dict(name="scene_name_not_utf8", cls=9, scene=SPECTRUM, scene_file="sc\udce9ne.prm", code=2,
              words=["Output/Directory", "UTF-8"], before_work=True),
+        # old: the message echoed the included file's first line.
+        dict(name="include_of_a_system_file", cls=9, scene="include /etc/hostname\n" + SPECTRUM, code=2,
+             words=["line 1 of '/etc/hostname'", "not a 'set'"], check=hostname_not_echoed),
+        dict(name="bad_line_in_an_included_file", cls=9, scene="include inner.prm\n",
+             setup=lambda row: write("inner.prm", "subsection Bar\n  set Length = 1\n  a stray line\nend\n"),
+             code=2, words=["line 3 of 'inner.prm'"], leaves={"inner.prm"}),
+        # old: "eigenfrequencies up to M Omega max = 2e+101 (140 modes) agree to
+        # 1.8e+99", no warning: the band check's band is the one the branch used.
+        dict(name="omega_max_1e100_band_check", cls=9, scene=SMALL + section("Continuation", Omega_max=1e100,
+                                                                          Energy_max=1e-3) +
+             output(Directory="out", Backbone="true"), code=0, leaves={"out"}, check=band_check_used_band),
         # old: "is not a regular file" only.
         dict(name="output_folder_as_scene", cls=9, scene=None, scene_file="out",
              setup=earlier_output_with_record(executable), code=2, words=["--resume", "parameters.prm"],

@@ -31,6 +31,11 @@ namespace nsm
     /// The model's eigenfrequencies up to M Omega max against the reference's.
     BandAgreement band(const Discretisation &model) const;
 
+    /// The same up to `top` (the band the backbone used: M times its highest
+    /// Omega, which an Omega max far beyond the branch's end exceeds by any
+    /// factor).
+    BandAgreement band(const Discretisation &model, double top) const;
+
     /// Per sampled main point (space_samples, evenly spread over the main
     /// points), |E_ref / E - 1|: E_ref solved at its Omega on the reference
     /// from its own unknowns; NaN where that Newton finds no contact motion
