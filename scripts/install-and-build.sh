@@ -13,7 +13,13 @@ for package in "${packages[@]}"; do
 done
 if ((${#missing[@]})); then
   sudo=""
-  [ "$(id -u)" -ne 0 ] && sudo=sudo
+  if [ "$(id -u)" -ne 0 ]; then
+    command -v sudo > /dev/null || {
+      echo "missing Debian packages: ${missing[*]}; run as root (or install sudo): apt-get install ${missing[*]}" >&2
+      exit 1
+    }
+    sudo=sudo
+  fi
   echo "installing: ${missing[*]}"
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"

@@ -122,8 +122,11 @@ namespace nsm
       std::ostringstream s;
       s << "verification in time: " << defects.size() << " points, " << flagged
         << " not periodic to Verify tolerance = " << scene.output.verify_tolerance;
-      if (!defects.empty())
+      // A median needs three points at least: fewer are listed.
+      if (defects.size() >= 3)
         s << "; one-period defect / g0: median " << defects[defects.size() / 2] << ", max " << defects.back();
+      for (std::size_t i = 0; defects.size() < 3 && i < defects.size(); ++i)
+        s << (i == 0 ? "; one-period defect / g0 of each: " : ", ") << defects[i];
       return s.str();
     }
 
@@ -440,7 +443,7 @@ namespace nsm
                 continue;
               fields_.emplace_back(hb(), discretisation(), *point);
               if (const BackbonePoint &p = fields_.back().point(); p.branch != Branch::main)
-                report_.notes.push_back(off_main_field_note(p));
+                report_.result.push_back(off_main_field_note(p)); // a field's family is part of the result
               if (o.verify_in_time)
                 report_.notes.push_back(field_verification(fields_.back(), discretisation(), hb().law(), scene_.output));
               if (o.refine_in_time)
@@ -496,7 +499,7 @@ namespace nsm
                                     (scene_.contact.wall == Wall::compliant ?
                                        ", compliant wall k = " + scene_entries::format_value(scene_.contact.stiffness) :
                                        "");
-        timed("plots", [&] { plots = make_plots(scene_.contact, directory, caption); });
+        timed("plots", [&] { plots = make_plots(scene_.contact, directory, caption, scene_.output.directory); });
         for (std::string &f : plots.files)
           report_.files.push_back(std::move(f));
         if (!plots.failure.empty() && plots.stopped_by == 0)
@@ -553,7 +556,7 @@ namespace nsm
             s << "field at Omega = " << omega << " (Output/Fields at) moved to the nearest main point, Omega = "
               << nearest->omega << " (" << why << "; within Continuation/Search reach = "
               << scene_.continuation.search_reach << ")";
-            report_.notes.push_back(s.str());
+            report_.result.push_back(s.str());
             return *nearest;
           }
         s << "parameter 'Output/Fields at' = " << omega << ": " << why

@@ -137,8 +137,9 @@ namespace nsm
         s << record->above_energy_max << " above Energy max, ";
       s << failed << " did not converge";
       if (record->landed)
-        s << "; the segment traced from Omega = " << std::setprecision(6) << *record->landed
-          << " is not main against the points beyond it";
+        s << "; a segment it traced from Omega = " << std::setprecision(6) << *record->landed
+          << " began on the main branch but is not main once the whole branch is labelled (its energy lies above "
+             "the mode's beyond the gap, or its contact falls short of the mode's before it)";
       return s.str();
     }
 
@@ -187,6 +188,31 @@ namespace nsm
         << " %, within " << 100 * exact_error_share << " %: " << within << " of " << errors.size();
       return {s.str()};
     }
+
+    /// Where the branch crosses the accumulation point of its internal
+    /// resonances: for a bar of one material, w_j / (2j - 1) -> pi / (2 tau)
+    /// (WKB; tau = L sqrt(rho / E), the wave's travel time), and for mode n
+    /// the resonances w_j = k W with 2j - 1 = k (2n - 1) crowd at (2n - 1)
+    /// times it. A branch that starts below that point climbs into it.
+    std::vector<std::string> accumulation_crossing(const std::vector<const BackbonePoint *> &main,
+                                                   const Backbone &backbone, const BarModel &bar,
+                                                   const ContinuationParameters &continuation, const double direction)
+    {
+      const double tau   = bar.length() * std::sqrt(bar.density() / bar.young_modulus());
+      const double w_acc = (2.0 * continuation.mode - 1) * M_PI / (2 * tau);
+      const double start = backbone.points.front().omega;
+      if (!(direction > 0 && start < w_acc && continuation.omega_max > w_acc))
+        return {};
+      const auto beyond = std::count_if(main.begin(), main.end(), [&](const BackbonePoint *p) { return p->omega > w_acc; });
+      std::ostringstream s;
+      s.precision(6);
+      s << "the branch crosses the accumulation point W_acc = " << w_acc << " of its internal resonances (w_j / (2j - 1) -> "
+        << (continuation.mode > 1 ? "(2n - 1) " : "") << "pi / (2 tau), tau = L sqrt(rho / E)): it starts below it, at "
+        << start << ", the tongues crowd towards it, and the branch's climb into it is set by the truncation M; "
+        << beyond << " of the " << main.size() << " main points lie beyond it (doc/method.md, "
+        << "\"The accumulation point\")";
+      return {s.str()};
+    }
   } // namespace
 
   std::vector<std::string> backbone_result(const Backbone &backbone, const BarModel &bar,
@@ -204,6 +230,8 @@ namespace nsm
     if (!main.empty() && continuation.fill_gaps_wider_than > 0)
       for (std::string &line : unfound_stretches(backbone, direction, continuation))
         lines.push_back(std::move(line));
+    for (std::string &line : accumulation_crossing(main, backbone, bar, continuation, direction))
+      lines.push_back(std::move(line));
     for (std::string &line : exact_errors(main, bar, contact))
       lines.push_back(std::move(line));
     return lines;

@@ -187,7 +187,7 @@ namespace nsm
         }
       if (back.size() < 2)
         return false;
-      backbone.events.push_back(event_message("filled a gap of the main branch back from its far side",
+      backbone.events.push_back(event_message("traced into a gap of the main branch back from its far side",
                                               back.back().omega));
       std::move(back.rbegin(), back.rend() - 1, std::back_inserter(backbone.points));
       return true;
@@ -218,8 +218,8 @@ namespace nsm
       if (predicted || landing_from_fewer_harmonics(context, labelled, gap, segment, point))
         {
           backbone.events.push_back(event_message(predicted ?
-                                                    "filled a gap of the main branch from the predicted mode" :
-                                                    "filled a gap of the main branch from the branch with half the harmonics",
+                                                    "traced into a gap of the main branch from the predicted mode" :
+                                                    "traced into a gap of the main branch from the branch with half the harmonics",
                                                   point.omega));
           search.landed = point.omega;
           backbone.points.push_back(std::move(point));

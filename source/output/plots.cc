@@ -126,8 +126,63 @@ namespace nsm
     }
   } // namespace
 
-  PlotResult make_plots(const ContactParameters &contact, const std::string &directory, const std::string &caption)
+  namespace
   {
+    /// Where plot_script() looks, relative to the program's folder.
+    const char *const script_places[] = {"../share/nsm-bar", "scripts"};
+
+    /// The folder of the running program (/proc/self/exe), or "".
+    std::filesystem::path program_folder()
+    {
+      std::error_code error;
+      const std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", error);
+      return error ? std::filesystem::path() : program.parent_path();
+    }
+
+    /// Rewrites the log's "wrote ABSOLUTE/NAME" lines as "wrote SHOWN/NAME":
+    /// the log names the plots where they are once the run's output is in
+    /// place, not in its staging directory.
+    void name_final_paths(const std::string &log_path, const std::string &absolute, const std::string &shown)
+    {
+      std::ifstream      in(log_path);
+      std::ostringstream text;
+      for (std::string line; std::getline(in, line);)
+        {
+          if (line.rfind("wrote " + absolute + "/", 0) == 0)
+            line = "wrote " + shown + line.substr(6 + absolute.size());
+          text << line << '\n';
+        }
+      in.close();
+      std::ofstream(log_path, std::ios::trunc) << text.str();
+    }
+  } // namespace
+
+  std::string plot_script()
+  {
+    const std::filesystem::path folder = program_folder();
+    std::error_code             error;
+    for (const char *place : script_places)
+      {
+        const std::filesystem::path script = folder / place / "plot_results.py";
+        if (!folder.empty() && std::filesystem::is_regular_file(script, error))
+          return std::filesystem::weakly_canonical(script, error).string();
+      }
+    return "";
+  }
+
+  PlotResult make_plots(const ContactParameters &contact, const std::string &directory, const std::string &caption,
+                        const std::string &shown_as)
+  {
+    const std::string script = plot_script();
+    if (script.empty())
+      {
+        PlotResult missing;
+        missing.failure = "no plotting script: plot_results.py is neither in " +
+                          (program_folder() / script_places[0]).string() + " nor in " +
+                          (program_folder() / script_places[1]).string() +
+                          " (cmake --install build --prefix DIR installs the program with its scripts)";
+        return missing;
+      }
     std::ostringstream gap;
     gap.precision(17);
     gap << contact.gap;
@@ -138,7 +193,7 @@ namespace nsm
     // '-' is never read as an option.
     const std::string absolute = std::filesystem::absolute(directory, error).string();
     const ProgramEnd  end      = run_program(
-      {NSM_PYTHON, NSM_PLOT_SCRIPT, "--gap", gap.str(), "--wall", wall_name(contact.wall),
+      {NSM_PYTHON, script, "--gap", gap.str(), "--wall", wall_name(contact.wall),
        "--caption=" + printable(caption), "--", absolute},
       log_path);
     PlotResult  result;
@@ -149,6 +204,8 @@ namespace nsm
       {
         result.files = plots_written(log_path, absolute, directory, last);
         result.files.push_back(log_path);
+        if (!shown_as.empty())
+          name_final_paths(log_path, absolute, std::filesystem::absolute(shown_as, error).string());
       }
     if (end == ProgramEnd::succeeded && last != done_line)
       result.failure = "the plotting script ended without drawing every plot (its last line: " +

@@ -1,5 +1,6 @@
 #include <nsm/base/interruption.h>
 #include <nsm/base/progress.h>
+#include <nsm/base/text.h>
 #include <nsm/continuation/branch_context.h>
 #include <nsm/harmonic_balance/newton_solver.h>
 #include <nsm/verification/harmonics_estimate.h>
@@ -15,6 +16,8 @@ namespace nsm
   {
     /// The 90th percentile the summary gives besides the median.
     constexpr double upper_share = 0.9;
+    /// The stretches of the largest tenth named in the summary; more are counted.
+    constexpr std::size_t max_spans_shown = 4;
   } // namespace
 
   SameMotionSolve::SameMotionSolve(HarmonicBalance &model, const HarmonicBalanceParameters &params)
@@ -60,21 +63,37 @@ namespace nsm
 
   EstimateSummary summarise_estimates(const Backbone &backbone, const std::vector<double> &estimates)
   {
-    EstimateSummary     s;
-    std::vector<double> found;
+    EstimateSummary                         s;
+    std::vector<std::pair<double, double>>  main; // (Omega, estimate) of each main point, NaN without one
     for (std::size_t i = 0; i < backbone.points.size(); ++i)
       if (backbone.points[i].branch == Branch::main)
-        {
-          ++s.main;
-          if (i < estimates.size() && std::isfinite(estimates[i]))
-            found.push_back(estimates[i]);
-        }
+        main.emplace_back(backbone.points[i].omega,
+                          i < estimates.size() ? estimates[i] : std::numeric_limits<double>::quiet_NaN());
+    s.main = main.size();
+    std::vector<double> found;
+    for (const auto &[omega, e] : main)
+      if (std::isfinite(e))
+        found.push_back(e);
     s.estimated = found.size();
     if (found.empty())
       return s;
     std::sort(found.begin(), found.end());
     s.median = found[found.size() / 2];
     s.p90    = found[std::min(found.size() - 1, std::size_t(upper_share * found.size()))];
+    // Runs of main points (in Omega) whose estimate reaches the 90th percentile.
+    std::sort(main.begin(), main.end());
+    bool open = false;
+    for (const auto &[omega, e] : main)
+      if (std::isfinite(e) && e >= s.p90)
+        {
+          if (open)
+            s.upper_spans.back().second = omega;
+          else
+            s.upper_spans.emplace_back(omega, omega);
+          open = true;
+        }
+      else if (std::isfinite(e))
+        open = false;
     return s;
   }
 
@@ -82,12 +101,29 @@ namespace nsm
   {
     std::ostringstream s;
     s.precision(2);
-    s << "estimated energy error (against M = " << harmonics / 2 << " at the same Omega): ";
+    s << "estimated energy error of these M = " << harmonics << " points, |E(M/2) / E(M) - 1| with E(M/2) solved "
+      << "with M = " << harmonics / 2 << " at the same Omega: ";
     if (summary.estimated == 0)
       s << "none of " << summary.main << " main points";
     else
-      s << "median " << 100 * summary.median << " %, 90th percentile " << 100 * summary.p90 << " % over "
-        << summary.estimated << " of " << summary.main << " main points";
+      {
+        s << "median " << 100 * summary.median << " %, 90th percentile " << 100 * summary.p90 << " % over "
+          << summary.estimated << " of " << summary.main << " main points; the largest tenth at Omega ";
+        const std::size_t shown = std::min<std::size_t>(summary.upper_spans.size(), max_spans_shown);
+        for (std::size_t i = 0; i < shown; ++i)
+          {
+            const auto &[from, to] = summary.upper_spans[i];
+            s << (i > 0 ? ", " : "") << significant(from, 5);
+            if (significant(to, 5) != significant(from, 5))
+              s << " to " << significant(to, 5);
+          }
+        if (summary.upper_spans.size() > shown)
+          s << " and " << summary.upper_spans.size() - shown << " more stretches";
+      }
+    if (summary.estimated < summary.main)
+      s << "; " << summary.main - summary.estimated << " without an estimate (with M = " << harmonics / 2
+        << ", Newton from the point's own harmonics did not converge, or converged on a motion with another "
+           "contact fraction)";
     return s.str();
   }
 } // namespace nsm

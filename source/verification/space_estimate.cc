@@ -70,7 +70,7 @@ namespace nsm
     const std::string ours = "FE_Q(" + std::to_string(model.fe().degree) + ") x " + std::to_string(model.n_cells());
     std::ostringstream s;
     s.precision(2);
-    s << "spatial error (" << ours << " against " << 2 * model.n_cells()
+    s << "spatial error (" << ours << " against every cell halved, " << 2 * model.n_cells()
       << " cells): eigenfrequencies up to M times the branch's highest Omega = " << significant(band.top, 4) << " (" << band.modes
       << " modes) agree to " << band.error;
     if (changes.empty())
@@ -87,7 +87,8 @@ namespace nsm
       {
         std::ostringstream w;
         w.precision(2);
-        w << "the mesh limits the accuracy: halving its cells moves the main points' energy by a median ";
+        w << "the mesh limits the accuracy: every cell halved (" << 2 * model.n_cells()
+          << " cells) moves the main points' energy by a median ";
         if (std::isfinite(median))
           w << 100 * median << " %";
         else

@@ -49,10 +49,10 @@ def check_seed():
         failures.append(f"seed: an estimate on {len(found)} of {len(main)} main points")
         return
     expected = estimate_statement(found, len(main))
-    line = [l for l in stdout.splitlines() if "estimated energy error (against M = 20" in l]
+    line = [l for l in stdout.splitlines() if "estimated energy error of these M = 40 points" in l]
     if not line or expected not in line[0]:
         failures.append(f"seed: the Result block's estimate {line} is not the column's: {expected}")
-    if "spatial error (FE_Q(1) x 4000 against 8000 cells)" not in stdout or "warning:" in stdout:
+    if "spatial error (FE_Q(1) x 4000 against every cell halved, 8000 cells)" not in stdout or "warning:" in stdout:
         failures.append(f"seed: the band check's line is missing or warns:\n{stdout[:1500]}")
     print(f"seed: estimate on {len(found)} of {len(main)} main points, {expected}")
 

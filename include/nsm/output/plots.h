@@ -29,5 +29,17 @@ namespace nsm
   /// computed). A plot
   /// is an output like any other: its failure never discards the files
   /// computed, and is reported to the caller, not thrown.
-  PlotResult make_plots(const ContactParameters &contact, const std::string &directory, const std::string &caption);
+  ///
+  /// The log names each plot under `shown_as` (the output directory a run's
+  /// staging directory becomes), or under `directory` if it is empty. The
+  /// script is plot_script()'s.
+  PlotResult make_plots(const ContactParameters &contact, const std::string &directory, const std::string &caption,
+                        const std::string &shown_as = "");
+
+  /// The plotting script, found relative to the running program: an
+  /// installed one's PREFIX/share/nsm-bar/plot_results.py (cmake --install),
+  /// or the build tree's scripts/ beside the program (copied at each build).
+  /// Empty if neither exists (a program copied alone: its plots fail, naming
+  /// where it looked).
+  std::string plot_script();
 } // namespace nsm

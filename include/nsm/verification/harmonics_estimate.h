@@ -9,6 +9,7 @@
 #include <nsm/scene/harmonic_balance_parameters.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace nsm
@@ -57,6 +58,9 @@ namespace nsm
   {
     std::size_t main = 0, estimated = 0;
     double      median = 0, p90 = 0;
+    /// Where the largest tenth of the estimates lie: the Omega spans of
+    /// consecutive main points at or above the 90th percentile.
+    std::vector<std::pair<double, double>> upper_spans;
   };
   EstimateSummary summarise_estimates(const Backbone &backbone, const std::vector<double> &estimates);
 
