@@ -419,20 +419,29 @@ def pareto(times, errors):
     return front
 
 
-def energy_partial(row, rows):
-    """A row whose main-branch energy error covers fewer Backbone omegas than
-    the study's best row (energy_points), or that ended inside them."""
-    most = max(int(r.get("energy_points") or 0) for r in rows)
-    return row.get("energy_error_partial") == "yes" or int(row.get("energy_points") or 0) < most
+def measured(column, rows):
+    """The column a study's error is drawn from: the main-branch energy
+    errors over the Backbone omegas every row shares with the reference
+    (COLUMN_shared), where study.csv has them; else COLUMN."""
+    shared = column + "_shared"
+    return shared if column.startswith("energy_error") and shared in rows[0] else column
+
+
+def energy_partial(row, column, rows):
+    """A row left out of an energy error's front: its continuation ended
+    inside the Backbone omegas, or it has no error over the shared ones."""
+    return column.startswith("energy_error") and (row.get("energy_error_partial") == "yes" or
+                                                   not row.get(measured(column, rows), "x"))
 
 
 # study.csv: the columns the plot needs; the numbers of its rows whose status is ok.
 STUDY = required("status", "reference", "cells", "harmonics", "dofs", "wall_total_median",
                  *(column for column, _ in STUDY_ERRORS), text=True)
 STUDY_OK = {**{name: Column(whole=True) for name in ("cells", "harmonics", "dofs")}, "wall_total_median": Column(),
-            "energy_points": Column(empty=True, whole=True),
+            "energy_points": Column(empty=True, whole=True), "shared_omegas": Column(empty=True, whole=True),
             "energy_error_partial": Column(empty=True, words=("yes", "no")),
-            **{column: Column(empty=True) for column, _ in STUDY_ERRORS}}
+            **{column: Column(empty=True) for column, _ in STUDY_ERRORS},
+            **{column + "_shared": Column(empty=True) for column in ("energy_error_max", "energy_error_median")}}
 
 
 def study_rows(path):
@@ -458,12 +467,18 @@ def study_plot(directory):
     # One line per combination of the varying parameters but the size.
     # "-" marks a value a row's run does not use: it names nothing.
     varying = [c for c in swept if c != size and len({r[c] for r in rows} - {"-"}) > 1]
-    measures = [(c, name) for c, name in STUDY_ERRORS if any(r[c] for r in rows)]
+    measures = [(c, name) for c, name in STUDY_ERRORS if any(r[measured(c, rows)] for r in rows)]
     if not measures:
         return
     figure, axes = plt.subplots(len(measures), 2, figsize=(12, 4.2 * len(measures)), squeeze=False)
-    for (column, name), (by_dofs, by_time) in zip(measures, axes):
+    for axes_row, ((plain, name), (by_dofs, by_time)) in enumerate(zip(measures, axes)):
+        column = measured(plain, rows)
+        partial = [r for r in rows if r[plain] and energy_partial(r, plain, rows)]
         valid = [r for r in rows if r[column] and float(r[column]) > 0]
+        over = ""
+        if column != plain:
+            shared = {r["shared_omegas"] for r in valid} - {""}
+            over = f", over the {shared.pop() if shared else 0} Omegas all rows share"
         groups = {}
         for r in valid:
             groups.setdefault(tuple(r[c] for c in varying), []).append(r)
@@ -482,13 +497,14 @@ def study_plot(directory):
                            label=label)
             by_time.loglog([float(r["wall_total_median"]) for r in group], errors, marker, ms=3,
                            color=colour)
-        # study.csv says which rows measured the energy error over part of the Backbone omegas.
-        partial = [r for r in valid if column.startswith("energy_error") and energy_partial(r, rows)]
+        # study.csv says which rows ended inside the Backbone omegas: their own
+        # error (over part of them) is ringed grey, off the front.
+        partial = [r for r in partial if float(r[plain]) > 0]
         if partial:
-            errors = [float(r[column]) for r in partial]
+            errors = [float(r[plain]) for r in partial]
             by_dofs.loglog([int(r[size_column]) for r in partial], errors, "o", ms=9, mfc="none", color="0.5")
             by_time.loglog([float(r["wall_total_median"]) for r in partial], errors, "o", ms=9, mfc="none",
-                           color="0.5", label="measured at fewer Backbone omegas (not on the front)")
+                           color="0.5", label="ended inside the Backbone omegas (own error, not on the front)")
         on_front = [r for r in valid if r not in partial]
         front = pareto([float(r["wall_total_median"]) for r in on_front], [float(r[column]) for r in on_front])
         by_time.step([t for t, _ in front], [e for _, e in front], "k-", where="post", lw=1,
@@ -500,11 +516,11 @@ def study_plot(directory):
             by_dofs.xaxis.set_minor_formatter(ticker.FuncFormatter(lambda value, _: f"{value:g}"))
         by_time.set_xlabel("wall time per run [s] (median)")
         by_dofs.set_ylabel("relative error:\n" + name)
-        by_time.set_title("relative error: " + name + ", against time", fontsize=9)
+        by_time.set_title("relative error: " + name + over + ", against time", fontsize=9)
         for a in (by_dofs, by_time):
             a.grid(True, which="both", alpha=0.3)
         by_time.legend(fontsize=7)
-        if (column, name) == measures[0]:  # the series' legend once, right of the first row
+        if axes_row == 0:  # the series' legend once, right of the first row
             by_dofs.legend(fontsize=8, ncol=1 + len(groups) // 12, loc="upper left", bbox_to_anchor=(2.25, 1))
     figure.suptitle("Accuracy against cost, " + ", ".join(sorted({r["reference"] for r in rows})) +
                     " reference" + ("\n" + CAPTION if CAPTION else ""))

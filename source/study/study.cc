@@ -7,6 +7,8 @@
 #include <nsm/base/progress.h>
 #include <nsm/base/text.h>
 #include <nsm/study/study.h>
+#include <nsm/study/study_measures.h>
+#include <nsm/study/study_shared_errors.h>
 #include <nsm/study/study_combinations.h>
 #include <nsm/study/study_reference.h>
 #include <nsm/study/study_row.h>
@@ -110,12 +112,14 @@ namespace nsm
       if (!table.columns.empty() && table.columns != columns)
         throw InputError("parameter 'Output/Directory' = " + directory +
                          ": its study.csv has other columns; allowed: a new or empty directory");
+      // The shared errors (the last columns) are computed anew from all rows.
+      const std::size_t own = columns.size() - shared_error_columns().size();
       for (const auto &row : table.rows)
         {
           std::vector<std::string> key;
           for (std::size_t c = 0; c < key_size; ++c)
             key.push_back(text_cell(row, c));
-          rows[key] = row;
+          rows[key] = std::vector<CsvCell>(row.begin(), row.begin() + own);
         }
       return rows;
     }
@@ -173,45 +177,42 @@ namespace nsm
 
     /// The run summary's answer to "what does accuracy cost": per measured
     /// error, the rows that no other row beats in both error and median
-    /// time (the Pareto front), fastest first. Rows whose energy errors
-    /// cover part of the Backbone omegas are left out of the backbone
-    /// errors' fronts: those whose continuation ended inside them
-    /// (energy_error_partial), and those measured at fewer of them than the
-    /// study's best row (energy_points), as study.png marks them.
+    /// time (the Pareto front), fastest first. The backbone's energy errors
+    /// are those over the Backbone omegas every row shares with the
+    /// reference (study_shared_errors.h), so that rows which found the main
+    /// branch at different Omegas compare on equal terms; rows whose
+    /// continuation ended inside the Backbone omegas (energy_error_partial)
+    /// are left out of them, as study.png marks them.
     std::vector<std::string> pareto_notes(const CsvTable &table, const std::size_t key_size)
     {
       const auto column  = [&](const std::string &name) { return column_of(table, name); };
       const auto varying = varying_columns(table, key_size);
       const std::size_t        time = column("wall_total_median");
-      const auto               points = [&](const std::vector<CsvCell> &row) {
-        const std::string &cell = text_cell(row, column("energy_points"));
-        return cell.empty() ? 0ul : std::stoul(cell);
-      };
-      unsigned long most_points = 0;
-      for (const auto &row : table.rows)
-        most_points = std::max(most_points, points(row));
       std::vector<std::string> notes;
-      for (const char *error : {"spectrum_error", "receptance_error", "energy_error_max", "energy_error_median",
-                                "main_time_defect_median"})
+      for (const std::string error : {"spectrum_error", "receptance_error", "energy_error_max", "energy_error_median",
+                                      "main_time_defect_median"})
         {
-          const bool backbone_error = std::string(error).rfind("energy_error", 0) == 0;
+          const bool        backbone_error = error.rfind("energy_error", 0) == 0;
+          const std::string measured       = backbone_error ? error + "_shared" : error;
           std::vector<std::pair<double, const std::vector<CsvCell> *>> rows;
           unsigned int                                                 partial = 0;
+          std::string                                                  shared;
           for (const auto &row : table.rows)
             {
               if (text_cell(row, column(error)).empty())
                 continue;
-              if (backbone_error &&
-                  (text_cell(row, column("energy_error_partial")) == "yes" || points(row) < most_points))
+              if (backbone_error && text_cell(row, column(measured)).empty())
                 ++partial;
               else
                 rows.emplace_back(std::stod(text_cell(row, time)), &row);
+              if (backbone_error && shared.empty())
+                shared = text_cell(row, column("shared_omegas"));
             }
           std::sort(rows.begin(), rows.end(),
                     [](const auto &a, const auto &b) { return a.first < b.first; });
           double best = std::numeric_limits<double>::infinity();
           for (const auto &[seconds_taken, row] : rows)
-            if (const double e = std::stod(text_cell(*row, column(error))); e < best)
+            if (const double e = std::stod(text_cell(*row, column(measured))); e < best)
               {
                 best = e;
                 std::ostringstream note;
@@ -220,11 +221,14 @@ namespace nsm
                      << row_name(table, *row, varying);
                 notes.push_back(note.str());
               }
+          if (backbone_error && !rows.empty())
+            notes.push_back("  (" + error + ": over the " + shared +
+                            " Backbone omegas every row shares with the reference, column " + measured + ")");
           if (partial > 0)
-            notes.push_back("  (" + std::string(error) + ": " + std::to_string(partial) +
-                            (partial == 1 ? " row left out: it measured" : " rows left out: they measured") +
-                            " at fewer Backbone omegas than " + std::to_string(most_points) +
-                            " (energy_points), or ended inside them (energy_error_partial))");
+            notes.push_back("  (" + error + ": " + std::to_string(partial) +
+                            (partial == 1 ? " row left out: its continuation ended" :
+                                            " rows left out: their continuations ended") +
+                            " inside the Backbone omegas (energy_error_partial), or no Omega is shared)");
         }
       if (!notes.empty())
         notes.insert(notes.begin(), "the fastest row to each error (median time):");
@@ -320,7 +324,10 @@ namespace nsm
         key_size_ = table_.columns.size();
         for (const std::string &c : study_row_columns(base.study))
           table_.columns.push_back(c);
-        rows_ = earlier_rows(directory(), scene_text_, table_.columns, key_size_);
+        own_columns_ = table_.columns;
+        std::vector<std::string> written = own_columns_;
+        written.insert(written.end(), shared_error_columns().begin(), shared_error_columns().end());
+        rows_ = earlier_rows(directory(), scene_text_, written, key_size_);
         for (std::size_t i = 0; i < combinations_.size(); ++i)
           if (rows_.count(combinations_[i].key) == 0)
             missing_.push_back(i);
@@ -485,10 +492,23 @@ namespace nsm
       void in_combination_order()
       {
         table_.rows.clear();
+        table_.columns = own_columns_;
         for (const StudyCombination &c : combinations_)
           if (const auto row = rows_.find(c.key); row != rows_.end())
             table_.rows.push_back(row->second);
+        add_shared_errors(table_, base_.study.backbone_omega_values, reference_energies_);
       }
+
+    public:
+      /// The backbone reference's energies at the Backbone omegas (the
+      /// exact mode's or the fine reference's), for the shared errors.
+      void compare_with(const std::vector<std::optional<double>> &energies)
+      {
+        reference_energies_ = energies;
+        in_combination_order();
+      }
+
+    private:
 
       /// A row's predicted share of the study's time: with backbones,
       /// (M + 1)^2.6, as whole rows of prm/study-seed-harmonics.prm grow
@@ -528,6 +548,8 @@ namespace nsm
       const std::string                   scene_text_;
       CsvTable                            table_{"study.csv", {}, {}};
       std::size_t                         key_size_ = 0;
+      std::vector<std::string>            own_columns_; ///< study.csv's columns but the shared errors
+      std::vector<std::optional<double>>  reference_energies_; ///< at the Backbone omegas
       std::map<std::vector<std::string>, std::vector<CsvCell>> rows_;
       std::vector<std::size_t>            missing_;
       unsigned int                        failed_ = 0;
@@ -559,6 +581,7 @@ namespace nsm
       throw InputError(refused);
     std::vector<std::string>           reference_notes;
     const std::optional<FineReference> fine = shared_fine_reference(path, base, MPI_COMM_WORLD, reference_notes);
+    study.compare_with(reference_of(base, fine ? &*fine : nullptr).energies);
     study.run_missing_rows(fine ? &*fine : nullptr);
 
     RunReport report;

@@ -16,7 +16,8 @@ namespace nsm
     std::string level_name(const StudyScene &level)
     {
       return "FE_Q(" + std::to_string(level.scene.discretisation.degree) + ") x " +
-             std::to_string(level.scene.discretisation.cells) + " cells";
+             std::to_string(level.scene.discretisation.cells) + " cells at M = " +
+             std::to_string(level.scene.harmonic_balance.harmonics);
     }
 
     std::string column(const std::string &quantity, const StudyScene &level)
@@ -112,7 +113,25 @@ namespace nsm
           largest = std::max(largest, v.value_or(0.0));
         changes << " " << q << " " << largest;
       }
-    return {note.str(), changes.str()};
+    std::vector<std::string> notes{note.str(), changes.str()};
+    // Its M is the base scene's: a sweep of Harmonics at or above it is
+    // compared with a reference no better converged in M than itself.
+    for (const StudyParameters::Sweep &sweep : levels.back().study.sweeps)
+      if (sweep.name == "Harmonics" && !sweep.values.empty())
+        {
+          const unsigned int m       = levels.back().scene.harmonic_balance.harmonics;
+          std::string        at_or_above;
+          for (const std::string &value : sweep.values)
+            if (std::stoul(value) >= m)
+              at_or_above += (at_or_above.empty() ? "" : ", ") + value;
+          if (!at_or_above.empty())
+            notes.push_back("  warning: the reference has M = " + std::to_string(m) +
+                            " (Harmonic balance/Harmonics), and the rows at M = " + at_or_above +
+                            " are compared with it: their energy errors are the mesh's alone (at M = " +
+                            std::to_string(m) + ") or against a less converged M; set Harmonic balance/Harmonics "
+                            "above every swept value for a reference converged in M");
+        }
+    return notes;
   }
 
   FineReference read_fine_reference(const CsvTable &table, const std::vector<StudyScene> &levels)
