@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <sstream>
+#include <utility>
 
 namespace nsm
 {
@@ -272,13 +273,16 @@ namespace nsm
     const auto &c = scene.continuation;
     // Rows differ in their meshes, and so in an automatic range: a study's
     // rows share the range the scene states.
+    // Every missing entry named at once, not one per run.
+    std::string missing;
     if (!study.backbone_omega_values.empty())
-      {
-        scene_entries::require(c.omega_max > 0, "Continuation/Omega max",
-                               "> 0 in a study (its rows share one range; 0, automatic, is for a single run)", "0");
-        scene_entries::require(c.energy_max > 0, "Continuation/Energy max",
-                               "> 0 in a study (its rows share one ceiling; 0, automatic, is for a single run)", "0");
-      }
+      for (const auto &[value, entry] : {std::pair(c.omega_max, "Omega max"), std::pair(c.energy_max, "Energy max")})
+        if (!(value > 0))
+          missing += std::string(missing.empty() ? "" : " and ") + "'Continuation/" + entry + "' = 0";
+    if (!missing.empty())
+      throw InputError("parameter " + missing + (missing.find(" and ") != std::string::npos ? " are" : " is") +
+                       " out of range: allowed > 0 in a study with Backbone omegas (its rows share one range and one "
+                       "energy ceiling; 0, automatic, is for a single run)");
     for (const double w : study.backbone_omega_values)
       scene_entries::require(scene.contact.enabled && w >= c.omega_min && w <= c.omega_max,
                              "Study/Backbone omegas",

@@ -15,8 +15,14 @@ Each command must exit 0 (or the code its block names in a line
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
+
+
+# A command that waits for a line that never comes fails instead of hanging
+# (every command of the tutorial takes seconds).
+COMMAND_TIMEOUT = 300
 
 
 def blocks(text):
@@ -34,7 +40,7 @@ def steps(block):
                 found.append((command, expected, code))
             command, expected, code = line[2:], [], 0
             while command.endswith("\\"):
-                command = command[:-1] + "\n" + next(lines)
+                command += "\n" + next(lines)
         elif re.fullmatch(r"\(exit (\d+)\)", line.strip()):
             code = int(re.fullmatch(r"\(exit (\d+)\)", line.strip())[1])
         elif line.strip() != "...":
@@ -57,6 +63,21 @@ def missing_lines(expected, printed):
     return None
 
 
+def run(command, work):
+    """(exit code, standard output and error) of a command run by bash in
+    `work`, in a session of its own: past COMMAND_TIMEOUT its whole group is
+    killed (exit -9)."""
+    process = subprocess.Popen(["bash", "-c", command], cwd=work, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                               text=True, errors="replace", start_new_session=True)
+    try:
+        stdout, stderr = process.communicate(timeout=COMMAND_TIMEOUT)
+    except subprocess.TimeoutExpired:
+        os.killpg(process.pid, signal.SIGKILL)
+        stdout, stderr = process.communicate()
+        return -9, stdout + stderr + f"\n(killed after {COMMAND_TIMEOUT} s)"
+    return process.returncode, stdout + stderr
+
+
 def main():
     build, source = (os.path.abspath(a) for a in sys.argv[1:3])
     work = os.path.abspath(sys.argv[3] if len(sys.argv) > 3 else "tutorial")
@@ -71,11 +92,9 @@ def main():
     for block in blocks(text):
         for command, expected, code in steps(block):
             count += 1
-            result = subprocess.run(["bash", "-c", command], cwd=work, capture_output=True, text=True,
-                                    errors="replace", timeout=600)
-            printed = result.stdout + result.stderr
-            if result.returncode != code:
-                failures.append(f"$ {command}\n  exit {result.returncode}, expected {code}:\n{printed[-2000:]}")
+            returncode, printed = run(command, work)
+            if returncode != code:
+                failures.append(f"$ {command}\n  exit {returncode}, expected {code}:\n{printed[-2000:]}")
                 continue
             line = missing_lines(expected, printed)
             if line is not None:

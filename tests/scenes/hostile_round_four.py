@@ -12,7 +12,6 @@ stderr naming the parameter, nothing left behind but `leaves`, refusals
 before any work); a row with `runner` is run by that function instead. It
 prints the number of cases per class at the end.
 """
-import collections
 import os
 import re
 import signal
@@ -22,7 +21,7 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from hostile_inputs import SMALL, output, row_directory, run_row, section  # noqa: E402
-from hostile_round_three import complete, wait_for  # noqa: E402
+from hostile_round_three import complete, run_table, wait_for  # noqa: E402
 from hostile_round_two import read, write  # noqa: E402
 
 SPECTRUM = SMALL + output(Spectrum_modes=2)
@@ -269,27 +268,14 @@ def new_rows(executable):
 
 def main():
     executable = os.path.abspath(sys.argv[1])
-    patterns = sys.argv[2:]
-    failures, counts = [], collections.Counter()
-    for row in new_rows(executable):
-        if patterns and not any(re.search(p, row["name"]) for p in patterns):
-            continue
-        start = time.time()
-        try:
-            if "runner" in row:
-                with row_directory({**row, "scene": None}):
-                    row["runner"](row, executable)
-            else:
-                run_row(executable, row)
-            counts[row["cls"]] += 1
-            print(f"ok   {row['name']} ({time.time() - start:.1f} s)")
-        except Exception as e:  # an assertion, or a row whose setup broke
-            failures.append(str(e))
-            print(f"FAIL {row['name']}: {e}")
-    print("cases per class: " + ", ".join(f"{c}: {n}" for c, n in sorted(counts.items())))
-    if failures:
-        sys.exit(f"{len(failures)} hostile inputs mishandled")
-    print("all hostile inputs handled")
+
+    def run_one(row):
+        if "runner" in row:
+            with row_directory({**row, "scene": None}):
+                row["runner"](row, executable)
+        else:
+            run_row(executable, row)
+    run_table(new_rows(executable), sys.argv[2:], run_one)
 
 
 if __name__ == "__main__":

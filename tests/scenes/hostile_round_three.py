@@ -585,21 +585,17 @@ def new_rows(executable):
     ]
 
 
-def main():
-    executable = os.path.abspath(sys.argv[1])
-    patterns = sys.argv[2:]
+def run_table(rows, patterns, run_one):
+    """Runs each row whose name matches one of `patterns` (all without) by
+    `run_one(row)`; prints a line per row and the cases per class, and exits
+    nonzero if any row failed."""
     failures, counts = [], collections.Counter()
-    for row in new_rows(executable):
+    for row in rows:
         if patterns and not any(re.search(p, row["name"]) for p in patterns):
             continue
-        row["executable"] = executable
         start = time.time()
         try:
-            if "interrupt" in row or "launcher" in row:
-                with row_directory(row):
-                    (interrupted if "interrupt" in row else launched)(row, executable)
-            else:
-                run_row(executable, row)
+            run_one(row)
             counts[row["cls"]] += 1
             print(f"ok   {row['name']} ({time.time() - start:.1f} s)")
         except Exception as e:  # an assertion, or a row whose setup broke
@@ -609,6 +605,19 @@ def main():
     if failures:
         sys.exit(f"{len(failures)} hostile inputs mishandled")
     print("all hostile inputs handled")
+
+
+def main():
+    executable = os.path.abspath(sys.argv[1])
+
+    def run_one(row):
+        row["executable"] = executable
+        if "interrupt" in row or "launcher" in row:
+            with row_directory(row):
+                (interrupted if "interrupt" in row else launched)(row, executable)
+        else:
+            run_row(executable, row)
+    run_table(new_rows(executable), sys.argv[2:], run_one)
 
 
 if __name__ == "__main__":

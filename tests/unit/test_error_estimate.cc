@@ -4,6 +4,8 @@
 // the band check's verdict.
 #include <nsm/base/progress.h>
 #include <nsm/model/band_cells.h>
+#include <nsm/model/banded_pencil.h>
+#include <nsm/model/sturm_sequence.h>
 #include <nsm/model/exact_references.h>
 #include <nsm/verification/harmonics_estimate.h>
 #include <nsm/verification/space_estimate.h>
@@ -162,4 +164,50 @@ TEST(BandCheck, CellsZeroChoosesTheFewestCellsThatResolveTheBand)
   };
   EXPECT_LE(exact_error(choice.cells), nsm::band_tolerance / (1 - std::pow(2.0, -8)) * 1.01);
   EXPECT_GT(exact_error(choice.cells / 2), nsm::band_tolerance);
+}
+
+// The modes of the continuum bar below a frequency, w_j ~ (j - 1/2) pi c / L:
+// exact for the uniform bar; on the seed bar (A = 1.5 - x) within one mode of
+// a resolved FE mesh's count (Sturm sequence), and scaled by L sqrt(rho / E).
+TEST(BandCheck, CountsTheContinuumModesBelowAFrequency)
+{
+  for (const double top : {10.0, 100.0, 333.0})
+    {
+      const nsm::BarModel uniform(testing_helpers::bar_scene("1", 1, 1).bar);
+      EXPECT_EQ(std::floor(nsm::continuum_modes_below(uniform, top)), std::floor(top / M_PI + 0.5)) << top;
+      nsm::Scene seed = testing_helpers::bar_scene("1.5 - x", 6, 200);
+      const nsm::BarModel       bar(seed.bar);
+      const nsm::Discretisation d(bar, seed.discretisation);
+      const int fe = nsm::count_eigenvalues_below(nsm::BandedPencil(d, nsm::EndCondition::clamped_free), top * top);
+      EXPECT_NEAR(nsm::continuum_modes_below(bar, top), fe, 1.0) << top;
+      // Twice as long and four times as dense: tau = L sqrt(rho / E) four times
+      // longer, the same modes at a quarter of the frequency.
+      nsm::BarParameters slow = testing_helpers::bar_scene("1", 1, 1).bar;
+      slow.length             = 2;
+      slow.density            = 4;
+      EXPECT_DOUBLE_EQ(nsm::continuum_modes_below(nsm::BarModel(slow), top / 4),
+                       nsm::continuum_modes_below(uniform, top))
+        << top;
+    }
+}
+
+// Cells = 0 refuses a band that no mesh it tries can hold, before any mesh
+// is built (a band of 1e9 on the uniform bar holds 3.2e8 modes).
+TEST(BandCheck, CellsZeroRefusesABandNoMeshHolds)
+{
+  nsm::Scene scene                   = uniform_to_omega_2(1000);
+  scene.continuation.omega_max       = 1e6;
+  scene.discretisation.cells         = 0;
+  scene.output.backbone              = true;
+  const nsm::BarModel bar(scene.bar);
+  try
+    {
+      nsm::cells_for_band(bar, scene);
+      FAIL() << "the band was not refused";
+    }
+  catch (const nsm::InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("Discretisation/Cells"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("3.18e+08 modes"), std::string::npos) << e.what();
+    }
 }

@@ -297,3 +297,44 @@ TEST(OutputDirectory, AFailedRunLeavesNoFolderItMade)
   EXPECT_NO_THROW(nsm::OutputDirectory((base / "made" / std::string(255, 'a')).string()));
   EXPECT_FALSE(fs::exists(base / "made"));
 }
+
+// Two runs into one folder at once: the second to finish finds the first's
+// output swapped in since it began (another inode), keeps it and fails.
+TEST(OutputDirectory, AnOutputAnotherRunSwappedInMeanwhileIsKept)
+{
+  for (const bool existed : {false, true})
+    {
+      const std::string target = (scratch(existed ? "overlap-existed" : "overlap-new") / "out").string();
+      if (existed)
+        write_run(target);
+      nsm::OutputDirectory slow(target);
+      const std::string    mine = nsm::write_atomically(slow.staging() + "/b.csv", [](std::ostream &out) {
+        out << "slow\n";
+      });
+      write_run(target); // the other run, begun and finished meanwhile
+      EXPECT_THROW(slow.commit({mine}), nsm::OutputError);
+      EXPECT_EQ(text_of(target + "/a.csv"), "x\n1\n");
+      EXPECT_FALSE(fs::exists(target + "/b.csv"));
+    }
+}
+
+// A default folder records its scene file; another scene file with the same
+// default is refused it, the same one replaces its own.
+TEST(OutputDirectory, ADefaultFolderBelongsToTheSceneFileThatMadeIt)
+{
+  const std::string target = (scratch("default-owner") / "x").string();
+  {
+    nsm::OutputDirectory output(target, "/scenes/a/x.prm");
+    output.commit({nsm::write_atomically(output.staging() + "/a.csv", [](std::ostream &out) { out << "a\n"; })});
+  }
+  EXPECT_NE(text_of(target + "/nsm-bar.manifest").find("/ default folder of /scenes/a/x.prm\n"), std::string::npos);
+  EXPECT_THROW(nsm::OutputDirectory other(target, "/scenes/b/x.prm"), nsm::InputError);
+  EXPECT_NO_THROW(nsm::OutputDirectory same(target, "/scenes/a/x.prm"));
+  // An explicit Output/Directory may replace it (the user named the folder).
+  EXPECT_NO_THROW(nsm::OutputDirectory named(target));
+  // A default folder holding an output made under an explicit Directory is refused.
+  const std::string explicit_target = (scratch("default-over-explicit") / "x").string();
+  write_run(explicit_target);
+  EXPECT_THROW(nsm::OutputDirectory by_default(explicit_target, "/scenes/a/x.prm"), nsm::InputError);
+  EXPECT_EQ(text_of(explicit_target + "/a.csv"), "x\n1\n");
+}

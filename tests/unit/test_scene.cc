@@ -3,14 +3,20 @@
 // no output.
 #include <nsm/model/bar_model.h>
 #include <nsm/model/discretisation.h>
+#include <nsm/model/memory_estimate.h>
 #include <nsm/scene/scene.h>
 #include <nsm/scene/scene_entries.h>
+#include <nsm/scene/scene_file.h>
+#include <nsm/study/study_parameters.h>
+#include <nsm/base/errors.h>
 
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <set>
+#include <tuple>
+#include <vector>
 
 #include "scene_helpers.h"
 
@@ -217,4 +223,63 @@ TEST(Scene, AutomaticNewtonIterationsGrowWithTheHarmonicsBeyond207)
     }
   hb.max_iterations = 7;
   EXPECT_EQ(hb.iterations(), 7u);
+}
+
+// The record (parameters.prm) reads back every value as given: a value PRM
+// would read otherwise ('#' starts a comment, a trailing backslash joins the
+// next line, white space at an end is trimmed) is refused naming its entry.
+TEST(Scene, EveryValueReadsBackFromTheRecord)
+{
+  const std::string path = testing_helpers::write_scene("record", "subsection Output\n set Spectrum modes = 2\nend\n");
+  for (const auto &[entry, value, words] :
+       std::vector<std::tuple<std::string, std::string, std::string>>{{"Output/Directory", "results#M10", "'#'"},
+                                                                      {"Output/Directory", "out\\", "backslash"},
+                                                                      {"Output/Directory", "  out  ", "white space"},
+                                                                      {"Bar/Cross section", "1.5 - x#", "'#'"}})
+    {
+      nsm::set_parameter_overrides({{entry, value}});
+      try
+        {
+          nsm::StudyScene::from_file(path);
+          ADD_FAILURE() << entry << " = '" << value << "' was accepted";
+        }
+      catch (const nsm::InputError &e)
+        {
+          EXPECT_NE(std::string(e.what()).find(entry), std::string::npos) << e.what();
+          EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+        }
+    }
+  nsm::set_parameter_overrides({{"Output/Directory", "results-M10 x"}});
+  const nsm::StudyScene read = nsm::StudyScene::from_file(path);
+  nsm::set_parameter_overrides({});
+  EXPECT_EQ(read.scene.output.directory, "results-M10 x");
+  EXPECT_NE(read.scene.parameter_file.find("results-M10 x"), std::string::npos);
+}
+
+// The memory estimate grows with what a run keeps per point and per
+// receptance frequency (measured: 2.0 KiB a point at M = 40, 166 bytes a
+// frequency), and a refusal names the entries of its largest part.
+TEST(Scene, TheMemoryEstimateCountsThePointsAndTheFrequencies)
+{
+  nsm::Scene scene;
+  scene.output.backbone = true;
+  const double base     = nsm::estimated_memory(scene).bytes;
+  nsm::ResourcesParameters limit;
+  limit.memory_limit = 500;
+  EXPECT_NO_THROW(nsm::check_memory(nsm::estimated_memory(scene), limit));
+  scene.continuation.max_steps = 1000000;
+  EXPECT_GT(nsm::estimated_memory(scene).bytes - base, 1e6 * 2048);
+  try
+    {
+      nsm::check_memory(nsm::estimated_memory(scene), limit);
+      ADD_FAILURE() << "a million points fit in 500 MiB";
+    }
+  catch (const nsm::InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("reduce Continuation/Max steps"), std::string::npos) << e.what();
+    }
+  nsm::Scene spectrum;
+  spectrum.output.receptance_frequencies.assign(1000000, 1.0);
+  EXPECT_GT(nsm::estimated_memory(spectrum).bytes - nsm::estimated_memory(nsm::Scene()).bytes, 1e6 * 166);
+  EXPECT_EQ(nsm::estimated_memory(spectrum).drivers, "Output/Receptance frequencies");
 }
