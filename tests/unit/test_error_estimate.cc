@@ -96,25 +96,40 @@ TEST(ErrorEstimate, OnTheUniformBarItIsTheSizeOfTheErrorAgainstTheExactMode)
     }
 }
 
-// The band check warns, naming Discretisation, exactly when halving the cells
-// moves the main points' energy (median) more than the harmonic balance's
-// estimate; a point not found again counts as beyond any bound.
+// The band check warns, naming Discretisation, exactly when its judge moves
+// the main points' energy (the median over those found again on the same
+// motion, when most are) or the band's eigenfrequencies more than the
+// harmonic balance's estimate; a point not found again (NaN) is counted
+// apart, never as a change.
 TEST(BandCheck, WarnsWhenTheMeshMovesTheEnergyMoreThanTheHarmonicsDo)
 {
   testing_helpers::HbModel  model(uniform_to_omega_2(20));
   const nsm::BandAgreement band{40, 12, 1e-3};
   const double              nan = std::numeric_limits<double>::quiet_NaN();
-  const auto verdict = [&](const std::vector<double> &changes, const double estimate) {
-    return nsm::space_verdict(band, changes, estimate, model.discretisation);
+  const auto verdict = [&](const std::vector<double> &changes, const double estimate,
+                           const nsm::BandAgreement &b = nsm::BandAgreement{40, 12, 1e-3}) {
+    return nsm::space_verdict(b, changes, estimate, model.discretisation);
   };
   EXPECT_TRUE(verdict({1e-3, 2e-3, 3e-3}, 2.5e-3).warning.empty());
   const std::string warning = verdict({1e-3, 2e-3, 3e-3}, 1.5e-3).warning;
   EXPECT_NE(warning.find("Discretisation/Cells"), std::string::npos) << warning;
   EXPECT_NE(warning.find("0.2 %"), std::string::npos) << warning;
+  // The lost point is not a change: the median of the two found is 2e-3.
   EXPECT_TRUE(verdict({1e-3, 2e-3, nan}, 2.5e-3).warning.empty());
-  EXPECT_FALSE(verdict({1e-3, nan, nan}, 0.5).warning.empty());
+  const nsm::SpaceVerdict lost = verdict({1e-3, 3e-3, nan, nan, 2e-3}, 2.5e-3);
+  EXPECT_TRUE(lost.warning.empty()) << lost.warning;
+  EXPECT_NE(lost.summary.find("the 3 of 5 main points found again on the same motion changed their energy by a median 0.2 %"),
+            std::string::npos) << lost.summary;
+  EXPECT_NE(lost.summary.find("(2 moved to another motion, not counted)"), std::string::npos) << lost.summary;
+  // Fewer than half found: the eigenfrequencies judge (1e-3 against 0.5 and 5e-4).
+  EXPECT_TRUE(verdict({1e-3, nan, nan}, 0.5).warning.empty());
+  const std::string by_modes = verdict({1e-3, nan, nan}, 5e-4).warning;
+  EXPECT_NE(by_modes.find("eigenfrequencies"), std::string::npos) << by_modes;
+  // The eigenfrequencies above the estimate warn also when the energies do not.
+  EXPECT_FALSE(verdict({1e-4, 1e-4, 1e-4}, 5e-3, nsm::BandAgreement{40, 12, 8e-3}).warning.empty());
   EXPECT_TRUE(verdict({}, 1e-3).warning.empty());
   EXPECT_TRUE(verdict({1e-3, 2e-3, 3e-3}, nan).warning.empty());
+  (void)band;
 }
 
 // The band's eigenfrequencies against the mesh with every cell halved: on
