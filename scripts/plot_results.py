@@ -428,10 +428,10 @@ def measured(column, rows):
 
 
 def energy_partial(row, column, rows):
-    """A row left out of an energy error's front: its continuation ended
-    inside the Backbone omegas, or it has no error over the shared ones."""
-    return column.startswith("energy_error") and (row.get("energy_error_partial") == "yes" or
-                                                   not row.get(measured(column, rows), "x"))
+    """A row left out of an energy error's front: it has an error of its own
+    but none over the shared Omegas (study.csv's rule: its continuation ended
+    inside the Backbone omegas, or none is shared)."""
+    return column.startswith("energy_error") and not row.get(measured(column, rows), "x")
 
 
 # study.csv: the columns the plot needs; the numbers of its rows whose status is ok.

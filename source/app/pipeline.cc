@@ -234,6 +234,10 @@ namespace nsm
           report_.notes.push_back("compliant wall: " + hb().law().stiffness_note(hb().receptance()(0.0).gamma));
         report_.notes.push_back(backbone_note());
         report_.events = backbone().events;
+        if (const std::string why =
+              range_without_points(backbone(), scene_.continuation, branch_direction(scene_.contact));
+            !why.empty())
+          throw InputError(why);
         report_.result = backbone_result(backbone(), *bar_, scene_.contact, scene_.continuation);
       }
 
@@ -416,7 +420,10 @@ namespace nsm
             }
           // A stop leaves the column out rather than part-filled.
           if (bar_amplitudes_.size() < backbone().points.size())
-            bar_amplitudes_.clear();
+            {
+              bar_amplitudes_.clear();
+              cut_short_ = true;
+            }
         });
       }
 
@@ -647,9 +654,9 @@ namespace nsm
   namespace
   {
     /// The scene file (canonical) whose default folder the run writes, or ""
-    /// for an explicit Output/Directory. A run of an output's own record
-    /// (DIR/parameters.prm) into DIR would replace the output it reruns:
-    /// refused, naming --output, unless it resumes that output.
+    /// for an explicit Output/Directory; a resumed run keeps the one its
+    /// output records. A run of an output's own record (DIR/parameters.prm)
+    /// into DIR would replace the output it reruns: refused, naming --output.
     std::string default_folder_of(const Scene &scene, const bool resume)
     {
       namespace fs = std::filesystem;
@@ -657,7 +664,10 @@ namespace nsm
       const fs::path  file = fs::canonical(scene.origin, error);
       if (error)
         return "";
-      if (!resume && file.filename() == "parameters.prm" &&
+      // A resumed output keeps the owner its manifest records.
+      if (resume)
+        return default_folder_owner(scene.output.directory);
+      if (file.filename() == "parameters.prm" &&
           file.parent_path() == fs::weakly_canonical(scene.output.directory, error) && !error)
         throw InputError("parameter 'Output/Directory' = '" + printable(scene.output.directory) +
                          "' holds the output whose record is this scene, " + printable(scene.origin) +

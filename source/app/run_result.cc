@@ -198,8 +198,7 @@ namespace nsm
                                                    const Backbone &backbone, const BarModel &bar,
                                                    const ContinuationParameters &continuation, const double direction)
     {
-      const double tau   = bar.length() * std::sqrt(bar.density() / bar.young_modulus());
-      const double w_acc = (2.0 * continuation.mode - 1) * M_PI / (2 * tau);
+      const double w_acc = (2.0 * continuation.mode - 1) * M_PI / (2 * bar.travel_time());
       const double start = backbone.points.front().omega;
       if (!(direction > 0 && start < w_acc && continuation.omega_max > w_acc))
         return {};

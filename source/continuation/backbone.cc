@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace nsm
 {
@@ -68,5 +69,26 @@ namespace nsm
     return *std::min_element(resonances.begin(), resonances.end(), [&](const auto &a, const auto &b) {
       return std::abs(a.omega - omega) < std::abs(b.omega - omega);
     });
+  }
+
+  std::string range_without_points(const Backbone &backbone, const ContinuationParameters &c, const double direction)
+  {
+    if (!backbone.points.empty() || backbone.end == BackboneEnd::interrupted)
+      return "";
+    const bool   up       = direction > 0;
+    const double near     = up ? c.omega_min : c.omega_max;
+    const double furthest = up ? backbone.traced_span.second : backbone.traced_span.first;
+    std::ostringstream s;
+    s.precision(6);
+    s << "parameter 'Continuation/" << (up ? "Omega min" : "Omega max") << "' = " << near << " is out of range: ";
+    if (up ? furthest < near : furthest > near)
+      s << "the branch from grazing ends at Omega = " << furthest << " (" << backbone_end_name(backbone.end)
+        << (backbone.events.empty() ? std::string() : ": " + backbone.events.back())
+        << ") before it, so no point lies in [Omega min, Omega max]; allowed " << (up ? "below " : "above ")
+        << furthest;
+    else
+      s << "the branch passes over [Omega min, Omega max] between two points (a leap over a fold) and writes "
+           "none in it; allowed a wider range";
+    return s.str();
   }
 } // namespace nsm

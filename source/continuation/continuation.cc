@@ -139,25 +139,6 @@ namespace nsm
       return c;
     }
 
-    /// A range the branch never reaches (it ends, or leaves the range's near
-    /// side, before it) holds no point: refused naming the near end, with
-    /// how far the branch went.
-    [[noreturn]] void range_holds_no_point(const BranchContext &context, const Backbone &backbone)
-    {
-      const bool   up       = context.direction > 0;
-      double       furthest = backbone.points.front().omega;
-      for (const BackbonePoint &q : backbone.points)
-        furthest = up ? std::max(furthest, q.omega) : std::min(furthest, q.omega);
-      std::ostringstream s;
-      s.precision(6);
-      s << "parameter 'Continuation/" << (up ? "Omega min" : "Omega max") << "' = " << context.near_end
-        << " is out of range: the branch from grazing at Omega = " << backbone.points.front().omega
-        << " ends at Omega = " << furthest << " (" << backbone_end_name(backbone.end)
-        << (backbone.events.empty() ? std::string() : ": " + backbone.events.back()) << "), so no point lies in [Omega min, Omega max]; allowed "
-        << (up ? "below " : "above ") << furthest;
-      throw InputError(s.str());
-    }
-
     /// The backbone, the context and the tracer as the checkpoint left them.
     void restore(const ContinuationCheckpoint &c, BranchContext &context, SegmentTracer &method, Backbone &backbone)
     {
@@ -197,9 +178,10 @@ namespace nsm
     backbone.fewer_harmonics_traced = fewer.traced();
     // Points traced on the way from grazing to the range are not written.
     auto &p = backbone.points;
-    if (backbone.end != BackboneEnd::interrupted &&
-        std::none_of(p.begin(), p.end(), [&](const BackbonePoint &q) { return in_omega_range(params.continuation, q.omega); }))
-      range_holds_no_point(context, backbone);
+    if (!p.empty())
+      backbone.traced_span = {p.front().omega, p.front().omega};
+    for (const BackbonePoint &q : p)
+      backbone.traced_span = {std::min(backbone.traced_span.first, q.omega), std::max(backbone.traced_span.second, q.omega)};
     p.erase(std::remove_if(p.begin(), p.end(),
                            [&](const BackbonePoint &q) { return !in_omega_range(params.continuation, q.omega); }),
             p.end());

@@ -38,20 +38,27 @@ namespace nsm
 
   double continuum_modes_below(const BarModel &bar, const double top)
   {
-    const double travel_time = bar.length() * std::sqrt(bar.density() / bar.young_modulus());
-    return top * travel_time / M_PI + 0.5;
+    return top * bar.travel_time() / M_PI + 0.5;
   }
 
   namespace
   {
+    /// The meshes Cells = 0 tries: cells doubling from max(1, Graded/Layers)
+    /// up to half the Cells bound.
+    std::vector<unsigned int> candidate_cells(const Scene &scene)
+    {
+      std::vector<unsigned int> cells;
+      for (unsigned int c = std::max(1u, scene.discretisation.graded_layers); c <= most_cells / 2; c *= 2)
+        cells.push_back(c);
+      return cells;
+    }
+
     /// Refuses, before any mesh is built, a band that even the largest mesh
     /// cannot hold: each of its modes needs a degree of freedom at least.
     void check_band_reachable(const BarModel &bar, const Scene &scene, const double top)
     {
-      unsigned int largest = std::max(1u, scene.discretisation.graded_layers);
-      while (2 * largest <= most_cells / 2)
-        largest *= 2;
-      const double modes     = continuum_modes_below(bar, top);
+      const unsigned int largest   = candidate_cells(scene).back();
+      const double       modes     = continuum_modes_below(bar, top);
       const double most_dofs = double(largest) * scene.discretisation.degree;
       if (modes <= most_dofs)
         return;
@@ -79,7 +86,7 @@ namespace nsm
     // with fewer modes than Mode + 1 is not a candidate.
     const unsigned int least_dofs = scene.continuation.mode + 1;
     Progress           progress("cells for the band", scene.output.progress_every);
-    for (unsigned int cells = std::max(1u, scene.discretisation.graded_layers); cells <= most_cells / 2; cells *= 2)
+    for (const unsigned int cells : candidate_cells(scene))
       {
         if (cells * scene.discretisation.degree < least_dofs)
           continue;

@@ -108,4 +108,9 @@ namespace nsm
       }
     return a;
   }
+
+  double BarModel::travel_time() const
+  {
+    return length_ * std::sqrt(density_ / young_modulus_);
+  }
 } // namespace nsm

@@ -66,8 +66,15 @@ namespace nsm
           estimate.drivers      = drivers;
         }
     };
-    // The mesh, K and M, and band copies of the pencil and its factors.
-    add(bytes_per_cell * cells + bytes_per_nonzero * dofs * (2 * d.degree + 1) + 8.0 * dofs * (3 * d.degree + 1) * 3,
+    // The mesh, K and M, and band copies of the pencil and its factors; the
+    // band check's judge the same for its cells halved and its degree
+    // raised by one (verification/space_estimate.h).
+    const auto model = [&](const double n, const double p) {
+      const double unknowns = n * p + 1;
+      return bytes_per_cell * n + bytes_per_nonzero * unknowns * (2 * p + 1) + 8.0 * unknowns * (3 * p + 1) * 3;
+    };
+    const bool judged = o.backbone && o.error_estimate;
+    add(model(cells, d.degree) + (judged ? model(2 * cells, d.degree + 1) : 0),
         "Discretisation/Cells and Discretisation/Degree");
     add(bytes_per_frequency * double(o.receptance_frequencies.size()), "Output/Receptance frequencies");
     if (o.backbone || o.fields())

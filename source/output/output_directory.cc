@@ -140,28 +140,18 @@ namespace nsm
         }
     }
 
-    /// The scene file whose default folder `target` holds the output of, as
-    /// its manifest records it; "" if none is recorded.
-    std::string default_folder_owner(const fs::path &target)
-    {
-      const std::string note = OutputDirectory::default_folder_note;
-      for (const std::string &line : listed_files(target / OutputDirectory::manifest))
-        if (line.rfind(note, 0) == 0)
-          return line.substr(note.size());
-      return "";
-    }
-
     /// A default folder (output/NAME) holds only its own scene file's output.
     void check_default_owner(const fs::path &target, const std::string &name, const std::string &scene)
     {
       std::error_code error;
       if (scene.empty() || !fs::is_regular_file(fs::symlink_status(target / OutputDirectory::manifest, error)))
         return;
-      const std::string owner = default_folder_owner(target);
+      const std::string owner = default_folder_owner(target.string());
       if (owner == printable(scene))
         return;
       throw InputError("parameter 'Output/Directory' is not set, and its default '" + printable(name) + "' holds " +
-                       (owner.empty() ? std::string("an output written under an explicit Output/Directory") :
+                       (owner.empty() ? std::string("an output that records no default folder (written under an "
+                                                    "explicit Output/Directory, or by an older nsm-bar)") :
                                         "the output of the scene file '" + owner + "'") +
                        ", not of '" + printable(scene) +
                        "': set Output/Directory (or --output) for this scene, so that neither replaces the other");
@@ -213,6 +203,33 @@ namespace nsm
         }
       return fd;
     }
+
+    /// An exclusive flock on a folder (its link followed) for the guard's
+    /// life; none if the folder cannot be opened for reading, and the guarded
+    /// step then goes on unguarded.
+    class FolderLock
+    {
+    public:
+      explicit FolderLock(const fs::path &folder)
+        : fd_(open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC))
+      {
+        if (fd_ >= 0 && flock(fd_, LOCK_EX) != 0)
+          {
+            close(fd_);
+            fd_ = -1;
+          }
+      }
+      ~FolderLock()
+      {
+        if (fd_ >= 0)
+          close(fd_);
+      }
+      FolderLock(const FolderLock &) = delete;
+      FolderLock &operator=(const FolderLock &) = delete;
+
+    private:
+      int fd_;
+    };
 
     /// Moves each entry under `from` back to the same place under `to`, never
     /// over an entry there; returns whether `from` is empty afterwards.
@@ -315,6 +332,15 @@ namespace nsm
     }
   } // namespace
 
+  std::string default_folder_owner(const std::string &target)
+  {
+    const std::string note = OutputDirectory::default_folder_note;
+    for (const std::string &line : listed_files(fs::path(target) / OutputDirectory::manifest))
+      if (line.rfind(note, 0) == 0)
+        return line.substr(note.size());
+    return "";
+  }
+
   std::string discard_previous_output(const std::string &previous, const std::string &target)
   {
     const fs::path              folder(previous);
@@ -372,9 +398,10 @@ namespace nsm
     std::error_code   error;
     if (fs::is_directory(parent, error))
       clear_dead_siblings(parent, prefix, path);
+    // Noted before the checks: an output swapped in after them is another run's.
+    identity_ = identity(path);
     check_target(path, target);
     check_default_owner(path, target, default_of_);
-    identity_        = identity(path);
     created_parents_ = missing_folders(parent);
     fs::create_directories(parent, error);
     try
@@ -457,6 +484,37 @@ namespace nsm
     return paths;
   }
 
+  bool OutputDirectory::swap_in(int &previous_lock)
+  {
+    if (identity(target_) != identity_)
+      throw OutputError("another run wrote its output into " + printable(target_) +
+                        " while this one ran: that output is kept, and this run's is not (give each run a "
+                        "directory of its own: Output/Directory or --output)");
+    // Checked again: another run may have written into the directory since
+    // this one began (a study writes in place).
+    try
+      {
+        check_target(target_, target_);
+      }
+    catch (const InputError &e)
+      {
+        throw OutputError(std::string(e.what()) + " (it changed during the run); the new output is not kept");
+      }
+    const fs::path    parent = fs::path(staging_).parent_path();
+    const std::string aside =
+      (parent / (staging_prefix(fs::path(target_).filename().string()) + "aside-" + unique_token())).string();
+    if (!fs::exists(fs::symlink_status(target_)))
+      {
+        fs::rename(staging_, target_);
+        return false;
+      }
+    // Locked until its files are gone: no other run takes it, at the staging
+    // name after the swap, for a dead run's.
+    previous_lock = lock_directory(target_, true);
+    swap_directories(staging_, target_, aside);
+    return true;
+  }
+
   std::vector<std::string> OutputDirectory::commit(const std::vector<std::string> &files,
                                                    const std::vector<std::string> &notes)
   {
@@ -474,58 +532,24 @@ namespace nsm
         out << "/ " << printable(note) << '\n';
     });
     prune_unlisted(staging_, listed);
-    bool                           had_previous  = false;
+    const std::vector<std::string> paths = final_paths(files);
     int                            previous_lock = -1;
-    const std::vector<std::string> paths         = final_paths(files);
-    const fs::path                 parent        = fs::path(staging_).parent_path();
-    // The check that no other run swapped its output in meanwhile and this
-    // run's swap are one step for every run into the parent folder.
-    const int parent_lock = lock_directory(parent, true);
-    const auto unlock_parent = [&] {
-      if (parent_lock >= 0)
-        close(parent_lock);
-    };
-    try
-      {
-        if (identity(target_) != identity_)
-          throw OutputError("another run wrote its output into " + printable(target_) +
-                            " while this one ran: that output is kept, and this run's is not (give each run a "
-                            "directory of its own: Output/Directory or --output)");
-        // Checked again: another run may have written into the directory
-        // since this one began (a study writes in place).
-        try
-          {
-            check_target(target_, target_);
-          }
-        catch (const InputError &e)
-          {
-            throw OutputError(std::string(e.what()) + " (it changed during the run); the new output is not kept");
-          }
-        const std::string aside =
-          (parent / (staging_prefix(fs::path(target_).filename().string()) + "aside-" + unique_token())).string();
-        if ((had_previous = fs::exists(fs::symlink_status(target_))))
-          {
-            // Locked until its files are gone: no other run takes it, at the
-            // staging name after the swap, for a dead run's.
-            previous_lock = lock_directory(target_, true);
-            swap_directories(staging_, target_, aside);
-          }
-        else
-          fs::rename(staging_, target_);
-      }
-    catch (const fs::filesystem_error &e)
-      {
-        if (previous_lock >= 0)
-          close(previous_lock);
-        unlock_parent();
-        throw OutputError("cannot move the new output into " + printable(target_) + ": " + e.what());
-      }
-    catch (...)
-      {
-        unlock_parent();
-        throw;
-      }
-    unlock_parent();
+    bool                           had_previous;
+    {
+      // The check that no other run swapped its output in meanwhile and this
+      // run's swap are one step for every run into the parent folder.
+      const FolderLock parent_guard(fs::path(staging_).parent_path());
+      try
+        {
+          had_previous = swap_in(previous_lock);
+        }
+      catch (const fs::filesystem_error &e)
+        {
+          if (previous_lock >= 0)
+            close(previous_lock);
+          throw OutputError("cannot move the new output into " + printable(target_) + ": " + e.what());
+        }
+    }
     committed_ = true;
     // The previous output, if any, now at the staging name: its own files go,
     // a file of the user's that appeared after the last check goes back.

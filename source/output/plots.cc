@@ -1,3 +1,4 @@
+#include <nsm/base/csv.h>
 #include <nsm/base/interruption.h>
 #include <nsm/base/text.h>
 #include <nsm/output/plots.h>
@@ -153,7 +154,7 @@ namespace nsm
           text << line << '\n';
         }
       in.close();
-      std::ofstream(log_path, std::ios::trunc) << text.str();
+      write_atomically(log_path, [&](std::ostream &out) { out << text.str(); });
     }
   } // namespace
 

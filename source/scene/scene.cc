@@ -6,6 +6,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <tuple>
 
@@ -119,10 +120,18 @@ namespace nsm
       std::string name = std::filesystem::path(scene_file).stem().string();
       if (name.empty() || name == "." || name == "..")
         name = "scene";
-      if (!is_valid_utf8(name))
+      // The record holds the folder: a name it would not read back (not
+      // UTF-8; a '#', a trailing backslash, white space at an end) has no
+      // default.
+      const bool recordable = is_valid_utf8(name) && name.find('#') == std::string::npos && name.back() != '\\' &&
+                              !std::isspace(static_cast<unsigned char>(name.front())) &&
+                              !std::isspace(static_cast<unsigned char>(name.back()));
+      if (!recordable)
         throw InputError("parameter 'Output/Directory' is empty, and its default output/NAME would take NAME from "
-                         "the scene file's name, which is not UTF-8 text ('" + printable(name) +
-                         "'): set Output/Directory (or --output) to a UTF-8 path");
+                         "the scene file's name, '" + printable(name) +
+                         "', which the run's record cannot hold (allowed: UTF-8 text without '#', without a "
+                         "backslash at its end and without white space at either end): set Output/Directory (or "
+                         "--output)");
       return "output/" + name;
     }
   } // namespace

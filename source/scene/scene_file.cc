@@ -570,6 +570,34 @@ namespace nsm
       }
   }
 
+  namespace
+  {
+    /// How the record reads `entry`'s value back when it is the only line
+    /// in its subsections ("" if that line does not parse).
+    std::string read_back_alone(const DeclaredEntry &entry)
+    {
+      dealii::ParameterHandler alone;
+      in_sections(alone, entry, [&] { alone.declare_entry(entry.name, "", dealii::Patterns::Anything()); });
+      std::string line;
+      for (const std::string &section : entry.sections)
+        line += "subsection " + section + "\n";
+      line += "set " + entry.name + " = " + entry.value + "\n";
+      for (std::size_t i = 0; i < entry.sections.size(); ++i)
+        line += "end\n";
+      try
+        {
+          alone.parse_input_from_string(line, "parameters.prm");
+        }
+      catch (const dealii::ExceptionBase &)
+        {
+          return "";
+        }
+      std::string value;
+      in_sections(alone, entry, [&] { value = alone.get(entry.name); });
+      return value;
+    }
+  } // namespace
+
   void check_record_reads_back(const dealii::ParameterHandler &prm, const std::string &record)
   {
     const std::vector<DeclaredEntry> entries = declared_entries(prm);
@@ -578,26 +606,28 @@ namespace nsm
       in_sections(text, entry, [&] {
         text.declare_entry(entry.name, entry.default_value, dealii::Patterns::Anything());
       });
-    std::string why;
+    bool parsed = true;
     try
       {
         text.parse_input_from_string(record, "parameters.prm");
       }
-    catch (const dealii::ExceptionBase &e)
+    catch (const dealii::ExceptionBase &)
       {
-        why = one_line_message(e);
+        parsed = false; // the entry to blame is found below, one at a time
       }
     for (const DeclaredEntry &entry : entries)
       {
         std::string value = entry.value;
-        if (why.empty())
+        if (parsed)
           in_sections(text, entry, [&] { value = text.get(entry.name); });
-        if (value != entry.value || !why.empty())
+        else
+          value = read_back_alone(entry);
+        if (value != entry.value)
           throw InputError("parameter '" + entry.path() + "' = '" + printable(entry.value) +
                            "' cannot be written to the run's record (parameters.prm) so that it reads back the "
-                           "same" + (why.empty() ? " (it reads back as '" + printable(value) + "')" : "") +
-                           ": allowed, a value without '#', without a backslash at its end and without white space "
-                           "at either end" + (overridden(entry.path()) ? " (set on the command line)" : ""));
+                           "same (it reads back as '" + printable(value) +
+                           "'): allowed, a value without '#', without a backslash at its end and without white "
+                           "space at either end" + (overridden(entry.path()) ? " (set on the command line)" : ""));
       }
   }
 

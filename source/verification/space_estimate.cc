@@ -88,6 +88,9 @@ namespace nsm
       s << " changed their energy by a median " << 100 * found[found.size() / 2] << " %";
     if (lost > 0)
       s << " (" << lost << " moved to another motion, not counted)";
+    const bool by_energy = 2 * found.size() > energy_changes.size();
+    if (!by_energy)
+      s << "; with most of them moved, the eigenfrequencies alone judge the mesh";
     SpaceVerdict verdict{s.str(), ""};
     if (!std::isfinite(harmonics_estimate))
       return verdict;
@@ -97,7 +100,6 @@ namespace nsm
     // 40 at the same M on the seed bar, each such mesh's main branch was off
     // by more than its estimate, and each other one by less (method.md, "A
     // run's own accuracy").
-    const bool   by_energy = 2 * found.size() > energy_changes.size();
     const double energy    = by_energy ? found[found.size() / 2] : 0;
     if (energy <= harmonics_estimate && band.error <= harmonics_estimate)
       return verdict;

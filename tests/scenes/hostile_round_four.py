@@ -67,9 +67,13 @@ def reads_back(row):
 def overlapping_runs(row, executable):
     """Run A stops (SIGSTOP) once its continuation runs, run B into the same
     folder runs whole meanwhile, then A goes on: B's output is kept, and A
-    fails (exit 5) without replacing it."""
+    fails (exit 5) without replacing it. With `existing`, the folder holds an
+    earlier output before either starts."""
     write("a.prm", ANNOUNCED + output(Directory="same"))
     write("b.prm", row["scene"])
+    if row.get("existing"):
+        first = run(executable, "b.prm")
+        assert first.returncode == 0, first.stderr
     a = subprocess.Popen([executable, "a.prm"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     line = a.stderr.readline()
     assert "nsm-bar:" in line, f"run A said no progress line: {line!r}"
@@ -84,6 +88,28 @@ def overlapping_runs(row, executable):
     assert "b.prm" in read("same/summary.txt").splitlines()[0], "B's output was replaced"
     leftovers = [n for n in os.listdir(".") if n.startswith(".nsm-bar-")]
     assert not leftovers, f"staging folders left: {leftovers}"
+
+
+def resume_keeps_the_default_folder(row, executable):
+    """x.prm into its default folder, stopped (SIGINT at its first progress
+    line) and resumed through the folder (nsm-bar output/x --resume): the
+    folder still belongs to x.prm, which reruns into it, and b/x.prm is
+    still refused it."""
+    write("x.prm", ANNOUNCED)
+    process = subprocess.Popen([executable, "x.prm"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    wait_for(lambda: "continuation" in process.stderr.readline(), "a progress line", process)
+    process.send_signal(signal.SIGINT)
+    process.communicate()
+    assert process.returncode == 130, process.returncode
+    resumed = run(executable, "output/x", "--resume")
+    assert resumed.returncode == 0 and "resumed from continuation.resume" in resumed.stdout, resumed.stderr
+    assert os.path.abspath("x.prm") in read("output/x/nsm-bar.manifest"), read("output/x/nsm-bar.manifest")
+    again = run(executable, "x.prm")
+    assert again.returncode == 0, again.stderr
+    os.makedirs("b")
+    write("b/x.prm", ANNOUNCED)
+    other = run(executable, "b/x.prm")
+    assert other.returncode == 2 and "x.prm" in other.stderr, (other.returncode, other.stderr)
 
 
 # ---- 7. a stop while the band's cells are sought ------------------------------
@@ -178,6 +204,10 @@ def new_rows(executable):
         dict(name="same_scene_again", cls=2, scene=SPECTRUM, scene_file="x.prm",
              setup=first_output(executable, "x.prm"), code=0, leaves={"output"},
              check=untouched("output/x", "x.prm")),
+        dict(name="resume_keeps_the_default_folder", cls=2, runner=resume_keeps_the_default_folder),
+        # A scene file's name the record cannot hold gives no default folder.
+        dict(name="hash_in_the_scene_name", cls=2, scene=SPECTRUM, scene_file="a#b.prm", code=2,
+             words=["Output/Directory", "a#b"], before_work=True),
         # ---- 3. a record rerun into its own folder -----------------------------
         # old: nsm-bar out/parameters.prm replaced out, exit 0.
         dict(name="record_rerun_in_place", cls=3, scene=None, scene_file="out/parameters.prm",
@@ -192,6 +222,8 @@ def new_rows(executable):
              runner=overlapping_runs),
         dict(name="two_runs_one_new_folder_backbones", cls=4, scene=BACKBONE + output(Directory="same"),
              runner=overlapping_runs),
+        dict(name="two_runs_over_an_earlier_output", cls=4, scene=SPECTRUM + output(Directory="same"),
+             existing=True, runner=overlapping_runs),
         # ---- 5. memory that grows with points and frequencies ------------------
         # old: estimated at 200 MiB, peaked at 3.97 GB.
         dict(name="max_steps_beyond_the_limit", cls=5,

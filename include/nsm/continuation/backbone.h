@@ -116,6 +116,9 @@ namespace nsm
     /// Where the continuation stood when it ended or was interrupted: what
     /// a run stopped by a signal writes for --resume (checkpoint.h).
     std::shared_ptr<const ContinuationCheckpoint> checkpoint;
+    /// The Omegas of the points traced from grazing, in the range or not
+    /// (only those in it are written): lowest and highest.
+    std::pair<double, double> traced_span{0, 0};
 
     /// The points labelled `branch`.
     unsigned int points_on(Branch branch) const;
@@ -128,6 +131,12 @@ namespace nsm
 
   /// Omega min <= omega <= Omega max.
   bool in_omega_range(const ContinuationParameters &continuation, double omega);
+
+  /// Why a backbone that ended (not interrupted) wrote no point: the branch
+  /// ended before the range's near end, or passed over the range between
+  /// two points; "" if it wrote one. An InputError's text naming the entry.
+  std::string range_without_points(const Backbone &backbone, const ContinuationParameters &continuation,
+                                   double direction);
 
   /// +1 where the branch leaves grazing upwards in Omega (the physical force
   /// sign), -1 with the paper's eq. (5): the one place this is derived.

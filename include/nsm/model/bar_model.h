@@ -26,6 +26,10 @@ namespace nsm
     double young_modulus() const { return young_modulus_; }
     double density() const { return density_; }
 
+    /// The wave's travel time along the bar, tau = L sqrt(rho / E): the
+    /// clamped-free frequencies go like w_j ~ (j - 1/2) pi / tau.
+    double travel_time() const;
+
     /// A(x); throws InputError if A(x) <= 0 or not finite.
     double cross_section(double x) const;
 

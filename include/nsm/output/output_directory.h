@@ -65,6 +65,12 @@ namespace nsm
     static constexpr const char *default_folder_note = "/ default folder of ";
 
   private:
+    /// Checks that the target is still what this run found (no other run's
+    /// output, no foreign file) and swaps the staging directory in; returns
+    /// whether a previous output was swapped out (to the staging name, locked
+    /// in `previous_lock`). Throws OutputError, or filesystem_error.
+    bool swap_in(int &previous_lock);
+
     std::string              target_;
     std::string              default_of_; ///< the scene file whose default folder this is, or ""
     /// The target's device and inode when this run began ({0, 0}: it did not
@@ -75,6 +81,10 @@ namespace nsm
     std::vector<std::string> created_parents_; ///< made for the target, deepest first
     bool                     committed_ = false;
   };
+
+  /// The scene file whose default folder `target` holds the output of, as
+  /// its manifest records it (printable); "" if it records none.
+  std::string default_folder_owner(const std::string &target);
 
   /// Removes from `previous` (an earlier output, taken out of `target`) the
   /// files its manifest lists and the manifest, then moves whatever is left
