@@ -15,25 +15,11 @@ import shutil
 import subprocess
 import sys
 
-SCENE = """subsection Discretisation
-  set Degree = 10
-  set Cells = 7
-end
-subsection Receptance
-  set Method = modal
-end
-subsection Harmonic balance
-  set Harmonics = 10
-end
-subsection Continuation
-  set Omega max = 1.95
-  set Energy max = 1e-3
-end
-subsection Output
-  set Backbone = true
-  set Plots = true
-end
-"""
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from hostile_inputs import SMALL, section  # noqa: E402
+
+SCENE = SMALL.replace("Harmonics = 20", "Harmonics = 10") + \
+    section("Continuation", Omega_max=1.95, Energy_max=1e-3) + section("Output", Backbone="true", Plots="true")
 
 
 def main():

@@ -210,8 +210,8 @@ TEST(BandCheck, CountsTheContinuumModesBelowAFrequency)
     }
 }
 
-// Cells = 0 refuses a band that no mesh it tries can hold, before any mesh
-// is built (a band of 1e9 on the uniform bar holds 3.2e8 modes).
+// Cells = 0 refuses a band that no mesh it tries can hold, after its first,
+// one-cell mesh (a band of 1e9 on the uniform bar holds 3.2e8 modes).
 TEST(BandCheck, CellsZeroRefusesABandNoMeshHolds)
 {
   nsm::Scene scene                   = uniform_to_omega_2(1000);
