@@ -250,6 +250,8 @@ MUTATIONS = [
     ("the band check counts points that moved to another motion as changes", "source/verification/space_estimate.cc",
      "      if (std::isfinite(c))\n        found.push_back(c);",
      "      found.push_back(std::isfinite(c) ? c : 1e300);"),
+    ("the compliant wall's mean stored energy twice too large", "source/harmonic_balance/solution_measures.cc",
+     "    return mean / 2;\n  }", "    return mean;\n  }"),
     ("the band check blind to the eigenfrequencies", "source/verification/space_estimate.cc",
      "if (energy <= harmonics_estimate && band.error <= harmonics_estimate)",
      "if (energy <= harmonics_estimate)"),
