@@ -47,7 +47,8 @@ def required(*names, **rule):
     return {name: Column(required=True, **rule) for name in names}
 
 
-GRAZING = {**required("mode", whole=True, positive=True), **required("omega", "energy", positive=True)}
+GRAZING = {**required("mode", whole=True, positive=True), **required("omega", "energy", positive=True),
+           "accumulation_omega": Column(positive=True)}
 TONGUES = {**required("mode", "harmonic", whole=True), **required("omega_resonance", "foot_omega_begin",
                                                                   "foot_omega_end"),
            **required("max_energy", positive=True), "points": Column(whole=True)}
@@ -247,6 +248,12 @@ def backbone_plot(directory):
                 axes.annotate(f"$\\omega_{{{int(m)}}}$ " if right else f" $\\omega_{{{int(m)}}}$", (omega, 0.98),
                               xycoords=("data", "axes fraction"), ha="right" if right else "left", va="top")
                 first = False
+    # The accumulation point of the internal resonances, where the branch crosses it.
+    grazing = os.path.join(directory, "grazing.csv")
+    for w_acc in (read(grazing).get("accumulation_omega", []) if os.path.exists(grazing) else []):
+        if low - margin <= w_acc <= high + margin:
+            axes.axvline(w_acc, color="tab:purple", linewidth=1.2, linestyle="--", zorder=0,
+                         label=f"accumulation point $W_{{acc}}$ = {w_acc:.6g} of $\\omega_j / (2j - 1)$")
     fields = os.path.join(directory, "fields.csv")
     if os.path.exists(fields):
         f = read(fields)

@@ -140,7 +140,9 @@ def check_backbone_physical(name, summary):
     # grazing.csv: mode 1's linear energy with u(L) = g0 is where the branch
     # starts (its first point lies a grazing offset above w1: 1 % covers it),
     # at the spectrum's w1.
-    (mode, w1, e_g), = table(f"{name}/grazing.csv", ["mode", "omega", "energy"])
+    (mode, w1, e_g, w_acc), = table(f"{name}/grazing.csv", ["mode", "omega", "energy", "accumulation_omega"])
+    # The seed bar is of one material, c = L = 1: its w_j / (2j - 1) tend to pi / 2.
+    assert abs(w_acc - math.pi / 2) <= 1e-15 * w_acc, w_acc
     first = table(f"{name}/spectrum.csv", ["j", "omega_clamped_free", "omega_clamped_clamped"])[0]
     assert mode == 1 and abs(w1 - first[1]) <= 1e-12 * w1, (w1, first)
     assert abs(points[0][2] - e_g) <= 0.01 * e_g, (points[0][2], e_g)
