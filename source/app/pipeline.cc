@@ -341,15 +341,14 @@ namespace nsm
       /// or a per-point stage, ended before its last point.
       bool cut_short() const { return cut_short_ || backbone().end == BackboneEnd::interrupted; }
 
-      /// The band the backbone used: M times its highest Omega (M Omega max
-      /// if it has no point).
+      /// The band the backbone used: M times its highest Omega (its points
+      /// lie in the range; M Omega max if it has none).
       double used_band() const
       {
         double omega = 0;
         for (const BackbonePoint &p : backbone().points)
           omega = std::max(omega, p.omega);
-        const double top = std::min(omega > 0 ? omega : scene_.continuation.omega_max, scene_.continuation.omega_max);
-        return scene_.harmonic_balance.harmonics * top;
+        return scene_.harmonic_balance.harmonics * (omega > 0 ? omega : scene_.continuation.omega_max);
       }
 
       /// The mesh with every cell halved that the band check compares

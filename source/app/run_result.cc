@@ -198,7 +198,7 @@ namespace nsm
                                                    const Backbone &backbone, const BarModel &bar,
                                                    const ContinuationParameters &continuation, const double direction)
     {
-      const double w_acc = (2.0 * continuation.mode - 1) * M_PI / (2 * bar.travel_time());
+      const double w_acc = bar.accumulation_frequency(continuation.mode);
       const double start = backbone.points.front().omega;
       if (!(direction > 0 && start < w_acc && continuation.omega_max > w_acc))
         return {};

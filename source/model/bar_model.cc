@@ -113,4 +113,9 @@ namespace nsm
   {
     return length_ * std::sqrt(density_ / young_modulus_);
   }
+
+  double BarModel::accumulation_frequency(const unsigned int mode) const
+  {
+    return (2.0 * mode - 1) * M_PI / (2 * travel_time());
+  }
 } // namespace nsm

@@ -1,3 +1,4 @@
+#include <nsm/model/band_cells.h>
 #include <nsm/model/memory_estimate.h>
 #include <nsm/scene/scene.h>
 
@@ -74,7 +75,7 @@ namespace nsm
       return bytes_per_cell * n + bytes_per_nonzero * unknowns * (2 * p + 1) + 8.0 * unknowns * (3 * p + 1) * 3;
     };
     const bool judged = o.backbone && o.error_estimate;
-    add(model(cells, d.degree) + (judged ? model(2 * cells, d.degree + 1) : 0),
+    add(model(cells, d.degree) + (judged ? model(2 * cells, d.degree + judge_degree_step) : 0),
         "Discretisation/Cells and Discretisation/Degree");
     add(bytes_per_frequency * double(o.receptance_frequencies.size()), "Output/Receptance frequencies");
     if (o.backbone || o.fields())

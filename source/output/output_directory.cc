@@ -190,10 +190,11 @@ namespace nsm
 
     /// An exclusive lock on a directory (flock: held by the open file, across
     /// renames, released when its process ends, however it ends); -1 if it is
-    /// held elsewhere or the directory cannot be opened.
-    int lock_directory(const fs::path &directory, const bool wait)
+    /// held elsewhere or the directory cannot be opened. A link is not
+    /// followed unless `follow_link`.
+    int lock_directory(const fs::path &directory, const bool wait, const bool follow_link = false)
     {
-      const int fd = open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+      const int fd = open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC | (follow_link ? 0 : O_NOFOLLOW));
       if (fd < 0)
         return -1;
       if (flock(fd, LOCK_EX | (wait ? 0 : LOCK_NB)) != 0)
@@ -211,14 +212,8 @@ namespace nsm
     {
     public:
       explicit FolderLock(const fs::path &folder)
-        : fd_(open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC))
-      {
-        if (fd_ >= 0 && flock(fd_, LOCK_EX) != 0)
-          {
-            close(fd_);
-            fd_ = -1;
-          }
-      }
+        : fd_(lock_directory(folder, true, true))
+      {}
       ~FolderLock()
       {
         if (fd_ >= 0)

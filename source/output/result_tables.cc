@@ -136,12 +136,9 @@ namespace nsm
   CsvTable grazing_table(const Discretisation &d, const unsigned int mode, const ContactParameters &contact)
   {
     const ModeFrequencies f = mode_frequencies(d, mode, contact);
-    // Where the mode's internal resonances w_j = k W, 2j - 1 = k (2n - 1),
-    // crowd: (2n - 1) pi / (2 tau) (doc/method.md, "The accumulation point").
-    const double accumulation = (2.0 * mode - 1) * M_PI / (2 * d.bar().travel_time());
     return {"grazing.csv",
             {"mode", "omega", "energy", "accumulation_omega"},
-            {{double(mode), f.free, f.grazing_energy, accumulation}}};
+            {{double(mode), f.free, f.grazing_energy, d.bar().accumulation_frequency(mode)}}};
   }
 
   CsvTable resonance_table(const std::vector<InternalResonance> &resonances)

@@ -74,6 +74,16 @@ namespace nsm
         prm.leave_subsection();
     }
 
+    /// Declares every entry in `text` with its default and any value as
+    /// text: a scene is parsed so first, and its values checked after.
+    void declare_as_text(dealii::ParameterHandler &text, const std::vector<DeclaredEntry> &entries)
+    {
+      for (const DeclaredEntry &entry : entries)
+        in_sections(text, entry, [&] {
+          text.declare_entry(entry.name, entry.default_value, dealii::Patterns::Anything());
+        });
+    }
+
     /// deal.II's reading of a PRM line: surrounding white space (isspace)
     /// removed.
     std::string trimmed(const std::string &line)
@@ -529,10 +539,7 @@ namespace nsm
     // the subsection nor the range in words.
     const std::vector<DeclaredEntry> entries = declared_entries(prm);
     dealii::ParameterHandler text;
-    for (const DeclaredEntry &entry : entries)
-      in_sections(text, entry, [&] {
-        text.declare_entry(entry.name, entry.default_value, dealii::Patterns::Anything());
-      });
+    declare_as_text(text, entries);
     try
       {
         if (extension == ".json")
@@ -602,10 +609,7 @@ namespace nsm
   {
     const std::vector<DeclaredEntry> entries = declared_entries(prm);
     dealii::ParameterHandler         text;
-    for (const DeclaredEntry &entry : entries)
-      in_sections(text, entry, [&] {
-        text.declare_entry(entry.name, entry.default_value, dealii::Patterns::Anything());
-      });
+    declare_as_text(text, entries);
     bool parsed = true;
     try
       {

@@ -134,11 +134,6 @@ namespace nsm
       return packed;
     }
 
-    std::size_t column_of(const CsvTable &table, const std::string &name)
-    {
-      return std::find(table.columns.begin(), table.columns.end(), name) - table.columns.begin();
-    }
-
     /// A row's backbone_end says its continuation stopped before the range's
     /// end (empty: the row ran no harmonic balance).
     bool stopped_short(const std::string &end)

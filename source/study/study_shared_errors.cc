@@ -9,17 +9,12 @@ namespace nsm
 {
   namespace
   {
-    std::size_t column_index(const CsvTable &table, const std::string &name)
-    {
-      return std::find(table.columns.begin(), table.columns.end(), name) - table.columns.begin();
-    }
-
     /// Whether a row's energy errors are comparable: it measured some, and
     /// its continuation did not end inside the Backbone omegas.
     bool takes_part(const CsvTable &table, const std::vector<CsvCell> &row)
     {
-      return !text_cell(row, column_index(table, "energy_error_max")).empty() &&
-             text_cell(row, column_index(table, "energy_error_partial")) != "yes";
+      return !text_cell(row, column_of(table, "energy_error_max")).empty() &&
+             text_cell(row, column_of(table, "energy_error_partial")) != "yes";
     }
   } // namespace
 

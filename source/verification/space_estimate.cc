@@ -16,11 +16,6 @@ namespace nsm
     /// a median that one point near a tongue (whose resonance the reference
     /// moves) does not decide, few enough to cost under a tenth of the run.
     constexpr unsigned int space_samples = 15;
-    /// The judge: the model's cells halved and its degree raised by this, so
-    /// that it is converged where a coarse mesh is not (a mesh of FE_Q(p)
-    /// with its cells halved alone was 1.1 to 2.5 % from converged for
-    /// coarse p = 1 and 2 meshes, as far as the meshes it judged).
-    constexpr unsigned int judge_degree_step = 1;
   } // namespace
 
   SpaceReference::SpaceReference(const Discretisation &model, const ReceptanceParameters &receptance,

@@ -181,7 +181,7 @@ MUTATIONS = [
      "bool left_energy_range() const { return above_energy_max > 0; }",
      "bool left_energy_range() const { return false; }"),
     ("a row that ended inside the Backbone omegas may lead the energy front", "source/study/study_shared_errors.cc",
-     "text_cell(row, column_index(table, \"energy_error_partial\")) != \"yes\";", "true;"),
+     "text_cell(row, column_of(table, \"energy_error_partial\")) != \"yes\";", "true;"),
     ("rows compared on Omegas some of them lack", "source/study/study_shared_errors.cc",
      "if (reference[i] && std::all_of(", "if (reference[i] || std::all_of("),
     ("a swap replaces an output another run swapped in meanwhile", "source/output/output_directory.cc",

@@ -1,6 +1,7 @@
 // Files a run writes: CSV tables written whole or not at all.
 #pragma once
 
+#include <algorithm>
 #include <functional>
 #include <iosfwd>
 #include <string>
@@ -39,6 +40,12 @@ namespace nsm
   inline const std::string &text_cell(const std::vector<CsvCell> &row, const std::size_t c)
   {
     return std::get<std::string>(row[c]);
+  }
+
+  /// The index of the column `name` of `table`; columns.size() if it has none.
+  inline std::size_t column_of(const CsvTable &table, const std::string &name)
+  {
+    return std::find(table.columns.begin(), table.columns.end(), name) - table.columns.begin();
   }
 
   /// Writes `path` through `write` into path.partial, renamed to path once

@@ -30,6 +30,10 @@ namespace nsm
     /// clamped-free frequencies go like w_j ~ (j - 1/2) pi / tau.
     double travel_time() const;
 
+    /// Where the internal resonances of clamped-free mode n crowd: w_j = k W
+    /// with 2j - 1 = k (2n - 1) accumulate at (2n - 1) pi / (2 tau).
+    double accumulation_frequency(unsigned int mode) const;
+
     /// A(x); throws InputError if A(x) <= 0 or not finite.
     double cross_section(double x) const;
 
