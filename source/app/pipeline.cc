@@ -21,6 +21,7 @@
 #include <nsm/model/receptance.h>
 #include <nsm/output/result_tables.h>
 #include <nsm/scene/scene_entries.h>
+#include <nsm/verification/doubled_harmonics.h>
 #include <nsm/verification/harmonics_estimate.h>
 #include <nsm/verification/orbit_refinement.h>
 #include <nsm/verification/space_estimate.h>
@@ -317,10 +318,24 @@ namespace nsm
         EstimateSummary summary;
         timed("error estimate", [&] {
           Progress progress("error estimate", scene_.output.progress_every);
-          estimates_ = estimate_energy_errors(hb(), branch(), backbone(), progress);
-          summary    = summarise_estimates(backbone(), estimates_);
+          std::vector<bool> elsewhere;
+          estimates_ = estimate_energy_errors(hb(), branch(), backbone(), progress, &elsewhere);
+          summary    = summarise_estimates(backbone(), estimates_, elsewhere);
           report_.result.push_back(estimate_summary(summary, scene_.harmonic_balance.harmonics));
           note_stop("estimates");
+        });
+        if (point_stop_signal() != 0)
+          {
+            cut_short_ = true; // the checks are left out
+            return;
+          }
+        timed("estimate check with 2M", [&] {
+          const DoubledHarmonicsCheck check = check_with_doubled_harmonics(
+            discretisation(), scene_.receptance, branch(), backbone(), estimates_, used_band());
+          report_.result.push_back(doubled_harmonics_summary(check));
+          if (const std::string warning = doubled_harmonics_warning(check); !warning.empty())
+            report_.result.push_back("warning: " + warning);
+          note_stop("checks");
         });
         if (point_stop_signal() != 0)
           {

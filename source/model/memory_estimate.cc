@@ -69,21 +69,29 @@ namespace nsm
     };
     // The mesh, K and M, and band copies of the pencil and its factors; the
     // band check's judge the same for its cells halved and its degree
-    // raised by one (verification/space_estimate.h).
+    // raised by one (verification/space_estimate.h), and the estimate's
+    // check with 2 M another pencil of the mesh and a harmonic balance with
+    // twice the harmonics (verification/doubled_harmonics.h).
     const auto model = [&](const double n, const double p) {
       const double unknowns = n * p + 1;
       return bytes_per_cell * n + bytes_per_nonzero * unknowns * (2 * p + 1) + 8.0 * unknowns * (3 * p + 1) * 3;
     };
     const bool judged = o.backbone && o.error_estimate;
-    add(model(cells, d.degree) + (judged ? model(2 * cells, d.degree + judge_degree_step) : 0),
+    add((judged ? 2 : 1) * model(cells, d.degree) + (judged ? model(2 * cells, d.degree + judge_degree_step) : 0),
         "Discretisation/Cells and Discretisation/Degree");
     add(bytes_per_frequency * double(o.receptance_frequencies.size()), "Output/Receptance frequencies");
     if (o.backbone || o.fields())
       {
-        const double m = scene.harmonic_balance.harmonics + 1;
-        const double n = scene.harmonic_balance.basis == HarmonicBasis::full ? 2 * m - 1 : m;
-        const double samples = std::max<double>(scene.harmonic_balance.samples(), 8 * m);
-        add(8 * (6 * n * n + 4 * n * samples), "Harmonic balance/Harmonics");
+        // Unknowns with M harmonics, and the largest harmonic balance's
+        // (the estimate's check has twice the harmonics).
+        const auto unknowns = [&](const double harmonics) {
+          return scene.harmonic_balance.basis == HarmonicBasis::full ? 2 * harmonics + 1 : harmonics + 1;
+        };
+        const double n       = unknowns(scene.harmonic_balance.harmonics);
+        const double largest = unknowns((judged ? 2 : 1) * scene.harmonic_balance.harmonics);
+        const double samples = std::max<double>(scene.harmonic_balance.samples(),
+                                                8 * ((judged ? 2 : 1) * scene.harmonic_balance.harmonics + 1.0));
+        add(8 * (6 * largest * largest + 4 * largest * samples), "Harmonic balance/Harmonics");
         add(double(scene.continuation.max_steps) * (bytes_per_point + bytes_per_point_unknown * n),
             "Continuation/Max steps");
         // Each field keeps one nodal vector per basis function, and its

@@ -27,25 +27,51 @@ namespace nsm
     , searching_(model, leap_parameters(params))
   {}
 
-  double SameMotionSolve::energy_change(const BackbonePoint &point, const std::vector<double> &guess)
+  NewtonResult SameMotionSolve::solve(const BackbonePoint &point, const std::vector<double> &guess)
   {
     NewtonResult r = full_steps_.solve(point.omega, guess);
     if (!r.converged)
       r = searching_.solve(point.omega, guess);
+    return r;
+  }
+
+  double SameMotionSolve::energy_change(const BackbonePoint &point, const std::vector<double> &guess)
+  {
+    landed_elsewhere_    = false;
+    const NewtonResult r = solve(point, guess);
     if (!r.converged || !(r.residual <= tolerance_))
       return std::numeric_limits<double>::quiet_NaN();
     model_.set_omega(point.omega);
     const PeriodicSolutionMeasures m = model_.measure(r.x);
     if (!(m.energy > 0 && m.contact_fraction > 0 &&
           std::abs(m.contact_fraction - point.measures.contact_fraction) <= same_motion_contact_change))
-      return std::numeric_limits<double>::quiet_NaN();
+      {
+        landed_elsewhere_ = true;
+        return std::numeric_limits<double>::quiet_NaN();
+      }
     return std::abs(m.energy / point.measures.energy - 1);
   }
 
+  std::vector<std::size_t> spread_main_points(const Backbone &backbone, const std::size_t count)
+  {
+    std::vector<std::size_t> main;
+    for (std::size_t i = 0; i < backbone.points.size(); ++i)
+      if (backbone.points[i].branch == Branch::main)
+        main.push_back(i);
+    const std::size_t        n = std::min(count, main.size());
+    std::vector<std::size_t> spread;
+    for (std::size_t i = 0; i < n; ++i)
+      spread.push_back(main[n == 1 ? 0 : i * (main.size() - 1) / (n - 1)]);
+    return spread;
+  }
+
   std::vector<double> estimate_energy_errors(const HarmonicBalance &hb, const BranchParameters &branch,
-                                             const Backbone &backbone, Progress &progress)
+                                             const Backbone &backbone, Progress &progress,
+                                             std::vector<bool> *elsewhere)
   {
     std::vector<double> estimates(backbone.points.size(), std::numeric_limits<double>::quiet_NaN());
+    if (elsewhere != nullptr)
+      elsewhere->assign(backbone.points.size(), false);
     if (branch.harmonic_balance.harmonics < 2)
       return estimates;
     HarmonicBalanceParameters fewer = branch.harmonic_balance;
@@ -56,12 +82,15 @@ namespace nsm
       {
         const BackbonePoint &p = backbone.points[i];
         estimates[i] = solve.energy_change(p, std::vector<double>(p.x.begin(), p.x.begin() + model.n_unknowns()));
+        if (elsewhere != nullptr)
+          (*elsewhere)[i] = solve.landed_elsewhere();
         progress.update([&] { return "point " + std::to_string(i + 1) + " of " + std::to_string(estimates.size()); });
       }
     return estimates;
   }
 
-  EstimateSummary summarise_estimates(const Backbone &backbone, const std::vector<double> &estimates)
+  EstimateSummary summarise_estimates(const Backbone &backbone, const std::vector<double> &estimates,
+                                      const std::vector<bool> &elsewhere)
   {
     EstimateSummary                         s;
     std::vector<std::pair<double, double>>  main; // (Omega, estimate) of each main point, NaN without one
@@ -70,6 +99,9 @@ namespace nsm
         main.emplace_back(backbone.points[i].omega,
                           i < estimates.size() ? estimates[i] : std::numeric_limits<double>::quiet_NaN());
     s.main = main.size();
+    for (std::size_t i = 0; i < elsewhere.size(); ++i)
+      if (elsewhere[i] && backbone.points[i].branch == Branch::main)
+        ++s.elsewhere;
     std::vector<double> found;
     for (const auto &[omega, e] : main)
       if (std::isfinite(e))
@@ -121,9 +153,13 @@ namespace nsm
           s << " and " << summary.upper_spans.size() - shown << " more stretches";
       }
     if (summary.estimated < summary.main)
-      s << "; " << summary.main - summary.estimated << " without an estimate (with M = " << harmonics / 2
-        << ", Newton from the point's own harmonics did not converge, or converged on a motion with another "
-           "contact fraction)";
+      {
+        const std::size_t missing = summary.main - summary.estimated;
+        s << "; " << missing << " without an estimate: with M = " << harmonics / 2
+          << ", Newton from the point's own harmonics did not converge at " << missing - summary.elsewhere
+          << " and converged on another motion (contact fraction more than " << same_motion_contact_change
+          << " away) at " << summary.elsewhere;
+      }
     return s.str();
   }
 } // namespace nsm

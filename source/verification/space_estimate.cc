@@ -38,21 +38,14 @@ namespace nsm
 
   std::vector<double> SpaceReference::energy_changes(const Backbone &backbone) const
   {
-    std::vector<const BackbonePoint *> main;
-    for (const BackbonePoint &p : backbone.points)
-      if (p.branch == Branch::main)
-        main.push_back(&p);
-    std::vector<double> changes;
-    if (main.empty())
+    std::vector<double>            changes;
+    const std::vector<std::size_t> sample = spread_main_points(backbone, space_samples);
+    if (sample.empty())
       return changes;
-    HarmonicBalance    model(branch_.harmonic_balance, branch_.contact, *receptance_);
-    SameMotionSolve    solve(model, branch_.harmonic_balance);
-    const std::size_t  count = std::min<std::size_t>(space_samples, main.size());
-    for (std::size_t i = 0; i < count; ++i)
-      {
-        const BackbonePoint &p = *main[count == 1 ? 0 : i * (main.size() - 1) / (count - 1)];
-        changes.push_back(solve.energy_change(p, p.x));
-      }
+    HarmonicBalance model(branch_.harmonic_balance, branch_.contact, *receptance_);
+    SameMotionSolve solve(model, branch_.harmonic_balance);
+    for (const std::size_t i : sample)
+      changes.push_back(solve.energy_change(backbone.points[i], backbone.points[i].x));
     return changes;
   }
 
