@@ -143,7 +143,7 @@ BACKBONE = {"segment": Column(required=True, whole=True), "Omega": Column(requir
                                                      "resonance_harmonic", "leading_harmonic")},
             **{name: Column(empty=True) for name in (
                 "energy_error_estimate", "periodicity_defect", "periodicity_defect_end", "energy_drift",
-                "impulse_ratio", "verified_contact_fraction", "orbit_energy", "hb_energy_error",
+                "impulse_ratio", "verified_contact_fraction", "verified_energy", "orbit_energy", "hb_energy_error",
                 "orbit_contact_fraction", "floquet_max", "isolation")},
             "verified": Column(empty=True, words=("true", "false")),
             "stable": Column(empty=True, words=("true", "false"))}

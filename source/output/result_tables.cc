@@ -16,9 +16,9 @@ namespace nsm
     std::vector<CsvCell> verification_cells(const std::optional<PointVerification> &v)
     {
       if (!v)
-        return std::vector<CsvCell>(6, std::string());
+        return std::vector<CsvCell>(7, std::string());
       return {v->verified ? "true" : "false", v->time.periodicity_defect, v->time.periodicity_defect_end,
-              v->time.energy_drift, v->impulse_ratio, v->time.contact_fraction};
+              v->time.energy_drift, v->impulse_ratio, v->time.contact_fraction, v->time.energy_start};
     }
 
     /// The orbit columns of one row; empty cells for a point not refined or
@@ -75,7 +75,7 @@ namespace nsm
       table.columns.push_back("max_displacement");
     if (!verifications.empty())
       for (const char *c : {"verified", "periodicity_defect", "periodicity_defect_end", "energy_drift",
-                            "impulse_ratio", "verified_contact_fraction"})
+                            "impulse_ratio", "verified_contact_fraction", "verified_energy"})
         table.columns.push_back(c);
     if (!orbits.empty())
       for (const char *c : {"orbit_energy", "hb_energy_error", "orbit_contact_fraction", "floquet_max", "stable",

@@ -149,7 +149,7 @@ namespace nsm
     dealii::Vector<double> u(u0), v(v0), a = initial_acceleration(u0);
     v[clamp_] = 0;
     const double     e0 = energy(u, v);
-    TimeVerification result{0, 0, 0, 0, 0};
+    TimeVerification result{0, 0, 0, 0, 0, e0};
     unsigned long    in_contact = 0;
     const auto       defect = [&] {
       double d = 0;

@@ -9,14 +9,14 @@ namespace nsm
 {
   namespace
   {
-    constexpr const char *verification_format_line = "nsm-bar verification checkpoint 1";
+    constexpr const char *verification_format_line = "nsm-bar verification checkpoint 2";
 
     /// The results a line holds, in order (V: PointVerification, const or not).
     template <typename V>
     auto fields(V &v)
     {
       return std::vector{&v.time.periodicity_defect, &v.time.periodicity_defect_end, &v.time.energy_drift,
-                         &v.time.impulse, &v.time.contact_fraction, &v.impulse_ratio};
+                         &v.time.impulse, &v.time.contact_fraction, &v.impulse_ratio, &v.time.energy_start};
     }
   } // namespace
 

@@ -36,7 +36,7 @@ def table(header, rows):
 BACKBONE_HEADER = ("segment,Omega,energy,energy_spread,max_contact_force,max_contact_displacement,"
                    "contact_fraction,newton_iterations,residual,branch,resonance_mode,resonance_harmonic,"
                    "leading_harmonic,energy_error_estimate,verified,periodicity_defect,periodicity_defect_end,"
-                   "energy_drift,impulse_ratio,verified_contact_fraction,orbit_energy,hb_energy_error,"
+                   "energy_drift,impulse_ratio,verified_contact_fraction,verified_energy,orbit_energy,hb_energy_error,"
                    "orbit_contact_fraction,floquet_max,stable,isolation").split(",")
 TONGUE_ROWS, OTHER_ROW, SECOND_SEGMENT = (10, 11), 30, 20
 
@@ -56,7 +56,7 @@ def backbone(n=40, wobble=0.0, branch=None, segment=None, shift=0.0):
         b = branch(i) if branch else ("tongue" if i in TONGUE_ROWS else "other" if i == OTHER_ROW else "main")
         seg = segment(i) if segment else int(i >= SECOND_SEGMENT)
         tongue = b == "tongue"
-        verify = ["true" if i % 4 else "false", 1e-4, 2e-4, -1e-6, 1.01, 0.2] if i % 3 == 0 else [""] * 6
+        verify = ["true" if i % 4 else "false", 1e-4, 2e-4, -1e-6, 1.01, 0.2, e] if i % 3 == 0 else [""] * 7
         orbit = [e * 1.001, -0.001, 0.21, 1.5, "true" if i % 2 else "false", 1e-3] if i % 5 == 0 else [""] * 6
         rows.append([seg, repr(w), repr(e), 0.1, 1.5, 0.0101, 0.2, 3, 1e-12, b, 2 if tongue else 0,
                      3 if tongue else 0, 3 if tongue else 1, "" if i % 7 == 0 else 1e-4, *verify, *orbit])

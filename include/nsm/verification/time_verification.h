@@ -32,6 +32,7 @@ namespace nsm
     double energy_drift;           ///< (E_end - E_0) / E_0, E with the redistributed mass
     double impulse;                ///< contact impulse per period, mean over the periods
     double contact_fraction;       ///< share of the steps with the wall pushing the contact DoF
+    double energy_start;           ///< E_0: the integrator's energy of the state at t = 0 (as energy())
   };
 
   /// The FE mass matrix without inertia at the contact DoF: its row and
