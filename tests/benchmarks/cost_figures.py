@@ -11,9 +11,12 @@ milliseconds on this machine, and the ratios the docs state):
                search and without (Fill gaps wider than = 0): whole runs, and
                the error estimate's stage against the harmonic balance's;
   seed-verify  prm/seed-verify.prm: main points, orbits found, the HB energy
-               error against the orbits, and the run's time (doc/reproduction.md).
+               error against the orbits, and the run's time (doc/reproduction.md);
+  study-harmonics  the table of doc/accuracy-and-cost.md, "Harmonics and
+               integration" (prm/study-harmonics.prm with that page's labels:
+               Main contact drop = 1, Fill gaps wider than = 0; 90 s).
 Each run is made once (a benchmark repeats with tests/benchmarks/repeat_benchmark.py).
-About 4 minutes in all. Not part of CTest.
+About 6 minutes in all. Not part of CTest.
 """
 import csv
 import os
@@ -103,9 +106,27 @@ def seed_verify():
     print(f"  {line}")
 
 
+def study_harmonics():
+    out = os.path.join(WORK, "study-harmonics")
+    _, seconds = nsm("study-harmonics.prm", out, "Continuation/Main contact drop=1",
+                     "Continuation/Fill gaps wider than=0", "Output/Plots=false")
+    with open(os.path.join(out, "study.csv"), newline="") as f:
+        rows = list(csv.DictReader(f))
+    number = lambda x: f"{float(x):.3g}" if x else "-"
+    print(f"study-harmonics: {seconds:.0f} s in all")
+    for r in rows:
+        found = sum(1 for k in r if k.startswith("energy_at_") and r[k])
+        print(f"| {r['harmonics']} | {r['integration']} | {r['hb_unknowns']} | {r['main_points']} | "
+              f"{number(r['main_energy_error_median'])} / {number(r['main_energy_error_q90'])} | {found} | "
+              + (f"{number(r['energy_error_median'])} / {number(r['energy_error_max'])}" if found else "-")
+              + f" | {r['failed_solves']} | {number(r['wall_total_min'])} / {number(r['wall_total_median'])} / "
+              f"{number(r['wall_total_max'])} |")
+
+
 def main():
     os.makedirs(WORK, exist_ok=True)
-    for name, figure in (("study-seed", study_seed), ("backbone", backbone), ("seed-verify", seed_verify)):
+    for name, figure in (("study-seed", study_seed), ("backbone", backbone), ("seed-verify", seed_verify),
+                         ("study-harmonics", study_harmonics)):
         if ONLY in (None, name):
             figure()
             sys.stdout.flush()
