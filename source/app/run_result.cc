@@ -124,8 +124,11 @@ namespace nsm
           s << open;
           if (record->other_harmonic > 0)
             s << by_contact << " of ";
-          s << "contact fraction at most " << record->most_contact << ", the mode's " << record->contact_before
-            << " before the gap";
+          s << "contact fraction at most " << record->most_contact;
+          if (std::isfinite(record->contact_before))
+            s << ", the mode's " << record->contact_before << " before the gap";
+          else
+            s << ", no main point of the mode before the gap beyond the accumulation point";
           open = "; ";
         }
       if (record->other_harmonic > 0)
@@ -208,8 +211,8 @@ namespace nsm
       s << "the branch crosses the accumulation point W_acc = " << w_acc << " of its internal resonances (w_j / (2j - 1) -> "
         << (continuation.mode > 1 ? "(2n - 1) " : "") << "pi / (2 tau), tau = L sqrt(rho / E)): it starts below it, at "
         << start << ", the tongues crowd towards it, and the branch's climb into it is set by the truncation M; "
-        << beyond << " of the " << main.size() << " main points lie beyond it (doc/method.md, "
-        << "\"The accumulation point\")";
+        << "beyond it the labels judge the branch on its own (the uniform bar's mode continued): " << beyond
+        << " of the " << main.size() << " main points lie beyond it (doc/method.md, \"The accumulation point\")";
       return {s.str()};
     }
   } // namespace

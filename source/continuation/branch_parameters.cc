@@ -1,4 +1,5 @@
 #include <nsm/continuation/branch_parameters.h>
+#include <nsm/model/bar_model.h>
 #include <nsm/scene/scene.h>
 
 namespace nsm
@@ -9,5 +10,6 @@ namespace nsm
     , continuation(scene.continuation)
     , progress_every(scene.output.progress_every)
     , computation_entries(scene.computation_entries)
+    , accumulation_omega(BarModel(scene.bar).accumulation_frequency(scene.continuation.mode))
   {}
 } // namespace nsm

@@ -52,7 +52,8 @@ namespace nsm
     double tongue_threshold(const BranchContext &context, const std::vector<BackbonePoint> &points,
                             const double far_side)
     {
-      return (1 + context.params.continuation.tongue_share) * envelope_at(points, far_side, context.direction);
+      return (1 + context.params.continuation.tongue_share) * envelope_at(points, far_side, context.direction,
+                                                                          accumulation_passed(context.params));
     }
 
     /// The main points that predict the mode in a gap: the one at its start,
@@ -211,7 +212,8 @@ namespace nsm
       search.from = gap.first;
       search.to   = gap.second;
       search.contact_before =
-        most_contact_before(labelled, gap.second, context.direction, context.params.continuation.tongue_share);
+        most_contact_before(labelled, gap.second, context.direction, context.params.continuation.tongue_share,
+                            accumulation_passed(context.params));
       BackbonePoint     point;
       const std::size_t before = backbone.points.size();
       const bool predicted = trend.start && predicted_landing(context, labelled, gap, trend, segment, point, search);

@@ -259,7 +259,10 @@ namespace nsm
     }
   } // namespace
 
-  void label_branches(HarmonicBalance &hb, const BranchParameters &params, std::vector<BackbonePoint> &points)
+  namespace
+  {
+    /// label_branches on one side of the accumulation point.
+    void label_side(HarmonicBalance &hb, const BranchParameters &params, std::vector<BackbonePoint> &points)
   {
     const auto             &c         = params.continuation;
     const double            direction = branch_direction(params.contact);
@@ -280,14 +283,48 @@ namespace nsm
         first = end;
       }
   }
+  } // namespace
+
+  bool beyond_accumulation(const BranchParameters &params, const double omega)
+  {
+    return branch_direction(params.contact) * (omega - accumulation_passed(params)) > 0;
+  }
+
+  void label_branches(HarmonicBalance &hb, const BranchParameters &params, std::vector<BackbonePoint> &points)
+  {
+    // The two sides of the accumulation point are labelled apart: nothing on
+    // one side vetoes a family on the other (doc/method.md, "The
+    // accumulation point").
+    for (const bool beyond : {false, true})
+      {
+        std::vector<std::size_t>   side;
+        std::vector<BackbonePoint> part;
+        for (std::size_t i = 0; i < points.size(); ++i)
+          if (beyond_accumulation(params, points[i].omega) == beyond)
+            side.push_back(i), part.push_back(points[i]);
+        label_side(hb, params, part);
+        for (std::size_t k = 0; k < side.size(); ++k)
+          points[side[k]] = std::move(part[k]);
+      }
+  }
+
+  double accumulation_passed(const BranchParameters &params)
+  {
+    if (branch_direction(params.contact) < 0)
+      return std::numeric_limits<double>::quiet_NaN();
+    const double m = params.harmonic_balance.harmonics;
+    return params.accumulation_omega * (1 + continuation_constants::accumulation_reach / (m * m));
+  }
 
   double most_contact_before(const std::vector<BackbonePoint> &points, const double omega, const double direction,
-                             const double share)
+                             const double share, const double passed)
   {
-    const std::vector<bool> own  = on_own_envelope(points, direction, share);
-    double                  most = -std::numeric_limits<double>::infinity();
+    const std::vector<bool> own    = on_own_envelope(points, direction, share);
+    const bool              beyond = direction * (omega - passed) > 0;
+    double                  most   = -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < points.size(); ++i)
-      if (own[i] && points[i].branch != Branch::other && direction * (points[i].omega - omega) < 0)
+      if (own[i] && points[i].branch != Branch::other && direction * (points[i].omega - omega) < 0 &&
+          (!beyond || direction * (points[i].omega - passed) > 0))
         most = std::max(most, points[i].measures.contact_fraction);
     return most;
   }
@@ -299,10 +336,12 @@ namespace nsm
   {
     const auto  &c         = params.continuation;
     const double direction = branch_direction(params.contact);
-    const double least     = std::min(point.measures.energy, envelope_at(points, point.omega, direction));
+    const double least =
+      std::min(point.measures.energy, envelope_at(points, point.omega, direction, accumulation_passed(params)));
     const bool   above     = exceeds_envelope(point.measures.energy, least, c.tongue_share);
     if (point.measures.contact_fraction <
-          most_contact_before(points, point.omega, direction, c.tongue_share) - c.main_contact_drop ||
+          most_contact_before(points, point.omega, direction, c.tongue_share, accumulation_passed(params)) -
+            c.main_contact_drop ||
         (!above && !moves_at_omega(point)))
       mark(point, Branch::other);
     else if (!above)
@@ -312,11 +351,14 @@ namespace nsm
     hb.set_omega(point.omega);
   }
 
-  double envelope_at(const std::vector<BackbonePoint> &points, const double omega, const double direction)
+  double envelope_at(const std::vector<BackbonePoint> &points, const double omega, const double direction,
+                     const double passed)
   {
-    double least = std::numeric_limits<double>::infinity();
+    const bool beyond = direction * (omega - passed) > 0;
+    double     least  = std::numeric_limits<double>::infinity();
     for (const BackbonePoint &q : points)
-      if (q.branch != Branch::other && direction * (q.omega - omega) >= 0)
+      if (q.branch != Branch::other && direction * (q.omega - omega) >= 0 &&
+          (std::isnan(passed) || (direction * (q.omega - passed) > 0) == beyond))
         least = std::min(least, q.measures.energy);
     return least;
   }

@@ -26,5 +26,8 @@ namespace nsm
     double                    progress_every; ///< seconds; 0 = never (Output/Progress every)
     /// Scene::computation_entries: a resumed run must share them (checkpoint.h).
     std::vector<std::string>  computation_entries;
+    /// The accumulation point of the branch's internal resonances,
+    /// (2 Mode - 1) pi / (2 tau) (BarModel::accumulation_frequency).
+    double                    accumulation_omega;
   };
 } // namespace nsm

@@ -51,4 +51,14 @@ namespace nsm::continuation_constants
   /// The gap search starts Newton at this many Omegas per Fill gaps wider
   /// than: a landing lies at most an eighth of that width from a start.
   constexpr unsigned int gap_starts_per_width = 8;
+  /// The branch's climb into the accumulation point W_acc of its internal
+  /// resonances, and the motions of near half contact beside its top, reach
+  /// beyond it by a truncation effect that falls like M^-2: the climb's top
+  /// lies 8.7e-4, 2.2e-4, 5.5e-5, 1.7e-5 beyond pi / 2 at M = 20, 40, 80, 160
+  /// on 1 + 0.2 x (FE_Q(10) x 20), about 0.35 / M^2; at M = 40, the points of
+  /// contact fraction above 0.35 beyond pi / 2 reach 0.34 / M^2 (relative)
+  /// on 1 + 0.2 x, 1 + 0.3 x^3 and 1 + 0.05 x, 1.9 / M^2 on 1 + x and 1 + x^2.
+  /// The labels take the accumulation point as passed at
+  /// W_acc (1 + this / M^2) along the branch, twice the farthest.
+  constexpr double accumulation_reach = 4;
 } // namespace nsm::continuation_constants

@@ -19,6 +19,7 @@
 #include <nsm/continuation/backbone.h>
 #include <nsm/continuation/branch_parameters.h>
 
+#include <limits>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -86,6 +87,16 @@ namespace nsm
   std::vector<bool> main_family(const std::vector<BackbonePoint> &points, double direction, double share,
                                 double drop);
 
+  /// Where a hardening branch (the physical force sign) has passed its
+  /// accumulation point W_acc (BranchParameters::accumulation_omega):
+  /// W_acc (1 + accumulation_reach / M^2), beyond the climb's truncated top;
+  /// NaN for a softening branch (eq. (5)'s sign, measured on no bar that
+  /// crosses it), whose points are labelled together.
+  double accumulation_passed(const BranchParameters &params);
+
+  /// Whether omega lies beyond accumulation_passed along the branch.
+  bool beyond_accumulation(const BranchParameters &params, double omega);
+
   /// Sets every point's branch, and the resonance of each run of tongue
   /// points from the spectrum of its most energetic point (the scene's Tongue
   /// share, Main contact drop, direction and Mode). Points off the main
@@ -94,6 +105,8 @@ namespace nsm
   /// at the branch's own mode is main: nothing resonates there (its points
   /// led by a higher harmonic are other). A run is named w_j / k only within
   /// resonance_name_tolerance of its Omega. Every main point moves_at_omega.
+  /// The points on either side of the accumulation point
+  /// (beyond_accumulation) are labelled on their own.
   void label_branches(HarmonicBalance &hb, const BranchParameters &params, std::vector<BackbonePoint> &points);
 
   /// Labels one point solved off the backbone (a field at a given Omega) by
@@ -114,9 +127,14 @@ namespace nsm
   /// The most contact fraction before omega in `direction` of the mode's
   /// family in the labelled `points` (not other, and on their own segment's
   /// envelope, as main_family counts it); minus infinity if none.
-  double most_contact_before(const std::vector<BackbonePoint> &points, double omega, double direction, double share);
+  /// Beyond `passed` (accumulation_passed) only the points beyond it count.
+  double most_contact_before(const std::vector<BackbonePoint> &points, double omega, double direction, double share,
+                             double passed = std::numeric_limits<double>::quiet_NaN());
 
-  double envelope_at(const std::vector<BackbonePoint> &points, double omega, double direction);
+  /// Beyond `passed` (main_family) only the points beyond it count, and
+  /// before it only those before it.
+  double envelope_at(const std::vector<BackbonePoint> &points, double omega, double direction,
+                     double passed = std::numeric_limits<double>::quiet_NaN());
 
   /// The intervals (from, to) between consecutive main points of `points` in
   /// `direction`, and from the last one to `end` if given.
