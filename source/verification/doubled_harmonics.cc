@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 namespace nsm
 {
@@ -50,33 +51,76 @@ namespace nsm
     }
   } // namespace
 
+  namespace
+  {
+    /// A point solved with 2 M harmonics from its own unknowns, and where
+    /// that fails through 3 M / 2 first: |E(M) / E(2 M) - 1|, NaN where
+    /// neither finds the same motion.
+    class DoubledSolve
+    {
+    public:
+      DoubledSolve(const BranchParameters &branch, const Receptance &gamma)
+        : more_(with_harmonics(branch, 2 * branch.harmonic_balance.harmonics))
+        , between_(with_harmonics(branch, branch.harmonic_balance.harmonics * 3 / 2))
+        , doubled_(more_, branch.contact, gamma)
+        , halfway_(between_, branch.contact, gamma)
+        , solve_(doubled_, more_)
+        , step_(halfway_, between_)
+      {}
+
+      double energy_change(const BackbonePoint &p)
+      {
+        const double change = solve_.energy_change(p, padded(p.x, doubled_.n_unknowns()));
+        if (std::isfinite(change))
+          return change;
+        const NewtonResult r = step_.solve(p, padded(p.x, halfway_.n_unknowns()));
+        return r.converged ? solve_.energy_change(p, padded(r.x, doubled_.n_unknowns())) : change;
+      }
+
+    private:
+      static HarmonicBalanceParameters with_harmonics(const BranchParameters &branch, const unsigned int m)
+      {
+        HarmonicBalanceParameters p = branch.harmonic_balance;
+        p.harmonics                 = m;
+        return p;
+      }
+
+      HarmonicBalanceParameters more_, between_;
+      HarmonicBalance           doubled_, halfway_;
+      SameMotionSolve           solve_, step_;
+    };
+
+    /// The main branch's lowest and highest Omega.
+    std::pair<double, double> main_range(const Backbone &backbone)
+    {
+      double low = std::numeric_limits<double>::infinity(), high = 0;
+      for (const BackbonePoint &p : backbone.points)
+        if (p.branch == Branch::main)
+          {
+            low  = std::min(low, p.omega);
+            high = std::max(high, p.omega);
+          }
+      return {low, high};
+    }
+  } // namespace
+
   DoubledHarmonicsCheck check_with_doubled_harmonics(const Discretisation &model, const ReceptanceParameters &receptance,
                                                      const BranchParameters &branch, const Backbone &backbone,
                                                      const std::vector<double> &estimates, const double band)
   {
     DoubledHarmonicsCheck check;
-    const unsigned int    harmonics = branch.harmonic_balance.harmonics;
-    check.harmonics                 = 2 * harmonics;
+    check.harmonics = 2 * branch.harmonic_balance.harmonics;
     const std::vector<std::size_t> sample = spread_main_points(backbone, doubled_samples);
     if (sample.empty())
       return check;
-    HarmonicBalanceParameters more = branch.harmonic_balance, between = branch.harmonic_balance;
-    more.harmonics                 = 2 * harmonics;
-    between.harmonics              = harmonics + harmonics / 2;
-    const Receptance gamma(model, receptance, 2 * band);
-    HarmonicBalance  doubled(more, branch.contact, gamma), halfway(between, branch.contact, gamma);
-    SameMotionSolve  solve(doubled, more), step(halfway, between);
+    const Receptance    gamma(model, receptance, 2 * band);
+    DoubledSolve        doubled(branch, gamma);
     std::vector<double> changes, estimated;
     for (const std::size_t i : sample)
       {
         if (point_stop_signal() != 0)
           break;
-        const BackbonePoint &p = backbone.points[i];
-        ++check.sampled;
-        double change = solve.energy_change(p, padded(p.x, doubled.n_unknowns()));
-        if (!std::isfinite(change))
-          if (const NewtonResult r = step.solve(p, padded(p.x, halfway.n_unknowns())); r.converged)
-            change = solve.energy_change(p, padded(r.x, doubled.n_unknowns()));
+        const double change = doubled.energy_change(backbone.points[i]);
         check.points.push_back(i);
         check.changes.push_back(change);
         if (!std::isfinite(change))
@@ -85,17 +129,12 @@ namespace nsm
         if (i < estimates.size() && std::isfinite(estimates[i]))
           estimated.push_back(estimates[i]);
       }
+    check.sampled         = check.points.size();
     check.found           = changes.size();
     check.median_change   = median(changes);
     check.median_estimate = median(estimated);
-    double low = std::numeric_limits<double>::infinity(), high = 0;
-    for (const BackbonePoint &p : backbone.points)
-      if (p.branch == Branch::main)
-        {
-          low  = std::min(low, p.omega);
-          high = std::max(high, p.omega);
-        }
-    check.resonances = resonances_between(gamma.poles(), harmonics, low, high);
+    const auto [low, high] = main_range(backbone);
+    check.resonances       = resonances_between(gamma.poles(), branch.harmonic_balance.harmonics, low, high);
     return check;
   }
 
