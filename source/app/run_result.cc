@@ -99,6 +99,20 @@ namespace nsm
       return s.str();
     }
 
+    /// The gap search's own work: Newton solves, failures, iterations and
+    /// wall time.
+    std::string gap_search_work(const Backbone &backbone)
+    {
+      const NewtonCost  &c = backbone.gap_search_cost;
+      std::ostringstream s;
+      s.precision(3);
+      s << "the gap search's work: " << c.converged_solves + c.failed_solves << " Newton solves, "
+        << c.failed_solves << " of them not converged, " << c.converged_iterations + c.failed_iterations
+        << " iterations, " << backbone.gap_search_seconds << " s (of its starts, leaps and traced segments; "
+        << "a branch with fewer harmonics traced for its guesses not counted)";
+      return s.str();
+    }
+
     /// What the gap search found in the gap (from, to): the record of the
     /// search of the gap nearest to it.
     std::string search_found(const Backbone &backbone, const double from, const double to)
@@ -232,6 +246,8 @@ namespace nsm
     if (!main.empty() && continuation.fill_gaps_wider_than > 0)
       for (std::string &line : unfound_stretches(backbone, direction, continuation))
         lines.push_back(std::move(line));
+    if (const NewtonCost &c = backbone.gap_search_cost; c.converged_solves + c.failed_solves > 0)
+      lines.push_back(gap_search_work(backbone));
     for (std::string &line : accumulation_crossing(main, backbone, bar, continuation, direction))
       lines.push_back(std::move(line));
     for (std::string &line : exact_errors(main, bar, contact))

@@ -12,6 +12,7 @@
 #include <nsm/continuation/sequential_steps.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -78,6 +79,23 @@ namespace nsm
       return c;
     }
 
+    /// fill_gaps, its Newton solves and wall time kept in the backbone.
+    void fill_gaps_counted(BranchContext &context, Backbone &backbone)
+    {
+      const NewtonCost before = context.newton_cost();
+      const auto       start  = std::chrono::steady_clock::now();
+      fill_gaps(context, backbone);
+      backbone.gap_search_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const NewtonCost after      = context.newton_cost();
+      NewtonCost      &cost       = backbone.gap_search_cost;
+      cost.converged_solves       = after.converged_solves - before.converged_solves;
+      cost.failed_solves          = after.failed_solves - before.failed_solves;
+      cost.converged_iterations   = after.converged_iterations - before.converged_iterations;
+      cost.failed_iterations      = after.failed_iterations - before.failed_iterations;
+      cost.converged_seconds      = after.converged_seconds - before.converged_seconds;
+      cost.failed_seconds         = after.failed_seconds - before.failed_seconds;
+    }
+
     /// Segments joined by leaps over folds and tongues, from `segment` on,
     /// until the range, Max steps, a leap that finds no branch, or a stop
     /// signal (the checkpoint is then kept). At the range or a lost branch,
@@ -95,7 +113,7 @@ namespace nsm
                 context.in_range(omega) ? "end of the Omega range" : "left the Omega range", omega));
               if (context.in_range(omega))
                 find_branch_below_at_end(context, backbone, segment);
-              return fill_gaps(context, backbone);
+              return fill_gaps_counted(context, backbone);
             }
           if (end == SegmentEnd::interrupted)
             {
@@ -123,7 +141,7 @@ namespace nsm
                                                     "resonance tongue above Energy max",
                                                   omega, context.resonances));
           if (!leap(context, backbone, segment + 1, method.first_fold()))
-            return fill_gaps(context, backbone);
+            return fill_gaps_counted(context, backbone);
         }
     }
 

@@ -87,6 +87,20 @@ TEST(GapFilling, FillsTheMainBranchWhereNewtonFindsItAndKeepsTheTracedPoints)
   const auto filled_gaps = main_gaps(filled, fill_width);
   EXPECT_LT(widest(filled_gaps), widest(plain_gaps));
 
+  // Its work is counted apart: at least one Newton solve per start it
+  // records, and at most what the run solved beyond the plain run (the trace
+  // before it is the same; the rest is the branch with fewer harmonics traced
+  // for its guesses); the plain run did none.
+  const nsm::NewtonCost &search = filled.gap_search_cost;
+  unsigned long          starts = 0;
+  for (const nsm::GapSearch &g : filled.gap_searches)
+    starts += g.starts;
+  const auto solves = [](const nsm::NewtonCost &c) { return c.converged_solves + c.failed_solves; };
+  EXPECT_GE(solves(search), starts);
+  EXPECT_LE(solves(search), solves(filled.newton_cost) - solves(plain.newton_cost));
+  EXPECT_GT(filled.gap_search_seconds, 0);
+  EXPECT_EQ(solves(plain.gap_search_cost), 0u);
+
   // What is left: Newton at M = 80 from every point of the M = 40 branch
   // inside a remaining gap finds no solution the labels put on the main branch.
   nsm::FewerHarmonicsBranch half(filled_model.hb, filled_model.branch, filled_model.resonances);

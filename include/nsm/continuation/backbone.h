@@ -106,6 +106,11 @@ namespace nsm
     std::vector<std::string>   events; ///< folds, leaps, stops: for the summary
     std::vector<double>        folds;  ///< Omega of each fold turned or leapt
     std::vector<GapSearch>     gap_searches; ///< the gaps the search left, in the order tried
+    /// The gap search's own work: its Newton solves (its starts, leaps and
+    /// the steps of the segments it traces; not those of a branch with fewer
+    /// harmonics traced for its guesses) and its wall time.
+    NewtonCost                 gap_search_cost;
+    double                     gap_search_seconds = 0;
     unsigned int               leaps = 0;
     BackboneEnd                end   = BackboneEnd::range;
     /// The branches traced with fewer harmonics for guesses where a leap or
