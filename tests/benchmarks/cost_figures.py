@@ -14,9 +14,11 @@ milliseconds on this machine, and the ratios the docs state):
                error against the orbits, and the run's time (doc/reproduction.md);
   study-harmonics  the table of doc/accuracy-and-cost.md, "Harmonics and
                integration" (prm/study-harmonics.prm with that page's labels:
-               Main contact drop = 1, Fill gaps wider than = 0; 90 s).
+               Main contact drop = 1, Fill gaps wider than = 0; 90 s);
+  orbit-hp     the table of "The orbit's energy in h and p" (study_truncation,
+               built beside nsm-bar in tests/, on each model; 30 s).
 Each run is made once (a benchmark repeats with tests/benchmarks/repeat_benchmark.py).
-About 6 minutes in all. Not part of CTest.
+About 7 minutes in all. Not part of CTest.
 """
 import csv
 import os
@@ -123,10 +125,31 @@ def study_harmonics():
               f"{number(r['wall_total_max'])} |")
 
 
+def orbit_hp():
+    program = os.path.join(os.path.dirname(EXE), "tests", "study_truncation")
+    print("orbit-hp: study_truncation MODEL 1.9628,2.1302,2.1581 exact redistributed 20 40 80 160")
+    for model in ("1x8", "1x16", "1x32", "1x64", "2x2", "4x2", "6x2", "8x2", "10x2", "10x4", "10x5", "10x6",
+                  "10x7", "10x8", "10x20", "10x28"):
+        result = subprocess.run([program, model, "1.9628,2.1302,2.1581", "exact", "redistributed", "20", "40", "80",
+                                 "160"], capture_output=True, text=True, check=True)
+        rows = list(csv.DictReader(l for l in result.stdout.splitlines() if not l.startswith("#")))
+        cells = []
+        for omega in ("1.962800", "2.130200", "2.158100"):
+            shot = [r for r in rows if r["omega"] == omega and r["orbit_found"] == "1"]
+            if not shot:
+                cells.append("none")
+                continue
+            top = max(shot, key=lambda r: int(r["M"]))
+            energy = 1e6 * float(top["orbit_energy"])
+            cells.append(f"{energy:.4f}, {float(top['error_against_reference']):+.0e}" if top["M"] == "160"
+                         else f"{energy:.4f} (M = {top['M']})")
+        print(f"| {model} | " + " | ".join(cells) + " |", flush=True)
+
+
 def main():
     os.makedirs(WORK, exist_ok=True)
     for name, figure in (("study-seed", study_seed), ("backbone", backbone), ("seed-verify", seed_verify),
-                         ("study-harmonics", study_harmonics)):
+                         ("study-harmonics", study_harmonics), ("orbit-hp", orbit_hp)):
         if ONLY in (None, name):
             figure()
             sys.stdout.flush()
