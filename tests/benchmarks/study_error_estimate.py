@@ -11,7 +11,7 @@ usage: study_error_estimate.py NSM_BAR [WORK_DIRECTORY]
 Prints one row per run: main points, those with an estimate (and an orbit),
 the true error's and the estimate's median and 90th percentile, and the
 ratio estimate / true error's 10th percentile, median and 90th percentile.
-About 12 minutes. Not part of CTest (doc/accuracy-and-cost.md).
+About 2 minutes. Not part of CTest (doc/accuracy-and-cost.md).
 """
 import csv
 import math
