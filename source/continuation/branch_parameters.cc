@@ -10,6 +10,6 @@ namespace nsm
     , continuation(scene.continuation)
     , progress_every(scene.output.progress_every)
     , computation_entries(scene.computation_entries)
-    , accumulation_omega(BarModel(scene.bar).accumulation_frequency(scene.continuation.mode))
+    , accumulation_omega(accumulation_frequency(scene.bar, scene.continuation.mode))
   {}
 } // namespace nsm

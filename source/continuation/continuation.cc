@@ -86,14 +86,7 @@ namespace nsm
       const auto       start  = std::chrono::steady_clock::now();
       fill_gaps(context, backbone);
       backbone.gap_search_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      const NewtonCost after      = context.newton_cost();
-      NewtonCost      &cost       = backbone.gap_search_cost;
-      cost.converged_solves       = after.converged_solves - before.converged_solves;
-      cost.failed_solves          = after.failed_solves - before.failed_solves;
-      cost.converged_iterations   = after.converged_iterations - before.converged_iterations;
-      cost.failed_iterations      = after.failed_iterations - before.failed_iterations;
-      cost.converged_seconds      = after.converged_seconds - before.converged_seconds;
-      cost.failed_seconds         = after.failed_seconds - before.failed_seconds;
+      backbone.gap_search_cost    = context.newton_cost().since(before);
     }
 
     /// Segments joined by leaps over folds and tongues, from `segment` on,

@@ -263,44 +263,48 @@ namespace nsm
   {
     /// label_branches on one side of the accumulation point.
     void label_side(HarmonicBalance &hb, const BranchParameters &params, std::vector<BackbonePoint> &points)
-  {
-    const auto             &c         = params.continuation;
-    const double            direction = branch_direction(params.contact);
-    const std::vector<bool> family    = main_family(points, direction, c.tongue_share, c.main_contact_drop);
-    const std::vector<bool> on        = on_envelope(points, direction, c.tongue_share, family);
-    for (std::size_t first = 0; first < points.size();)
-      {
-        if (!family[first] || on[first])
-          {
-            mark(points[first], family[first] ? Branch::main : Branch::other);
-            ++first;
-            continue;
-          }
-        std::size_t end = first;
-        while (end < points.size() && family[end] && !on[end])
-          ++end;
-        label_run(hb, c.mode, points, first, end);
-        first = end;
-      }
-  }
-  } // namespace
+    {
+      const auto             &c         = params.continuation;
+      const double            direction = branch_direction(params.contact);
+      const std::vector<bool> family    = main_family(points, direction, c.tongue_share, c.main_contact_drop);
+      const std::vector<bool> on        = on_envelope(points, direction, c.tongue_share, family);
+      for (std::size_t first = 0; first < points.size();)
+        {
+          if (!family[first] || on[first])
+            {
+              mark(points[first], family[first] ? Branch::main : Branch::other);
+              ++first;
+              continue;
+            }
+          std::size_t end = first;
+          while (end < points.size() && family[end] && !on[end])
+            ++end;
+          label_run(hb, c.mode, points, first, end);
+          first = end;
+        }
+    }
 
-  bool beyond_accumulation(const BranchParameters &params, const double omega)
-  {
-    return branch_direction(params.contact) * (omega - accumulation_passed(params)) > 0;
-  }
+    /// Whether omega lies beyond `passed` (accumulation_passed) in
+    /// `direction`; never where `passed` is NaN, so that every point is then
+    /// on one side.
+    bool beyond(const double omega, const double direction, const double passed)
+    {
+      return direction * (omega - passed) > 0;
+    }
+  } // namespace
 
   void label_branches(HarmonicBalance &hb, const BranchParameters &params, std::vector<BackbonePoint> &points)
   {
     // The two sides of the accumulation point are labelled apart: nothing on
     // one side vetoes a family on the other (doc/method.md, "The
     // accumulation point").
-    for (const bool beyond : {false, true})
+    const double direction = branch_direction(params.contact), passed = accumulation_passed(params);
+    for (const bool side_beyond : {false, true})
       {
         std::vector<std::size_t>   side;
         std::vector<BackbonePoint> part;
         for (std::size_t i = 0; i < points.size(); ++i)
-          if (beyond_accumulation(params, points[i].omega) == beyond)
+          if (beyond(points[i].omega, direction, passed) == side_beyond)
             side.push_back(i), part.push_back(points[i]);
         label_side(hb, params, part);
         for (std::size_t k = 0; k < side.size(); ++k)
@@ -319,12 +323,12 @@ namespace nsm
   double most_contact_before(const std::vector<BackbonePoint> &points, const double omega, const double direction,
                              const double share, const double passed)
   {
-    const std::vector<bool> own    = on_own_envelope(points, direction, share);
-    const bool              beyond = direction * (omega - passed) > 0;
-    double                  most   = -std::numeric_limits<double>::infinity();
+    const std::vector<bool> own  = on_own_envelope(points, direction, share);
+    const bool              side = beyond(omega, direction, passed);
+    double                  most = -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < points.size(); ++i)
       if (own[i] && points[i].branch != Branch::other && direction * (points[i].omega - omega) < 0 &&
-          (!beyond || direction * (points[i].omega - passed) > 0))
+          beyond(points[i].omega, direction, passed) == side)
         most = std::max(most, points[i].measures.contact_fraction);
     return most;
   }
@@ -354,11 +358,10 @@ namespace nsm
   double envelope_at(const std::vector<BackbonePoint> &points, const double omega, const double direction,
                      const double passed)
   {
-    const bool beyond = direction * (omega - passed) > 0;
-    double     least  = std::numeric_limits<double>::infinity();
+    const bool side  = beyond(omega, direction, passed);
+    double     least = std::numeric_limits<double>::infinity();
     for (const BackbonePoint &q : points)
-      if (q.branch != Branch::other && direction * (q.omega - omega) >= 0 &&
-          (std::isnan(passed) || (direction * (q.omega - passed) > 0) == beyond))
+      if (q.branch != Branch::other && direction * (q.omega - omega) >= 0 && beyond(q.omega, direction, passed) == side)
         least = std::min(least, q.measures.energy);
     return least;
   }

@@ -109,13 +109,23 @@ namespace nsm
     return a;
   }
 
+  double travel_time(const BarParameters &bar)
+  {
+    return bar.length * std::sqrt(bar.density / bar.young_modulus);
+  }
+
+  double accumulation_frequency(const BarParameters &bar, const unsigned int mode)
+  {
+    return (2.0 * mode - 1) * M_PI / (2 * travel_time(bar));
+  }
+
   double BarModel::travel_time() const
   {
-    return length_ * std::sqrt(density_ / young_modulus_);
+    return nsm::travel_time({length_, young_modulus_, density_, expression_});
   }
 
   double BarModel::accumulation_frequency(const unsigned int mode) const
   {
-    return (2.0 * mode - 1) * M_PI / (2 * travel_time());
+    return nsm::accumulation_frequency({length_, young_modulus_, density_, expression_}, mode);
   }
 } // namespace nsm

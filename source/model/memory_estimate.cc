@@ -87,10 +87,10 @@ namespace nsm
         const auto unknowns = [&](const double harmonics) {
           return scene.harmonic_balance.basis == HarmonicBasis::full ? 2 * harmonics + 1 : harmonics + 1;
         };
-        const double n       = unknowns(scene.harmonic_balance.harmonics);
-        const double largest = unknowns((judged ? 2 : 1) * scene.harmonic_balance.harmonics);
-        const double samples = std::max<double>(scene.harmonic_balance.samples(),
-                                                8 * ((judged ? 2 : 1) * scene.harmonic_balance.harmonics + 1.0));
+        const double most_harmonics = (judged ? 2 : 1) * scene.harmonic_balance.harmonics;
+        const double n              = unknowns(scene.harmonic_balance.harmonics);
+        const double largest        = unknowns(most_harmonics);
+        const double samples        = std::max<double>(scene.harmonic_balance.samples(), 8 * (most_harmonics + 1));
         add(8 * (6 * largest * largest + 4 * largest * samples), "Harmonic balance/Harmonics");
         add(double(scene.continuation.max_steps) * (bytes_per_point + bytes_per_point_unknown * n),
             "Continuation/Max steps");

@@ -129,8 +129,6 @@ namespace nsm
         if (i < estimates.size() && std::isfinite(estimates[i]))
           estimated.push_back(estimates[i]);
       }
-    check.sampled         = check.points.size();
-    check.found           = changes.size();
     check.median_change   = median(changes);
     check.median_estimate = median(estimated);
     const auto [low, high] = main_range(backbone);
@@ -142,11 +140,11 @@ namespace nsm
   {
     std::ostringstream s;
     s.precision(2);
-    s << "the estimate checked with 2M = " << check.harmonics << " harmonics at " << check.sampled
+    s << "the estimate checked with 2M = " << check.harmonics << " harmonics at " << check.sampled()
       << " main points spread evenly, Newton from each point's own harmonics (through 3M/2 where 2M alone fails): ";
-    if (check.found == 0)
+    if (check.found() == 0)
       return s.str() + "none found again on the same motion";
-    s << "|E(M) / E(2M) - 1| median " << 100 * check.median_change << " % over the " << check.found
+    s << "|E(M) / E(2M) - 1| median " << 100 * check.median_change << " % over the " << check.found()
       << " found again on the same motion";
     if (std::isfinite(check.median_estimate))
       s << ", where the estimate reads a median " << 100 * check.median_estimate << " %";

@@ -51,8 +51,9 @@ def rows(path):
 
 
 def setting(text, name):
-    match = re.search(rf"set {name}\s*=\s*(\S+)", text)
-    return match.group(1) if match else None
+    """The last `set NAME = value` of a scene (a later one overrides)."""
+    found = re.findall(rf"set {name}\s*=\s*(\S+)", text)
+    return found[-1] if found else None
 
 
 def check_points(name, text):
@@ -114,17 +115,11 @@ def check_orbits(name, text, points):
     mode = int(setting(text, "Mode") or 1)
     grazing = next(float(r["energy"]) for r in rows(f"{name}/grazing.csv") if int(r["mode"]) == mode)
     models = abs(grazing / float(verified[0]["verified_energy"]) - 1)
-    harmonics = int(setting_last(text, "Harmonics") or 20)
+    harmonics = int(setting(text, "Harmonics") or 20)
     bound = (1 if harmonics >= 4 else 5) * (median(float(p["energy_spread"]) for p in verified) + models)
     assert median(difference) <= bound, \
         f"{name}: median |E / E_time - 1| {median(difference):.3g} above {bound:.3g} (spread and mass models)"
     return defect, median(difference), bound
-
-
-def setting_last(text, name):
-    """The last `set NAME = value` of a scene (a later one overrides)."""
-    found = re.findall(rf"^\s*set {name}\s*=\s*(\S+)", text, re.MULTILINE)
-    return found[-1] if found else None
 
 
 def defects(points):

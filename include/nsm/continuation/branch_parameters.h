@@ -27,7 +27,7 @@ namespace nsm
     /// Scene::computation_entries: a resumed run must share them (checkpoint.h).
     std::vector<std::string>  computation_entries;
     /// The accumulation point of the branch's internal resonances,
-    /// (2 Mode - 1) pi / (2 tau) (BarModel::accumulation_frequency).
+    /// (2 Mode - 1) pi / (2 tau) (nsm::accumulation_frequency).
     double                    accumulation_omega;
   };
 } // namespace nsm

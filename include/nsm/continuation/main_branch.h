@@ -94,9 +94,6 @@ namespace nsm
   /// crosses it), whose points are labelled together.
   double accumulation_passed(const BranchParameters &params);
 
-  /// Whether omega lies beyond accumulation_passed along the branch.
-  bool beyond_accumulation(const BranchParameters &params, double omega);
-
   /// Sets every point's branch, and the resonance of each run of tongue
   /// points from the spectrum of its most energetic point (the scene's Tongue
   /// share, Main contact drop, direction and Mode). Points off the main
@@ -105,8 +102,8 @@ namespace nsm
   /// at the branch's own mode is main: nothing resonates there (its points
   /// led by a higher harmonic are other). A run is named w_j / k only within
   /// resonance_name_tolerance of its Omega. Every main point moves_at_omega.
-  /// The points on either side of the accumulation point
-  /// (beyond_accumulation) are labelled on their own.
+  /// The points on either side of accumulation_passed are labelled on
+  /// their own.
   void label_branches(HarmonicBalance &hb, const BranchParameters &params, std::vector<BackbonePoint> &points);
 
   /// Labels one point solved off the backbone (a field at a given Omega) by

@@ -27,6 +27,19 @@ namespace nsm
       failed_iterations += other.failed_iterations;
       return *this;
     }
+
+    /// The cost since `earlier`, a copy of this cost taken before.
+    NewtonCost since(const NewtonCost &earlier) const
+    {
+      NewtonCost d = *this;
+      d.converged_seconds -= earlier.converged_seconds;
+      d.failed_seconds -= earlier.failed_seconds;
+      d.converged_solves -= earlier.converged_solves;
+      d.failed_solves -= earlier.failed_solves;
+      d.converged_iterations -= earlier.converged_iterations;
+      d.failed_iterations -= earlier.failed_iterations;
+      return d;
+    }
   };
 
   /// Outcome of one Newton solve at fixed Omega (NOX).

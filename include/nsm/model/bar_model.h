@@ -14,6 +14,15 @@ namespace dealii
 
 namespace nsm
 {
+  /// The wave's travel time along a bar of one material, tau = L sqrt(rho /
+  /// E) (the section plays no part): the clamped-free frequencies go like
+  /// w_j ~ (j - 1/2) pi / tau.
+  double travel_time(const BarParameters &bar);
+
+  /// Where the internal resonances of clamped-free mode n crowd: w_j = k W
+  /// with 2j - 1 = k (2n - 1) accumulate at (2n - 1) pi / (2 tau).
+  double accumulation_frequency(const BarParameters &bar, unsigned int mode);
+
   class BarModel
   {
   public:
@@ -26,12 +35,10 @@ namespace nsm
     double young_modulus() const { return young_modulus_; }
     double density() const { return density_; }
 
-    /// The wave's travel time along the bar, tau = L sqrt(rho / E): the
-    /// clamped-free frequencies go like w_j ~ (j - 1/2) pi / tau.
+    /// nsm::travel_time of this bar.
     double travel_time() const;
 
-    /// Where the internal resonances of clamped-free mode n crowd: w_j = k W
-    /// with 2j - 1 = k (2n - 1) accumulate at (2n - 1) pi / (2 tau).
+    /// nsm::accumulation_frequency of this bar.
     double accumulation_frequency(unsigned int mode) const;
 
     /// A(x); throws InputError if A(x) <= 0 or not finite.

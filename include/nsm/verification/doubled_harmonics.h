@@ -11,6 +11,8 @@
 #include <nsm/model/discretisation.h>
 #include <nsm/scene/receptance_parameters.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <limits>
 #include <string>
@@ -27,11 +29,16 @@ namespace nsm
   struct DoubledHarmonicsCheck
   {
     unsigned int harmonics = 0; ///< 2 M
-    std::size_t  sampled = 0, found = 0;
     /// Per sampled point: its index in the backbone and |E(M) / E(2 M) - 1|
     /// (NaN where not found again on the same motion).
     std::vector<std::size_t> points;
     std::vector<double>      changes;
+    std::size_t sampled() const { return points.size(); }
+    /// The sampled points found again on the same motion.
+    std::size_t found() const
+    {
+      return std::count_if(changes.begin(), changes.end(), [](const double c) { return std::isfinite(c); });
+    }
     /// Median |E(M) / E(2 M) - 1| over the points found again on the same
     /// motion, and the median estimate |E(M/2) / E(M) - 1| over those of
     /// them that carry one (NaN if none).
