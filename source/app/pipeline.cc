@@ -26,6 +26,8 @@
 #include <nsm/verification/orbit_refinement.h>
 #include <nsm/verification/space_estimate.h>
 #include <nsm/verification/stage_runner.h>
+#include <nsm/output/forced_response_table.h>
+#include <nsm/model/damped_receptance.h>
 #include <nsm/verification/time_verification.h>
 #include <nsm/verification/refinement_checkpoint.h>
 #include <nsm/verification/verification_checkpoint.h>
@@ -175,7 +177,7 @@ namespace nsm
         // an adaptive refinement, and again off the refined one for the run.
         const auto band = [&](const Discretisation &initial_mesh) {
           Scene initial = scene_;
-          if (traces_branch())
+          if (resolves_range())
             resolve_automatic_range(initial.continuation, initial.contact, initial.output.fields_at,
                                     initial_mesh);
           return initial.refinement_band();
@@ -183,7 +185,7 @@ namespace nsm
         for (std::string &note : stages_.mesh(bar, scene_.discretisation, band, scene_.output.progress_every))
           report_.notes.push_back(std::move(note));
         report_.notes.push_back(describe(discretisation()));
-        if (traces_branch())
+        if (resolves_range())
           for (std::string &note : resolve_automatic_range(scene_.continuation, scene_.contact,
                                                            scene_.output.fields_at, discretisation()))
             report_.notes.push_back(std::move(note));
@@ -197,6 +199,9 @@ namespace nsm
 
       /// The run follows the branch: for the backbone or for fields.
       bool traces_branch() const { return scene_.output.backbone || scene_.output.fields(); }
+
+      /// The run uses the Omega range: for the branch or the forced curves.
+      bool resolves_range() const { return traces_branch() || scene_.forcing.enabled(); }
 
       void spectrum()
       {
@@ -449,6 +454,24 @@ namespace nsm
         tables_.push_back(tongue_table(backbone()));
         tables_.push_back(grazing_table(discretisation(), scene_.continuation.mode, scene_.contact));
         tables_.push_back(resonance_table(stages_.resonances()));
+      }
+
+      /// One curve per Forcing/Amplitudes, frc.csv, and the Result lines
+      /// (the peaks against the backbone's main branch where it was traced).
+      void forced_response()
+      {
+        timed("forced response", [&] {
+          const DampedReceptance  damped(stages_.receptance(), scene_.damping);
+          ForcedHarmonicBalance   forced(scene_.harmonic_balance, scene_.contact, damped);
+          std::vector<ForcedCurve> curves;
+          for (const double amplitude : scene_.forcing.amplitudes)
+            curves.push_back(trace_forced_curve(forced, scene_.harmonic_balance, scene_.continuation,
+                                                scene_.continuation.omega_min, scene_.continuation.omega_max,
+                                                amplitude));
+          tables_.push_back(forced_response_table(curves));
+          for (std::string &line : forced_response_summary(curves, traces_branch() ? &backbone() : nullptr))
+            report_.result.push_back(std::move(line));
+        });
       }
 
       void fields()
@@ -704,7 +727,8 @@ namespace nsm
     if (resume && !needs_backbone)
       throw InputError("command line: --resume goes on with a continuation, and the scene asks for no backbone "
                        "or field (Output/Backbone, Output/Fields at, Output/Fields every)");
-    if (!needs_spectrum && !needs_receptance && !needs_backbone)
+    const bool needs_forced = scene.forcing.enabled();
+    if (!needs_spectrum && !needs_receptance && !needs_backbone && !needs_forced)
       {
         report.notes.push_back("the scene requests no output: nothing to do");
         return report;
@@ -724,7 +748,7 @@ namespace nsm
       run.check_refinement_size();
     if (needs_spectrum)
       run.spectrum();
-    if (needs_receptance || needs_backbone)
+    if (needs_receptance || needs_backbone || needs_forced)
       run.set_up_receptance();
     if (needs_receptance)
       run.receptance();
@@ -752,6 +776,7 @@ namespace nsm
     stage(scene.output.bar_amplitude, "bar amplitude", [&] { run.bar_amplitudes(); });
     if (scene.output.backbone)
       run.backbone_tables();
+    stage(needs_forced, "forced response", [&] { run.forced_response(); });
     stage(needs_fields, "fields", [&] { run.fields(); });
     run.write(output.staging());
     // The plots are an output like the others, drawn also after a stop: a

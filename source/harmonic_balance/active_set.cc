@@ -7,6 +7,13 @@
 
 namespace nsm
 {
+  unsigned int active_set_samples(const HarmonicBalanceParameters &params)
+  {
+    constexpr unsigned int per_harmonic = harmonic_balance_constants::bracketing_samples_per_harmonic;
+    return params.integration == Integration::sampled ? params.samples() :
+                                                        per_harmonic * params.harmonics + per_harmonic;
+  }
+
   namespace
   {
     /// Safeguarded Newton on a bracket [a, b] where f changes sign, from the

@@ -28,14 +28,6 @@ namespace nsm
       double                               &seconds_;
       std::chrono::steady_clock::time_point start_;
     };
-
-    /// The sampled rule's Time samples, or the exact rule's bracketing grid.
-    unsigned int samples_of(const HarmonicBalanceParameters &params)
-    {
-      constexpr unsigned int per_harmonic = harmonic_balance_constants::bracketing_samples_per_harmonic;
-      return params.integration == Integration::sampled ? params.samples() :
-                                                          per_harmonic * params.harmonics + per_harmonic;
-    }
   } // namespace
 
   HarmonicBalance::HarmonicBalance(const HarmonicBalanceParameters &params, const ContactParameters &contact,
@@ -46,7 +38,7 @@ namespace nsm
     , integration_(params.integration)
     , law_(contact)
     , functions_(harmonic_basis(harmonics_, basis_ == HarmonicBasis::full))
-    , active_set_(functions_, integration_, samples_of(params))
+    , active_set_(functions_, integration_, active_set_samples(params))
     , measures_(harmonics_)
   {
     gamma0_       = receptance(0.0).gamma;

@@ -99,15 +99,9 @@ namespace nsm
     const double sigma = omega * omega;
     // Beyond the band of the far-mode series only a direct solve holds
     // every mode.
-    if (method_ == ReceptanceMethod::modal && sigma <= series_limit_)
+    if (is_modal_sum(omega))
       {
-        ReceptanceValue value{0, 0};
-        for (unsigned int m = remainder_.size(); m-- > 0;)
-          {
-            value.gamma = value.gamma * sigma + remainder_[m];
-            if (m > 0)
-              value.dgamma_domega2 = value.dgamma_domega2 * sigma + m * remainder_[m];
-          }
+        ReceptanceValue value = remainder(sigma);
         for (unsigned int j = 0; j < modal_.eigenvalues.size(); ++j)
           {
             const double distance = modal_.eigenvalues[j] - sigma;
@@ -120,6 +114,23 @@ namespace nsm
         return value;
       }
     return direct_value(omega);
+  }
+
+  bool Receptance::is_modal_sum(const double omega) const
+  {
+    return method_ == ReceptanceMethod::modal && omega * omega <= series_limit_;
+  }
+
+  ReceptanceValue Receptance::remainder(const double sigma) const
+  {
+    ReceptanceValue value{0, 0};
+    for (unsigned int m = remainder_.size(); m-- > 0;)
+      {
+        value.gamma = value.gamma * sigma + remainder_[m];
+        if (m > 0)
+          value.dgamma_domega2 = value.dgamma_domega2 * sigma + m * remainder_[m];
+      }
+    return value;
   }
 
   ReceptanceValue Receptance::direct_value(const double omega) const

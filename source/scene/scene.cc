@@ -25,6 +25,8 @@ namespace nsm
     ReceptanceParameters::declare(prm);
     HarmonicBalanceParameters::declare(prm);
     ContinuationParameters::declare(prm);
+    DampingParameters::declare(prm);
+    ForcingParameters::declare(prm);
     OutputParameters::declare(prm);
     ResourcesParameters::declare(prm);
   }
@@ -97,10 +99,25 @@ namespace nsm
             "0 (every mode) or Receptance/Method = direct when Discretisation/Contact mass = redistributed: a "
             "truncated basis needs a mass matrix with inertia at every DoF",
             std::to_string(receptance.modes));
+    check_forcing();
     require(!redistributed || modes >= 2, "Discretisation/Contact mass",
             "consistent when Cells x Degree = 1 (redistributed moves the contact DoF's mass to the DoFs beside it, "
             "and there are none)",
             "redistributed");
+  }
+
+  void Scene::check_forcing() const
+  {
+    if (!forcing.enabled())
+      return;
+    require(damping.any(), "Damping/Modal ratio",
+            "a number in (0, 1], or Rayleigh alpha or beta > 0, when Forcing/Amplitudes is set (an undamped "
+            "drive has no bounded linear response at resonance)",
+            "0");
+    require(contact.enabled, "Contact/Enabled", "true when Forcing/Amplitudes is set (the gap scales the forced "
+            "response's unknowns; a gap no motion reaches gives the linear response)", "false");
+    require(receptance.method == ReceptanceMethod::modal, "Receptance/Method",
+            "modal when Forcing/Amplitudes is set (the damped receptance is a modal sum)", "direct");
   }
 
   Scene Scene::from_file(const std::string &path)
@@ -147,6 +164,8 @@ namespace nsm
         scene.receptance.parse(prm);
         scene.harmonic_balance.parse(prm);
         scene.continuation.parse(prm);
+        scene.damping.parse(prm);
+        scene.forcing.parse(prm);
         scene.output.parse(prm);
         if (scene.output.directory.empty())
           {
@@ -180,7 +199,7 @@ namespace nsm
     for (const double f : output.receptance_frequencies)
       w = std::max(w, f);
     // A field is a point of the backbone: the run traces it for fields alone too.
-    if (output.backbone || output.fields())
+    if (output.backbone || output.fields() || forcing.enabled())
       w = std::max(w, harmonic_balance.harmonics * continuation.omega_max);
     return w;
   }

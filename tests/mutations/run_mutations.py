@@ -32,6 +32,20 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 # whitespace matching any whitespace (matches()), so that re-indenting or
 # re-wrapping the code it plants into keeps the mutation.
 MUTATIONS = [
+    ("forced response: the damping's sign flipped", "source/model/damped_receptance.cc",
+     "gamma += modes.contact_residues[j] / std::complex<double>(distance, coefficients_[j] * omega);",
+     "gamma += modes.contact_residues[j] / std::complex<double>(distance, -coefficients_[j] * omega);"),
+    ("forced response: the drive as a sine", "source/harmonic_balance/forced_harmonic_balance.cc",
+     "p[2] += forcing_;", "p[1] += forcing_;"),
+    ("forced response: the receptance's imaginary part flipped in the sine row",
+     "source/harmonic_balance/forced_harmonic_balance.cc",
+     "u[2 * k - 1] = gr * b - gi * a;", "u[2 * k - 1] = gr * b + gi * a;"),
+    ("forced response: energy per harmonic doubled", "source/harmonic_balance/forced_harmonic_balance.cc",
+     "m.energy += 0.25 * size", "m.energy += 0.5 * size"),
+    ("forced response: modal damping zeta w_j", "source/scene/damping_parameters.cc",
+     "2 * modal_ratio * std::sqrt(eigenvalue)", "modal_ratio * std::sqrt(eigenvalue)"),
+    ("forced response: Rayleigh beta on w_j", "source/scene/damping_parameters.cc",
+     "rayleigh_beta * eigenvalue", "rayleigh_beta * std::sqrt(eigenvalue)"),
     ("harmonic balance's wall at g0 / 2", "source/harmonic_balance/harmonic_balance.cc",
      "force_scale_  = law_.gap() / gamma0_;", "force_scale_  = 0.5 * law_.gap() / gamma0_;"),
     ("harmonic balance's gap doubled", "source/harmonic_balance/harmonic_balance.cc",

@@ -20,6 +20,9 @@
 
 namespace nsm
 {
+  /// The sampled rule's Time samples, or the exact rule's bracketing grid.
+  unsigned int active_set_samples(const HarmonicBalanceParameters &params);
+
   class ActiveSet
   {
   public:

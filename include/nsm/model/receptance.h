@@ -40,6 +40,15 @@ namespace nsm
     /// Clamped-free eigenvalues w_j^2 up to omega_max.
     const std::vector<double> &poles() const { return poles_; }
 
+    /// Whether gamma(omega) is the modal sum over modes() plus remainder():
+    /// the modal method, within the far-mode series' band.
+    bool is_modal_sum(double omega) const;
+    /// The modes summed one by one (the modal method).
+    const ModalData &modes() const { return modal_; }
+    /// What the modes not in modes() add at w^2 = sigma (a power series in
+    /// sigma), with its slope in sigma.
+    ReceptanceValue remainder(double sigma) const;
+
 
   private:
     /// A truncated modal basis (Receptance/Modes): the modes left out as a

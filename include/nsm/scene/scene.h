@@ -6,7 +6,9 @@
 #include <nsm/scene/bar_parameters.h>
 #include <nsm/scene/contact_parameters.h>
 #include <nsm/scene/continuation_parameters.h>
+#include <nsm/scene/damping_parameters.h>
 #include <nsm/scene/discretisation_parameters.h>
+#include <nsm/scene/forcing_parameters.h>
 #include <nsm/scene/harmonic_balance_parameters.h>
 #include <nsm/scene/output_parameters.h>
 #include <nsm/scene/parameter_limits.h>
@@ -36,6 +38,8 @@ namespace nsm
     ReceptanceParameters      receptance;
     HarmonicBalanceParameters harmonic_balance;
     ContinuationParameters    continuation;
+    DampingParameters         damping;
+    ForcingParameters         forcing;
     ResourcesParameters       resources;
     OutputParameters          output;
 
@@ -78,5 +82,9 @@ namespace nsm
     /// Checks between subsections: when the scene is read, and again once
     /// Discretisation/Cells = 0 is chosen (model/band_cells.h).
     void check_consistency(bool is_study) const;
+
+  private:
+    /// The checks of a scene with Forcing/Amplitudes.
+    void check_forcing() const;
   };
 } // namespace nsm

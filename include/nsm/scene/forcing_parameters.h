@@ -1,0 +1,27 @@
+// The Forcing subsection: the harmonic force that drives the bar for its
+// forced response, F cos(W t) at the contact end, one frequency-response
+// curve per amplitude F (continuation/forced_response.h reads it). It
+// declares and parses its own entries; Scene (scene.h) composes the
+// subsections.
+#pragma once
+
+#include <vector>
+
+namespace dealii
+{
+  class ParameterHandler;
+} // namespace dealii
+
+namespace nsm
+{
+  struct ForcingParameters
+  {
+    /// Force levels F, one curve each; empty: no forced response.
+    std::vector<double> amplitudes;
+
+    bool enabled() const { return !amplitudes.empty(); }
+
+    static void declare(dealii::ParameterHandler &prm);
+    void        parse(dealii::ParameterHandler &prm);
+  };
+} // namespace nsm

@@ -1,0 +1,191 @@
+#include <nsm/base/assertions.h>
+#include <nsm/harmonic_balance/forced_harmonic_balance.h>
+#include <nsm/harmonic_balance/trigonometric.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace nsm
+{
+  namespace
+  {
+    /// Golden-section steps that refine the largest sample of |u| to the
+    /// rounding of the series (the bracket shrinks by 0.618 per step, from
+    /// two sample spacings: 2^-52 of it after 75).
+    constexpr unsigned int refinement_steps = 80;
+  } // namespace
+
+  ForcedHarmonicBalance::ForcedHarmonicBalance(const HarmonicBalanceParameters &params,
+                                               const ContactParameters         &contact,
+                                               const DampedReceptance          &receptance)
+    : receptance_(receptance)
+    , harmonics_(params.harmonics)
+    , law_(contact)
+    , beta_(law_.rigid() ? 1.0 : 0.0)
+    , gamma0_(receptance.undamped()(0.0).gamma)
+    , force_scale_(law_.gap() / gamma0_)
+    , functions_(harmonic_basis(harmonics_, /*with_sines=*/true))
+    , active_set_(functions_, params.integration, active_set_samples(params))
+  {}
+
+  void ForcedHarmonicBalance::set_forcing(const double amplitude) { forcing_ = amplitude; }
+
+  void ForcedHarmonicBalance::set_omega(const double omega)
+  {
+    if (omega == omega_)
+      return;
+    omega_ = omega;
+    gamma_.resize(harmonics_ + 1);
+    for (unsigned int k = 0; k <= harmonics_; ++k)
+      gamma_[k] = k == 0 ? std::complex<double>(gamma0_) : receptance_(k * omega);
+  }
+
+  std::vector<double> ForcedHarmonicBalance::apply_receptance(const std::vector<double> &y) const
+  {
+    AssertDimension(y.size(), n_unknowns());
+    Assert(gamma_.size() == harmonics_ + 1,
+           ExcPrecondition("ForcedHarmonicBalance: set_omega() before a solution is evaluated"));
+    std::vector<double> u(y.size());
+    u[0] = gamma0_ * y[0];
+    for (unsigned int k = 1; k <= harmonics_; ++k)
+      {
+        const double a = y[2 * k], b = y[2 * k - 1]; // cos, sin
+        const double gr = gamma_[k].real(), gi = gamma_[k].imag();
+        u[2 * k]     = gr * a + gi * b;
+        u[2 * k - 1] = gr * b - gi * a;
+      }
+    return u;
+  }
+
+  std::vector<double> ForcedHarmonicBalance::tip_force(const std::vector<double> &x) const
+  {
+    std::vector<double> p(x.size());
+    for (unsigned int i = 0; i < x.size(); ++i)
+      p[i] = -law_.sign() * force_scale_ * x[i];
+    if (harmonics_ > 0)
+      p[2] += forcing_;
+    return p;
+  }
+
+  std::vector<double> ForcedHarmonicBalance::displacement(const std::vector<double> &x) const
+  {
+    return apply_receptance(tip_force(x));
+  }
+
+  std::vector<double> ForcedHarmonicBalance::contact_coefficients(const std::vector<double> &x) const
+  {
+    // q = beta lambda - a (g0 - u), scaled by F_s: g0 / F_s = gamma(0).
+    const std::vector<double> u = displacement(x);
+    const double              a = law_.gap_weight();
+    std::vector<double>       v(x.size());
+    for (unsigned int i = 0; i < x.size(); ++i)
+      v[i] = beta_ * x[i] + a * u[i] / force_scale_;
+    v[0] -= a * gamma0_;
+    return v;
+  }
+
+  void ForcedHarmonicBalance::evaluate(const std::vector<double> &x,
+                                       std::vector<double>       *residual,
+                                       std::vector<double>       *jacobian) const
+  {
+    const unsigned int        n    = n_unknowns();
+    const StructuredGram     &gram = active_set_.gram(contact_coefficients(x));
+    if (residual)
+      {
+        gram.multiply(contact_coefficients(x), *residual);
+        for (unsigned int i = 0; i < n; ++i)
+          (*residual)[i] = x[i] - (*residual)[i];
+      }
+    if (jacobian)
+      {
+        // Column j of J: e_j - G B e_j, B = beta I - a s Gamma (dv/dx).
+        const std::vector<double> &dense = gram.dense();
+        const double               a     = law_.gap_weight();
+        jacobian->assign(std::size_t(n) * n, 0.0);
+        std::vector<double> unit(n, 0.0);
+        for (unsigned int j = 0; j < n; ++j)
+          {
+            unit[j] = 1;
+            const std::vector<double> gamma_column = apply_receptance(unit);
+            unit[j] = 0;
+            for (unsigned int l = 0; l < n; ++l)
+              {
+                const double b = (l == j ? beta_ : 0.0) - a * law_.sign() * gamma_column[l];
+                if (b == 0)
+                  continue;
+                for (unsigned int i = 0; i < n; ++i)
+                  (*jacobian)[i + std::size_t(j) * n] -= dense[std::size_t(i) * n + l] * b;
+              }
+            (*jacobian)[j + std::size_t(j) * n] += 1;
+          }
+      }
+  }
+
+  double ForcedHarmonicBalance::largest_magnitude(const std::vector<double> &coefficients) const
+  {
+    std::vector<double> samples;
+    active_set_.sample(coefficients, samples);
+    unsigned int best = 0;
+    for (unsigned int s = 1; s < samples.size(); ++s)
+      if (std::abs(samples[s]) > std::abs(samples[best]))
+        best = s;
+    const double spacing = two_pi / samples.size();
+    const auto   size    = [&](double tau) { return std::abs(active_set_.value(coefficients, tau, nullptr)); };
+    double       low = (best - 1.0) * spacing, high = (best + 1.0) * spacing;
+    const double ratio = (std::sqrt(5.0) - 1) / 2;
+    double       c = high - ratio * (high - low), d = low + ratio * (high - low);
+    for (unsigned int step = 0; step < refinement_steps; ++step)
+      {
+        if (size(c) > size(d))
+          high = d;
+        else
+          low = c;
+        c = high - ratio * (high - low);
+        d = low + ratio * (high - low);
+      }
+    return std::max(std::abs(samples[best]), size((low + high) / 2));
+  }
+
+  double ForcedHarmonicBalance::compliant_wall_energy(const std::vector<double> &u) const
+  {
+    if (law_.rigid())
+      return 0;
+    std::vector<double> samples;
+    active_set_.sample(u, samples);
+    double sum = 0;
+    for (const double value : samples)
+      sum += law_.stored_energy(value);
+    return sum / samples.size();
+  }
+
+  ForcedMeasures ForcedHarmonicBalance::measure(const std::vector<double> &x) const
+  {
+    ForcedMeasures            m;
+    const std::vector<double> p = tip_force(x);
+    const std::vector<double> u = apply_receptance(p);
+    // Parseval per harmonic: a static P_0 stores gamma(0) P_0^2 / 2; a
+    // harmonic |P_k|^2 / 4 times the damped receptance's energy factor.
+    m.energy           = 0.5 * gamma0_ * p[0] * p[0];
+    m.dissipated_power = 0;
+    for (unsigned int k = 1; k <= harmonics_; ++k)
+      {
+        const double size = p[2 * k] * p[2 * k] + p[2 * k - 1] * p[2 * k - 1];
+        m.energy += 0.25 * size * receptance_.energy_factor(k * omega_);
+        m.dissipated_power += 0.5 * size * receptance_.dissipation_factor(k * omega_);
+      }
+    m.energy += compliant_wall_energy(u);
+    m.tip_amplitude = largest_magnitude(u);
+    if (harmonics_ > 0)
+      {
+        m.phase       = std::atan2(u[1], u[2]);
+        m.input_power = 0.5 * forcing_ * omega_ * u[1];
+      }
+    m.contact_fraction = active_set_.gram(contact_coefficients(x)).share();
+    std::vector<double> force(x.size()), samples;
+    for (unsigned int i = 0; i < x.size(); ++i)
+      force[i] = force_scale_ * x[i];
+    active_set_.sample(force, samples);
+    m.max_contact_force = samples.empty() ? 0.0 : *std::max_element(samples.begin(), samples.end());
+    return m;
+  }
+} // namespace nsm

@@ -1,0 +1,45 @@
+#include <nsm/scene/forcing_parameters.h>
+#include <nsm/scene/scene_entries.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <sstream>
+
+namespace nsm
+{
+  namespace
+  {
+    using namespace scene_entries;
+  } // namespace
+
+  void ForcingParameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Forcing");
+    prm.declare_entry("Amplitudes",
+                      "",
+                      Patterns::Anything(),
+                      "Force levels F of the drive F cos(W t) at the contact end (x = L, along +x, towards "
+                      "the wall), comma-separated, each in (0, 1e20]: one frequency-response curve each, "
+                      "written to frc.csv over Continuation's Omega range; needs damping (Damping). Empty: "
+                      "no forced response.");
+    prm.leave_subsection();
+  }
+
+  void ForcingParameters::parse(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Forcing");
+    amplitudes.clear();
+    std::stringstream items(prm.get("Amplitudes"));
+    std::string       item;
+    while (std::getline(items, item, ','))
+      {
+        item = trim(item);
+        if (item.empty())
+          continue;
+        const double f = parse_double(item, "Forcing/Amplitudes");
+        require(f > 0 && f <= magnitude_limit, "Forcing/Amplitudes", "numbers in (0, 1e20]", item);
+        amplitudes.push_back(f);
+      }
+    prm.leave_subsection();
+  }
+} // namespace nsm
