@@ -132,6 +132,13 @@ def checked(path, line, row, columns):
     return row
 
 
+# frc.csv's columns (doc/output.md): the forced response's curves.
+FRC = {"forcing": Column(required=True, positive=True), "segment": Column(required=True, whole=True),
+       "Omega": Column(required=True), "energy": Column(required=True, positive=True),
+       "tip_amplitude": Column(required=True), "phase": Column(required=True),
+       **{name: Column() for name in ("contact_fraction", "max_contact_force", "input_power", "dissipated_power",
+                                      "residual")}}
+
 # backbone.csv's columns (doc/output.md): segment, Omega, energy and branch
 # required, the others checked where present, empty only where a run leaves
 # them empty (no estimate; a point not verified, not refined in time).

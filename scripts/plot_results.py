@@ -2,7 +2,8 @@
 """Plots of an nsm-bar output directory (run by nsm-bar when Output/Plots = true).
 
 usage: plot_results.py DIRECTORY --gap G0 [--wall rigid|compliant]
-Writes backbone.png (from backbone.csv, tongues.csv, resonances.csv, fields.csv), per
+Writes backbone.png (from backbone.csv, tongues.csv, resonances.csv, fields.csv), frc.png
+(from frc.csv, over backbone.csv's main branch), per
 field k, field_k_spacetime.png and field_k_tip.png, and for a study study.png (from
 study.csv); prints "wrote PATH" per file, and "plots done" last.
 
@@ -21,7 +22,7 @@ import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from csv_input import BACKBONE, BRANCHES, BadInput, Column, checked, decimal, read_table  # noqa: E402
+from csv_input import BACKBONE, BRANCHES, FRC, BadInput, Column, checked, decimal, read_table  # noqa: E402
 import csv_input  # noqa: E402
 
 import matplotlib
@@ -90,7 +91,7 @@ def grid(table):
 
 
 # Each input by its name: its columns, its fewest and most rows, a check of the whole.
-RULES = ((r"backbone\.csv", BACKBONE, 0, None, None), (r"grazing\.csv", GRAZING, 1, 1, None),
+RULES = ((r"backbone\.csv", BACKBONE, 0, None, None), (r"frc\.csv", FRC, 0, None, None), (r"grazing\.csv", GRAZING, 1, 1, None),
          (r"tongues\.csv", TONGUES, 0, None, None), (r"resonances\.csv", RESONANCES, 0, None, None),
          (r"fields\.csv", FIELDS, 0, None, None), (r"field_\d+_tip\.csv", TIP, 2, None, one_period),
          (r"field_\d+_spacetime\.csv", SPACETIME, 4, None, grid))
@@ -130,6 +131,7 @@ def save(figure, path):
 
 # What run drew the plots (--caption): the scene, its mesh and M.
 CAPTION = ""
+GAP = 1.0  # --gap
 # The last line of a complete run of this script (source/output/plots.cc).
 DONE = "plots done"
 
@@ -294,6 +296,46 @@ def backbone_plot(directory):
     rising = points["Omega"][-1] >= points["Omega"][0]
     axes.legend(loc="lower right" if rising else "best", fontsize=7, framealpha=0.9)
     save(figure, os.path.join(directory, "backbone.png"))
+
+
+def frc_plot(directory):
+    """frc.png: the forced curves over the backbone's main branch (energy over
+    the grazing energy against Omega), and the contact end's amplitude over g0."""
+    frc = read(os.path.join(directory, "frc.csv"))
+    mode, w_mode, e_g = grazing_scale(directory)
+    backbone_path = os.path.join(directory, "backbone.csv")
+    figure, (top, bottom) = plt.subplots(2, 1, figsize=(8, 8), sharex=True)
+    if os.path.exists(backbone_path):
+        points = read(backbone_path)
+        main = [(w, e / e_g) for w, e, b in zip(points["Omega"], points["energy"], points["branch"]) if b == "main"]
+        top.semilogy([w for w, _ in main], [e for _, e in main], ".", markersize=3, color="0.3",
+                     label="backbone, main branch", zorder=3)
+    for n, force in enumerate(sorted(set(frc["forcing"]))):
+        rows = [i for i, f in enumerate(frc["forcing"]) if f == force]
+        color = f"C{n % 10}"
+        # A line through consecutive points of one segment (a leap starts a new one).
+        runs, run = [], []
+        for i in rows:
+            if run and frc["segment"][i] != frc["segment"][run[-1]]:
+                runs.append(run)
+                run = []
+            run.append(i)
+        runs.append(run)
+        for k, r in enumerate(runs):
+            label = f"F = {force:g}" if k == 0 else None
+            top.semilogy([frc["Omega"][i] for i in r], [frc["energy"][i] / e_g for i in r], "-", linewidth=1,
+                         color=color, label=label)
+            bottom.plot([frc["Omega"][i] for i in r], [frc["tip_amplitude"][i] / GAP for i in r], "-",
+                        linewidth=1, color=color, label=label)
+    top.set_ylabel(f"energy / E_g (E_g of mode {mode}, grazing.csv)" if mode else "energy")
+    bottom.set_ylabel("max |u(L, t)| / g0")
+    bottom.axhline(1, color="0.6", linewidth=0.6, linestyle=":")
+    bottom.set_xlabel("Omega (rad/s)")
+    title = "Forced response: frequency-response curves over the backbone"
+    top.set_title((CAPTION + "\n" + title) if CAPTION else title, fontsize=10)
+    top.legend(fontsize=7, loc="best")
+    bottom.legend(fontsize=7, loc="best")
+    save(figure, os.path.join(directory, "frc.png"))
 
 
 def orbit_error_plot(directory):
@@ -554,7 +596,7 @@ def read_inputs(directory):
     """Reads and checks every file the plots draw, before any is drawn."""
     if not os.path.isdir(directory):
         raise BadInput(f"{directory}: not a folder")
-    for name in ("backbone.csv", "grazing.csv", "tongues.csv", "resonances.csv", "fields.csv"):
+    for name in ("backbone.csv", "frc.csv", "grazing.csv", "tongues.csv", "resonances.csv", "fields.csv"):
         if os.path.exists(os.path.join(directory, name)):
             read(os.path.join(directory, name))
     for _, path in field_tips(directory):
@@ -573,8 +615,9 @@ def main():
                         help="compliant: u(L) > g0 is the spring's compression, not an overshoot")
     parser.add_argument("--caption", default="", help="what run drew the plots: its scene, mesh and M")
     arguments = parser.parse_args()
-    global CAPTION
+    global CAPTION, GAP
     CAPTION = arguments.caption
+    GAP = arguments.gap
     try:
         read_inputs(arguments.directory)
     except BadInput as error:
@@ -586,6 +629,9 @@ def main():
     elif os.path.exists(backbone):
         backbone_plot(arguments.directory)
         orbit_error_plot(arguments.directory)
+    frc = os.path.join(arguments.directory, "frc.csv")
+    if os.path.exists(frc) and read(frc)["Omega"]:
+        frc_plot(arguments.directory)
     field_plots(arguments.directory, arguments.gap, arguments.wall == "rigid")
     if os.path.exists(os.path.join(arguments.directory, "study.csv")):
         study_plot(arguments.directory)

@@ -7,7 +7,9 @@
 #include <LOCA_MultiContinuation_ExtendedVector.H>
 #include <Teuchos_oblackholestream.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace nsm
 {
@@ -17,10 +19,13 @@ namespace nsm
     class ForcedInterface : public LOCA::LAPACK::Interface
     {
     public:
-      explicit ForcedInterface(ForcedHarmonicBalance &hb)
+      ForcedInterface(ForcedHarmonicBalance &hb, const std::vector<double> &guess)
         : hb_(hb)
         , guess_(hb.n_unknowns())
-      {}
+      {
+        for (unsigned int i = 0; i < guess.size(); ++i)
+          guess_(i) = guess[i];
+      }
 
       const NOX::LAPACK::Vector &getInitialGuess() override { return guess_; }
 
@@ -63,34 +68,61 @@ namespace nsm
       std::vector<double>    scratch_;
     };
 
+    /// The last point written, as the step's guard compares with it.
+    struct LastPoint
+    {
+      double              contact = std::nan(""); ///< NaN: none yet
+      std::vector<double> displacement;          ///< u(L, t)'s coefficients
+    };
+
+    /// 2-norm of a - b over 2-norm of the larger.
+    double relative_change(const std::vector<double> &a, const std::vector<double> &b)
+    {
+      double difference = 0, size_a = 0, size_b = 0;
+      for (std::size_t i = 0; i < a.size(); ++i)
+        {
+          difference += (a[i] - b[i]) * (a[i] - b[i]);
+          size_a += a[i] * a[i];
+          size_b += b[i] * b[i];
+        }
+      return std::sqrt(difference / std::max({size_a, size_b, std::numeric_limits<double>::min()}));
+    }
+
     /// Newton's tests, and where they converge, the step's guard: a step
     /// whose contact fraction moved more than Max contact change from the
-    /// last point written fails, and LOCA retries it shorter. Without it a
-    /// step of Max step passes over the fold of a curve whose peak is a few
-    /// steps wide, onto the curve's other side (seen on the seed bar).
+    /// last point written, or whose contact end's motion u(L, t) changed by
+    /// more than Max solution change (relative), fails, and LOCA retries it
+    /// shorter. Without the first a step of Max step passes over the fold of
+    /// a curve whose peak is a few steps wide, onto the curve's other side;
+    /// without the second a step from where the curve leaves the wall lands
+    /// on the linear response on the other side of the resonance, where the
+    /// contact force is zero too (both seen on the seed bar).
     class GuardedStep : public NOX::StatusTest::Generic
     {
     public:
       GuardedStep(Teuchos::RCP<NOX::StatusTest::Generic> newton, ForcedHarmonicBalance &hb,
-                  const double max_contact_change, const double &last_contact)
+                  const ContinuationParameters &continuation, const LastPoint &last)
         : newton_(newton)
         , hb_(hb)
-        , max_change_(max_contact_change)
-        , last_contact_(last_contact)
+        , max_contact_change_(continuation.max_contact_change)
+        , max_solution_change_(continuation.max_solution_change)
+        , last_(last)
       {}
 
       NOX::StatusTest::StatusType checkStatus(const NOX::Solver::Generic &problem,
                                               NOX::StatusTest::CheckType  type) override
       {
         status_ = newton_->checkStatus(problem, type);
-        if (status_ != NOX::StatusTest::Converged || std::isnan(last_contact_))
+        if (status_ != NOX::StatusTest::Converged || std::isnan(last_.contact))
           return status_;
         const auto &extended =
           dynamic_cast<const LOCA::MultiContinuation::ExtendedVector &>(problem.getSolutionGroup().getX());
         const auto &x = dynamic_cast<const NOX::LAPACK::Vector &>(*extended.getXVec());
         hb_.set_omega(extended.getScalar(0));
-        const double contact = hb_.measure(HbInterface::to_std(x)).contact_fraction;
-        if (std::abs(contact - last_contact_) > max_change_)
+        const std::vector<double> unknowns = HbInterface::to_std(x);
+        const double              contact  = hb_.measure(unknowns).contact_fraction;
+        if (std::abs(contact - last_.contact) > max_contact_change_ ||
+            relative_change(hb_.displacement(unknowns), last_.displacement) > max_solution_change_)
           status_ = NOX::StatusTest::Failed;
         return status_;
       }
@@ -105,8 +137,8 @@ namespace nsm
     private:
       Teuchos::RCP<NOX::StatusTest::Generic> newton_;
       ForcedHarmonicBalance                 &hb_;
-      double                                 max_change_;
-      const double                          &last_contact_;
+      double                                 max_contact_change_, max_solution_change_;
+      const LastPoint                       &last_;
       NOX::StatusTest::StatusType            status_ = NOX::StatusTest::Unevaluated;
     };
 
@@ -114,13 +146,14 @@ namespace nsm
     /// scene's step bounds, Newton as the backbone's, LOCA's messages discarded.
     Teuchos::RCP<Teuchos::ParameterList> forced_parameters(const HarmonicBalanceParameters &hb,
                                                            const ContinuationParameters    &c,
-                                                           const double omega_min, const double omega_max)
+                                                           const double omega_min, const double omega_max,
+                                                           const double omega_start)
     {
       auto  params  = Teuchos::rcp(new Teuchos::ParameterList);
       auto &stepper = params->sublist("LOCA").sublist("Stepper");
       stepper.set("Continuation Method", "Arc Length");
       stepper.set("Continuation Parameter", "Omega");
-      stepper.set("Initial Value", omega_min);
+      stepper.set("Initial Value", omega_start);
       stepper.set("Max Value", omega_max);
       stepper.set("Min Value", omega_min);
       stepper.set("Max Steps", static_cast<int>(c.max_steps));
@@ -143,6 +176,231 @@ namespace nsm
     }
   } // namespace
 
+  namespace
+  {
+    /// Where a stepper run starts, and how.
+    struct StepperStart
+    {
+      double              omega;
+      std::vector<double> x;
+      double              step;           ///< signed: the first step's direction in W
+      unsigned int        max_steps;
+      bool                keep_start;     ///< the start is a new point (else already written)
+      unsigned int        segment = 0;    ///< of the points it writes
+    };
+
+    /// Distance in the stepper's unscaled arclength metric (W and x).
+    double distance(const ForcedPoint &a, const ForcedPoint &b)
+    {
+      double sum = (a.omega - b.omega) * (a.omega - b.omega);
+      for (std::size_t i = 0; i < a.x.size(); ++i)
+        sum += (a.x[i] - b.x[i]) * (a.x[i] - b.x[i]);
+      return std::sqrt(sum);
+    }
+
+    /// One LOCA run from `start`, appending the points that meet the
+    /// tolerance to `points` (counting the others in `rejected`). Returns
+    /// whether it reached an end of the range.
+    bool run_stepper(ForcedHarmonicBalance &hb, const HarmonicBalanceParameters &harmonic_balance,
+                     const ContinuationParameters &continuation, const double omega_min, const double omega_max,
+                     const StepperStart &start, std::vector<ForcedPoint> &points, unsigned int &rejected)
+    {
+      ContinuationParameters c = continuation;
+      c.initial_step           = start.step;
+      c.max_steps              = start.max_steps;
+      const auto params        = forced_parameters(harmonic_balance, c, omega_min, omega_max, start.omega);
+      auto       data          = LOCA::createGlobalData(params);
+      LastPoint  last;
+      if (!start.keep_start)
+        {
+          hb.set_omega(start.omega);
+          last = {hb.measure(start.x).contact_fraction, hb.displacement(start.x)};
+        }
+      bool       finished      = false;
+      {
+        ForcedInterface interface(hb, start.x);
+        auto            group = Teuchos::rcp(new LOCA::LAPACK::Group(data, interface));
+        LOCA::ParameterVector parameters;
+        parameters.addParameter("Omega", start.omega);
+        group->setParams(parameters);
+        bool at_start = true;
+        interface.on_step = [&](const std::vector<double> &x, const double omega) {
+          const bool skip = at_start && !start.keep_start;
+          at_start        = false;
+          if (skip)
+            return;
+          hb.set_omega(omega);
+          std::vector<double> residual;
+          hb.evaluate(x, &residual, nullptr);
+          double norm = 0;
+          for (const double r : residual)
+            norm += r * r;
+          norm = std::sqrt(norm);
+          if (norm > harmonic_balance.tolerance)
+            ++rejected;
+          else
+            {
+              points.push_back({start.segment, omega, hb.measure(x), norm, x});
+              last = {points.back().measures.contact_fraction, hb.displacement(x)};
+            }
+        };
+        const auto status = Teuchos::rcp(
+          new GuardedStep(newton_status(harmonic_balance), hb, continuation, last));
+        LOCA::Stepper stepper(data, group, status, params);
+        finished = stepper.run() == LOCA::Abstract::Iterator::Finished;
+      }
+      LOCA::destroyGlobalData(data);
+      return finished;
+    }
+
+    /// Whether `next` lies within the step's guard of `last` (GuardedStep).
+    bool within_guard(ForcedHarmonicBalance &hb, const ContinuationParameters &continuation, const ForcedPoint &last,
+                      const ForcedPoint &next)
+    {
+      hb.set_omega(last.omega);
+      const std::vector<double> u_last = hb.displacement(last.x);
+      hb.set_omega(next.omega);
+      return std::abs(next.measures.contact_fraction - last.measures.contact_fraction) <=
+               continuation.max_contact_change &&
+             relative_change(hb.displacement(next.x), u_last) <= continuation.max_solution_change;
+    }
+  } // namespace
+
+  namespace
+  {
+    /// The direction of travel at a stall is read over this many points
+    /// back: near a stall the last steps may go back and forth.
+    constexpr std::size_t travel_points = 10;
+
+    /// One curve: the stepper from the linear response at Omega min, and
+    /// where every step fails, restarts at a corner and leaps past a stall.
+    class CurveTracer
+    {
+    public:
+      CurveTracer(ForcedHarmonicBalance &hb, const HarmonicBalanceParameters &harmonic_balance,
+                  const ContinuationParameters &continuation, const double omega_min, const double omega_max)
+        : hb_(hb)
+        , harmonic_balance_(harmonic_balance)
+        , continuation_(continuation)
+        , omega_min_(omega_min)
+        , omega_max_(omega_max)
+      {}
+
+      ForcedCurve trace(const double forcing)
+      {
+        hb_.set_forcing(forcing);
+        curve_.forcing  = forcing;
+        curve_.finished = run({omega_min_, std::vector<double>(hb_.n_unknowns(), 0.0), continuation_.initial_step,
+                               continuation_.max_steps, true, 0},
+                              curve_.points);
+        while (!curve_.finished && curve_.restarts + curve_.leaps < continuation_constants::forced_restarts &&
+               curve_.points.size() >= 2 && steps_left() > 0 && (restart_at_corner() || leap()))
+          {}
+        return curve_;
+      }
+
+    private:
+      bool run(const StepperStart &start, std::vector<ForcedPoint> &points)
+      {
+        return run_stepper(hb_, harmonic_balance_, continuation_, omega_min_, omega_max_, start, points,
+                           curve_.rejected);
+      }
+
+      unsigned int steps_left() const
+      {
+        return continuation_.max_steps > curve_.points.size() ?
+                 unsigned(continuation_.max_steps - curve_.points.size()) :
+                 0u;
+      }
+
+      /// Goes on from `start` if its first point is acceptable.
+      template <typename Accept>
+      bool go_on(StepperStart start, const Accept &accept)
+      {
+        if (start.omega < omega_min_ || start.omega > omega_max_)
+          return false;
+        std::vector<ForcedPoint> probe;
+        run(start, probe);
+        if (probe.empty() || !accept(probe.front()))
+          return false;
+        start.max_steps = steps_left();
+        curve_.finished = run(start, curve_.points);
+        return true;
+      }
+
+      /// Where every step fails, the curve may turn at a corner (a contact
+      /// interval opening or closing) that the stepper's tangent does not
+      /// follow: start again from the last point, along the tangent either
+      /// way or by a step of Initial step in W at fixed W, with the first
+      /// start whose first point leaves the point before behind within the
+      /// step's guard. Where the curve meets the linear response (its contact
+      /// ends) only the fixed-W start leaves the contact branch. Not twice
+      /// from one Omega: a curve back there cycles.
+      bool restart_at_corner()
+      {
+        const ForcedPoint last = curve_.points.back(), before = curve_.points[curve_.points.size() - 2];
+        const bool        revisited = std::any_of(origins_.begin(), origins_.end(), [&](double w) {
+          return std::abs(w - last.omega) <= continuation_.min_step;
+        });
+        origins_.push_back(last.omega);
+        if (revisited)
+          return false;
+        const auto leaves_behind = [&](const ForcedPoint &next) {
+          return distance(next, before) > distance(last, before) && within_guard(hb_, continuation_, last, next);
+        };
+        const double step = continuation_.initial_step;
+        for (const StepperStart &start : {StepperStart{last.omega, last.x, step, 1, false, last.segment},
+                                          StepperStart{last.omega, last.x, -step, 1, false, last.segment},
+                                          StepperStart{last.omega + step, last.x, step, 1, true, last.segment},
+                                          StepperStart{last.omega - step, last.x, -step, 1, true, last.segment}})
+          if (go_on(start, leaves_behind))
+            {
+              ++curve_.restarts;
+              return true;
+            }
+        return false;
+      }
+
+      /// Where no restart goes on (the curve stalls as the backbone does
+      /// near an internal resonance): Newton at fixed W from the last point's
+      /// unknowns, beyond the curve's points near the stall (within Search
+      /// reach) at distances doubling from Initial step up to Search reach,
+      /// first in the direction of travel over the last steps, then the
+      /// other way; a new segment from the first that converges.
+      bool leap()
+      {
+        const ForcedPoint &last    = curve_.points.back();
+        const ForcedPoint &earlier = curve_.points[curve_.points.size() -
+                                                   std::min<std::size_t>(curve_.points.size(), travel_points)];
+        const double       travel  = last.omega >= earlier.omega ? 1.0 : -1.0;
+        const double       step    = continuation_.initial_step;
+        for (const double direction : {travel, -travel})
+          {
+            double reached = last.omega;
+            for (const ForcedPoint &p : curve_.points)
+              if (std::abs(p.omega - last.omega) <= continuation_.search_reach)
+                reached = direction > 0 ? std::max(reached, p.omega) : std::min(reached, p.omega);
+            for (double ahead = step; ahead <= continuation_.search_reach;
+                 ahead *= continuation_constants::search_growth)
+              if (go_on({reached + direction * ahead, last.x, direction * step, 1, true, last.segment + 1},
+                        [](const ForcedPoint &) { return true; }))
+                {
+                  ++curve_.leaps;
+                  return true;
+                }
+          }
+        return false;
+      }
+
+      ForcedHarmonicBalance           &hb_;
+      const HarmonicBalanceParameters &harmonic_balance_;
+      const ContinuationParameters    &continuation_;
+      double                           omega_min_, omega_max_;
+      ForcedCurve                      curve_;
+      std::vector<double>              origins_; ///< W of every restart
+    };
+  } // namespace
+
   ForcedCurve trace_forced_curve(ForcedHarmonicBalance           &hb,
                                  const HarmonicBalanceParameters &harmonic_balance,
                                  const ContinuationParameters    &continuation,
@@ -150,41 +408,6 @@ namespace nsm
                                  const double                     omega_max,
                                  const double                     forcing)
   {
-    hb.set_forcing(forcing);
-    ForcedCurve curve;
-    double      last_contact = std::nan(""); // none before the start
-    curve.forcing     = forcing;
-    const auto params = forced_parameters(harmonic_balance, continuation, omega_min, omega_max);
-    auto       data   = LOCA::createGlobalData(params);
-    {
-      ForcedInterface interface(hb);
-      auto            group = Teuchos::rcp(new LOCA::LAPACK::Group(data, interface));
-      LOCA::ParameterVector parameters;
-      parameters.addParameter("Omega", omega_min);
-      group->setParams(parameters);
-      interface.on_step = [&](const std::vector<double> &x, const double omega) {
-        hb.set_omega(omega);
-        std::vector<double> residual;
-        hb.evaluate(x, &residual, nullptr);
-        double norm = 0;
-        for (const double r : residual)
-          norm += r * r;
-        norm = std::sqrt(norm);
-        if (norm > harmonic_balance.tolerance)
-          ++curve.rejected;
-        else
-          {
-            curve.points.push_back({omega, hb.measure(x), norm, x});
-            last_contact = curve.points.back().measures.contact_fraction;
-          }
-      };
-      const auto status = Teuchos::rcp(new GuardedStep(
-        newton_status(harmonic_balance), hb,
-        continuation.max_contact_change, last_contact));
-      LOCA::Stepper stepper(data, group, status, params);
-      curve.finished = stepper.run() == LOCA::Abstract::Iterator::Finished;
-    }
-    LOCA::destroyGlobalData(data);
-    return curve;
+    return CurveTracer(hb, harmonic_balance, continuation, omega_min, omega_max).trace(forcing);
   }
 } // namespace nsm

@@ -9,9 +9,15 @@ namespace nsm
 {
   namespace
   {
-    /// The main branch's energy at omega, between the main points that
-    /// bracket it (sorted by Omega); none outside them.
-    std::optional<double> main_energy_at(const Backbone &backbone, const double omega)
+    /// The main branch's energy at an Omega, read between the main points
+    /// that bracket it, and how far apart they lie.
+    struct MainEnergy
+    {
+      double energy;
+      double bracket;
+    };
+
+    std::optional<MainEnergy> main_energy_at(const Backbone &backbone, const double omega)
     {
       std::vector<std::pair<double, double>> main;
       for (const BackbonePoint &p : backbone.points)
@@ -23,21 +29,68 @@ namespace nsm
         return std::nullopt;
       const auto &[w0, e0] = *(after - 1);
       const auto &[w1, e1] = *after;
-      return w1 == w0 ? e0 : e0 + (e1 - e0) * (omega - w0) / (w1 - w0);
+      return MainEnergy{w1 == w0 ? e0 : e0 + (e1 - e0) * (omega - w0) / (w1 - w0), w1 - w0};
+    }
+
+    /// "E / main - 1 = d (main points b apart)", or why there is none.
+    std::string against_backbone(const Backbone *backbone, const double omega, const double energy)
+    {
+      if (!backbone)
+        return "";
+      const std::optional<MainEnergy> main = main_energy_at(*backbone, omega);
+      if (!main)
+        return ", no main backbone point on both sides";
+      return ", against the backbone's main branch " + significant(100 * (energy / main->energy - 1), 3) +
+             " % (its main points " + significant(main->bracket, 2) + " apart there)";
+    }
+
+    /// Where the fundamental's phase lag crosses pi / 2 between two points
+    /// of a segment: Omega and energy, linear between them.
+    std::vector<std::pair<double, double>> quadratures(const ForcedCurve &curve)
+    {
+      std::vector<std::pair<double, double>> found;
+      for (std::size_t i = 1; i < curve.points.size(); ++i)
+        {
+          const ForcedPoint &p = curve.points[i - 1], &q = curve.points[i];
+          const double       a = p.measures.phase - M_PI / 2, b = q.measures.phase - M_PI / 2;
+          if (p.segment != q.segment || a * b > 0 || a == b)
+            continue;
+          const double t = a / (a - b);
+          found.emplace_back(p.omega + t * (q.omega - p.omega),
+                             p.measures.energy + t * (q.measures.energy - p.measures.energy));
+        }
+      return found;
+    }
+
+    /// The curve's points, Omega extent, and how its tracing went.
+    std::string extent(const ForcedCurve &curve)
+    {
+      const auto by_omega = [](const ForcedPoint &a, const ForcedPoint &b) { return a.omega < b.omega; };
+      const auto [low, high] = std::minmax_element(curve.points.begin(), curve.points.end(), by_omega);
+      std::string text = std::to_string(curve.points.size()) + " points on [" + significant(low->omega, 6) + ", " +
+                         significant(high->omega, 6) + "]";
+      if (!curve.finished)
+        text += ", stopped before the range's end (no step, restart or leap went on)";
+      if (curve.restarts + curve.leaps > 0)
+        text += ", " + std::to_string(curve.restarts) + " restarts at corners, " + std::to_string(curve.leaps) +
+                " leaps past stalls";
+      if (curve.rejected > 0)
+        text += ", " + std::to_string(curve.rejected) + " steps above the tolerance not written";
+      return text;
     }
   } // namespace
 
   CsvTable forced_response_table(const std::vector<ForcedCurve> &curves)
   {
     CsvTable table{"frc.csv",
-                   {"forcing", "Omega", "energy", "tip_amplitude", "phase", "contact_fraction", "max_contact_force",
+                   {"forcing", "segment", "Omega", "energy", "tip_amplitude", "phase", "contact_fraction", "max_contact_force",
                     "input_power", "dissipated_power", "residual"},
                    {}};
     for (const ForcedCurve &curve : curves)
       for (const ForcedPoint &p : curve.points)
         {
           const ForcedMeasures &m = p.measures;
-          table.rows.push_back({curve.forcing, p.omega, m.energy, m.tip_amplitude, m.phase, m.contact_fraction,
+          table.rows.push_back({curve.forcing, double(p.segment), p.omega, m.energy, m.tip_amplitude, m.phase, m.contact_fraction,
                                 m.max_contact_force, m.input_power, m.dissipated_power, p.residual});
         }
     return table;
@@ -49,33 +102,23 @@ namespace nsm
     std::vector<std::string> lines;
     for (const ForcedCurve &curve : curves)
       {
-        std::string line = "forced response F = " + significant(curve.forcing, 4) + ": " +
-                           std::to_string(curve.points.size()) + " points";
+        std::string line = "forced response F = " + significant(curve.forcing, 4) + ": ";
         if (curve.points.empty())
           {
-            lines.push_back(line + " (the start did not converge)");
+            lines.push_back(line + "no point (the start did not converge)");
             continue;
           }
-        const auto by_omega = [](const ForcedPoint &a, const ForcedPoint &b) { return a.omega < b.omega; };
-        const auto [low, high] = std::minmax_element(curve.points.begin(), curve.points.end(), by_omega);
-        line += " on [" + significant(low->omega, 6) + ", " + significant(high->omega, 6) + "]" +
-                (curve.finished ? "" : ", stopped before the range's end (a step failed at Min step or Max steps ran out)");
-        if (curve.rejected > 0)
-          line += ", " + std::to_string(curve.rejected) + " steps above the tolerance not written";
         const ForcedPoint &peak = *std::max_element(curve.points.begin(), curve.points.end(),
                                                     [](const ForcedPoint &a, const ForcedPoint &b) {
                                                       return a.measures.energy < b.measures.energy;
                                                     });
-        line += "; peak at Omega " + significant(peak.omega, 6) + ", energy " + significant(peak.measures.energy, 4) +
-                ", phase lag " + significant(peak.measures.phase, 4) + " (pi/2 = 1.571), contact fraction " +
-                significant(peak.measures.contact_fraction, 3);
-        if (backbone)
-          {
-            const std::optional<double> main = main_energy_at(*backbone, peak.omega);
-            line += main ? "; the backbone's main branch there: energy " + significant(*main, 4) + ", peak / main - 1 = " +
-                             significant(peak.measures.energy / *main - 1, 3) :
-                           "; no main backbone point brackets the peak's Omega";
-          }
+        line += extent(curve) + "; peak (most energy) at Omega " + significant(peak.omega, 6) + ": energy " +
+                significant(peak.measures.energy, 4) + ", phase lag " + significant(peak.measures.phase, 3) +
+                " (pi/2 at phase resonance), contact fraction " + significant(peak.measures.contact_fraction, 2) +
+                against_backbone(backbone, peak.omega, peak.measures.energy);
+        for (const auto &[omega, energy] : quadratures(curve))
+          line += "; phase lag pi/2 at Omega " + significant(omega, 6) + ", energy " + significant(energy, 4) +
+                  against_backbone(backbone, omega, energy);
         lines.push_back(line);
       }
     return lines;

@@ -37,9 +37,10 @@ namespace nsm
             "Output/VTK",
             "false unless fields are requested (Output/Fields at or Output/Fields every)",
             "true");
-    require(!output.plots || output.fields() || output.backbone || is_study,
+    require(!output.plots || output.fields() || output.backbone || forcing.enabled() || is_study,
             "Output/Plots",
-            "false unless Output/Backbone = true, fields are requested or the scene is a study",
+            "false unless Output/Backbone = true, fields or a forced response (Forcing/Amplitudes) are requested or "
+            "the scene is a study",
             "true");
     require(!output.fields() || contact.enabled,
             "Output/Fields at",

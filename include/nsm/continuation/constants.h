@@ -31,6 +31,10 @@ namespace nsm::continuation_constants
   /// converges to this fraction of the Newton tolerance, so that the HB
   /// residual of a step it accepts meets the scene's tolerance.
   constexpr double loca_corrector_tolerance_factor = 0.1;
+  /// A forced curve's stepper starts again from its last point at most this
+  /// many times (forced_response.h): on the seed bar's curves each corner
+  /// needs one.
+  constexpr unsigned int forced_restarts = 50;
   /// The spectral criterion looks at harmonics from this one up: k = 0 is
   /// the static part, 1 the fundamental, and 2 has no oscillating neighbour
   /// of its parity below it.

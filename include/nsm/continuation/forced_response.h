@@ -13,6 +13,9 @@ namespace nsm
 {
   struct ForcedPoint
   {
+    /// 0, 1, ...: a new segment starts after each leap (do not join points
+    /// of different segments).
+    unsigned int        segment;
     double              omega;
     ForcedMeasures      measures;
     double              residual; ///< unscaled 2-norm of R
@@ -29,11 +32,20 @@ namespace nsm
     /// Steps LOCA accepted whose residual missed the scene's tolerance: not
     /// written.
     unsigned int rejected = 0;
+    /// Times the stepper started again from the curve's last point after
+    /// every step failed there (continuation_constants::forced_restarts).
+    unsigned int restarts = 0;
+    /// Leaps: where no start from the last point goes on, a fixed-W solve
+    /// at growing distances ahead (up to Search reach) starts a new segment.
+    unsigned int leaps = 0;
   };
 
   /// The curve of amplitude `forcing` over [omega_min, omega_max], from the
   /// linear response's guess (no contact) at omega_min, with the scene's
-  /// step bounds and Max steps.
+  /// step bounds and Max steps (points over all the stepper's runs). Where
+  /// every step fails, the stepper starts again from the last point in the
+  /// direction that leaves the point before it behind; where none does, it
+  /// leaps ahead in W, as the backbone's continuation does at a stall.
   ForcedCurve trace_forced_curve(ForcedHarmonicBalance           &hb,
                                  const HarmonicBalanceParameters &harmonic_balance,
                                  const ContinuationParameters    &continuation,
