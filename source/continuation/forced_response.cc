@@ -1,4 +1,5 @@
 #include <nsm/continuation/constants.h>
+#include <nsm/continuation/dense_lu_group.h>
 #include <nsm/continuation/forced_response.h>
 #include <nsm/harmonic_balance/nox_hb_system.h>
 
@@ -15,8 +16,8 @@ namespace nsm
 {
   namespace
   {
-    /// The forced system at the W LOCA sets; dR/dW by LOCA's finite differences.
-    class ForcedInterface : public LOCA::LAPACK::Interface
+    /// The forced system at the W LOCA sets, with its dR/dW.
+    class ForcedInterface : public LocaSystem
     {
     public:
       ForcedInterface(ForcedHarmonicBalance &hb, const std::vector<double> &guess)
@@ -41,6 +42,13 @@ namespace nsm
         hb_.set_omega(omega_);
         hb_.evaluate(HbInterface::to_std(x), nullptr, &scratch_);
         return copy(scratch_, &jacobian(0, 0));
+      }
+
+      bool compute_domega(NOX::LAPACK::Vector &result, const NOX::LAPACK::Vector &x) override
+      {
+        hb_.set_omega(omega_);
+        hb_.evaluate(HbInterface::to_std(x), nullptr, nullptr, &scratch_);
+        return copy(scratch_, &result(0));
       }
 
       void setParams(const LOCA::ParameterVector &p) override { omega_ = p.getValue("Omega"); }
@@ -120,7 +128,7 @@ namespace nsm
         const auto &x = dynamic_cast<const NOX::LAPACK::Vector &>(*extended.getXVec());
         hb_.set_omega(extended.getScalar(0));
         const std::vector<double> unknowns = HbInterface::to_std(x);
-        const double              contact  = hb_.measure(unknowns).contact_fraction;
+        const double              contact  = hb_.contact_fraction(unknowns);
         if (std::abs(contact - last_.contact) > max_contact_change_ ||
             relative_change(hb_.displacement(unknowns), last_.displacement) > max_solution_change_)
           status_ = NOX::StatusTest::Failed;
@@ -160,7 +168,10 @@ namespace nsm
       stepper.set("Max Nonlinear Iterations", static_cast<int>(hb.iterations()));
       stepper.set("Compute Eigenvalues", false);
       stepper.set("Enable Arc Length Scaling", false);
-      params->sublist("LOCA").sublist("Predictor").set("Method", "Tangent");
+      auto &predictor = params->sublist("LOCA").sublist("Predictor");
+      predictor.set("Method", "Secant");
+      predictor.sublist("First Step Predictor").set("Method", "Tangent");
+      predictor.sublist("Last Step Predictor").set("Method", "Tangent");
       auto &step = params->sublist("LOCA").sublist("Step Size");
       step.set("Method", "Adaptive");
       step.set("Aggressiveness", continuation_constants::loca_aggressiveness);
@@ -219,7 +230,7 @@ namespace nsm
       bool       finished      = false;
       {
         ForcedInterface interface(hb, start.x);
-        auto            group = Teuchos::rcp(new LOCA::LAPACK::Group(data, interface));
+        auto            group = Teuchos::rcp(new DenseLuGroup(data, interface));
         LOCA::ParameterVector parameters;
         parameters.addParameter("Omega", start.omega);
         group->setParams(parameters);
@@ -366,7 +377,9 @@ namespace nsm
       /// unknowns, beyond the curve's points near the stall (within Search
       /// reach) at distances doubling from Initial step up to Search reach,
       /// first in the direction of travel over the last steps, then the
-      /// other way; a new segment from the first that converges.
+      /// other way; a new segment from the first landing on the last point's
+      /// motion (within the step's guard), or failing that the first that
+      /// converges.
       bool leap()
       {
         const ForcedPoint &last    = curve_.points.back();
@@ -374,21 +387,27 @@ namespace nsm
                                                    std::min<std::size_t>(curve_.points.size(), travel_points)];
         const double       travel  = last.omega >= earlier.omega ? 1.0 : -1.0;
         const double       step    = continuation_.initial_step;
-        for (const double direction : {travel, -travel})
-          {
-            double reached = last.omega;
-            for (const ForcedPoint &p : curve_.points)
-              if (std::abs(p.omega - last.omega) <= continuation_.search_reach)
-                reached = direction > 0 ? std::max(reached, p.omega) : std::min(reached, p.omega);
-            for (double ahead = step; ahead <= continuation_.search_reach;
-                 ahead *= continuation_constants::search_growth)
-              if (go_on({reached + direction * ahead, last.x, direction * step, 1, true, last.segment + 1},
-                        [](const ForcedPoint &) { return true; }))
+        const auto same_motion = [&](const ForcedPoint &next) { return within_guard(hb_, continuation_, last, next); };
+        const auto any_motion  = [](const ForcedPoint &) { return true; };
+        for (const bool same : {true, false})
+          for (const double direction : {travel, -travel})
+            {
+              double reached = last.omega;
+              for (const ForcedPoint &p : curve_.points)
+                if (std::abs(p.omega - last.omega) <= continuation_.search_reach)
+                  reached = direction > 0 ? std::max(reached, p.omega) : std::min(reached, p.omega);
+              for (double ahead = step; ahead <= continuation_.search_reach;
+                   ahead *= continuation_constants::search_growth)
                 {
-                  ++curve_.leaps;
-                  return true;
+                  const StepperStart start{reached + direction * ahead, last.x, direction * step, 1, true,
+                                           last.segment + 1};
+                  if (same ? go_on(start, same_motion) : go_on(start, any_motion))
+                    {
+                      ++curve_.leaps;
+                      return true;
+                    }
                 }
-          }
+            }
         return false;
       }
 

@@ -1,5 +1,5 @@
-#include <nsm/base/dense_lu.h>
 #include <nsm/continuation/constants.h>
+#include <nsm/continuation/dense_lu_group.h>
 #include <nsm/continuation/loca_arclength.h>
 #include <nsm/harmonic_balance/nox_hb_system.h>
 
@@ -14,109 +14,6 @@ namespace nsm
 {
   namespace
   {
-    /// LOCA's LAPACK group with dR/dW from the HB module instead of finite
-    /// differences, and its linear solves timed.
-    class HbGroup : public LOCA::LAPACK::Group
-    {
-    public:
-      HbGroup(const Teuchos::RCP<LOCA::GlobalData> &data, HbInterface &interface,
-              const HarmonicBalance &hb)
-        : LOCA::LAPACK::Group(data, interface)
-        , interface_(interface)
-        , hb_(hb)
-      {}
-      HbGroup(const HbGroup &source, NOX::CopyType type)
-        : LOCA::LAPACK::Group(source, type)
-        , interface_(source.interface_)
-        , hb_(source.hb_)
-      {}
-
-      /// J^-1 on each column, by this project's LU (base/dense_lu.h) instead
-      /// of LAPACK's dgetrf and dgetrs: 183 against 495 us per solve at
-      /// M = 160 (benchmark_high_harmonics arclength 160). The
-      /// factors are kept with the matrix they factor, and redone when the
-      /// group's Jacobian differs from it (LOCA copies and assigns groups).
-      NOX::Abstract::Group::ReturnType
-      applyJacobianInverseMultiVector(Teuchos::ParameterList &, const NOX::Abstract::MultiVector &input,
-                                      NOX::Abstract::MultiVector &result) const override
-      {
-        return timed_solves(input.numVectors(), [&](const int c) { solve(input[c], result[c]); });
-      }
-
-      using LOCA::LAPACK::Group::applyJacobianInverse;
-      NOX::Abstract::Group::ReturnType applyJacobianInverse(Teuchos::ParameterList &, const NOX::Abstract::Vector &input,
-                                                            NOX::Abstract::Vector &result) const override
-      {
-        return timed_solves(1, [&](int) { solve(input, result); });
-      }
-
-      Teuchos::RCP<NOX::Abstract::Group> clone(NOX::CopyType type) const override
-      {
-        return Teuchos::rcp(new HbGroup(*this, type));
-      }
-
-      NOX::Abstract::Group::ReturnType
-      computeDfDpMulti(const std::vector<int> &parameters,
-                       NOX::Abstract::MultiVector &dfdp,
-                       bool is_valid_f) override
-      {
-        if (!is_valid_f)
-          {
-            if (computeF() != NOX::Abstract::Group::Ok)
-              return NOX::Abstract::Group::Failed;
-            dfdp[0] = getF();
-          }
-        interface_.setParams(getParams());
-        const auto &x = dynamic_cast<const NOX::LAPACK::Vector &>(getX());
-        for (unsigned int i = 0; i < parameters.size(); ++i)
-          if (!interface_.compute_domega(dynamic_cast<NOX::LAPACK::Vector &>(dfdp[i + 1]), x))
-            return NOX::Abstract::Group::Failed;
-        return NOX::Abstract::Group::Ok;
-      }
-
-    private:
-      /// `count` solves by solve_column(c), after the Jacobian's LU; timed.
-      template <typename Solve>
-      NOX::Abstract::Group::ReturnType timed_solves(const int count, const Solve &solve_column) const
-      {
-        const auto start = std::chrono::steady_clock::now();
-        const bool ok    = isJacobian() && factor();
-        for (int c = 0; ok && c < count; ++c)
-          solve_column(c);
-        hb_.record_linear_solve(seconds_since(start));
-        return ok ? NOX::Abstract::Group::Ok : NOX::Abstract::Group::Failed;
-      }
-
-      /// result = J^-1 input, from the kept factors.
-      void solve(const NOX::Abstract::Vector &input, NOX::Abstract::Vector &result) const
-      {
-        auto &x = dynamic_cast<NOX::LAPACK::Vector &>(result);
-        x       = dynamic_cast<const NOX::LAPACK::Vector &>(input);
-        lu_solve(x.length(), factors_.data(), pivots_.data(), &x(0));
-      }
-
-      /// LU of the current Jacobian, unless the kept factors are of it.
-      bool factor() const
-      {
-        const NOX::LAPACK::Matrix<double> &jacobian = jacSolver.getMatrix();
-        const int                          n        = jacobian.numRows();
-        const double                      *a        = &jacobian(0, 0);
-        if (factored_ && std::equal(a, a + std::size_t(n) * n, matrix_.begin()))
-          return true;
-        matrix_.assign(a, a + std::size_t(n) * n);
-        factors_ = matrix_;
-        pivots_.resize(n);
-        factored_ = lu_factor(n, factors_.data(), pivots_.data());
-        return factored_;
-      }
-
-      HbInterface           &interface_;
-      const HarmonicBalance &hb_;
-      mutable std::vector<double> matrix_, factors_;
-      mutable std::vector<int>    pivots_;
-      mutable bool                factored_ = false;
-    };
-
     /// Fails a LOCA step whose iterate has left contact: the trivial motion
     /// solves the HB equations at every Omega, and a step onto it must be
     /// retried shorter rather than accepted.
@@ -203,7 +100,7 @@ namespace nsm
     {
       HbInterface interface(hb, start.x);
       interface.set_omega(start.omega);
-      auto group = Teuchos::rcp(new HbGroup(data, interface, hb));
+      auto group = Teuchos::rcp(new DenseLuGroup(data, interface));
       LOCA::ParameterVector parameters;
       parameters.addParameter("Omega", start.omega);
       group->setParams(parameters);

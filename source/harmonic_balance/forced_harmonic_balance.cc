@@ -35,22 +35,28 @@ namespace nsm
     if (omega == omega_)
       return;
     omega_ = omega;
-    gamma_.resize(harmonics_ + 1);
-    for (unsigned int k = 0; k <= harmonics_; ++k)
-      gamma_[k] = k == 0 ? std::complex<double>(gamma0_) : receptance_(k * omega);
+    gamma_.assign(harmonics_ + 1, gamma0_);
+    gamma_slope_.assign(harmonics_ + 1, 0.0);
+    for (unsigned int k = 1; k <= harmonics_; ++k)
+      {
+        const DampedReceptance::Value value = receptance_.value(k * omega);
+        gamma_[k]       = value.gamma;
+        gamma_slope_[k] = double(k) * value.slope;
+      }
   }
 
-  std::vector<double> ForcedHarmonicBalance::apply_receptance(const std::vector<double> &y) const
+  std::vector<double> ForcedHarmonicBalance::apply(const std::vector<std::complex<double>> &values,
+                                                  const std::vector<double>               &y) const
   {
     AssertDimension(y.size(), n_unknowns());
-    Assert(gamma_.size() == harmonics_ + 1,
+    Assert(values.size() == harmonics_ + 1,
            ExcPrecondition("ForcedHarmonicBalance: set_omega() before a solution is evaluated"));
     std::vector<double> u(y.size());
-    u[0] = gamma0_ * y[0];
+    u[0] = values[0].real() * y[0];
     for (unsigned int k = 1; k <= harmonics_; ++k)
       {
         const double a = y[2 * k], b = y[2 * k - 1]; // cos, sin
-        const double gr = gamma_[k].real(), gi = gamma_[k].imag();
+        const double gr = values[k].real(), gi = values[k].imag();
         u[2 * k]     = gr * a + gi * b;
         u[2 * k - 1] = gr * b - gi * a;
       }
@@ -86,7 +92,8 @@ namespace nsm
 
   void ForcedHarmonicBalance::evaluate(const std::vector<double> &x,
                                        std::vector<double>       *residual,
-                                       std::vector<double>       *jacobian) const
+                                       std::vector<double>       *jacobian,
+                                       std::vector<double>       *domega) const
   {
     const unsigned int        n    = n_unknowns();
     const StructuredGram     &gram = active_set_.gram(contact_coefficients(x));
@@ -98,26 +105,42 @@ namespace nsm
       }
     if (jacobian)
       {
-        // Column j of J: e_j - G B e_j, B = beta I - a s Gamma (dv/dx).
+        // Column j of J: e_j - G B e_j, B = beta I - a s Gamma (dv/dx), whose
+        // column j has two entries: those of j's harmonic k (rows 2k - 1 and
+        // 2k; row 0 for k = 0).
         const std::vector<double> &dense = gram.dense();
-        const double               a     = law_.gap_weight();
+        const double               a     = law_.gap_weight() * law_.sign();
         jacobian->assign(std::size_t(n) * n, 0.0);
-        std::vector<double> unit(n, 0.0);
         for (unsigned int j = 0; j < n; ++j)
           {
-            unit[j] = 1;
-            const std::vector<double> gamma_column = apply_receptance(unit);
-            unit[j] = 0;
-            for (unsigned int l = 0; l < n; ++l)
+            double      *column = &(*jacobian)[std::size_t(j) * n];
+            const auto   add    = [&](const unsigned int l, const double b) {
+              for (unsigned int i = 0; i < n; ++i)
+                column[i] -= dense[std::size_t(i) * n + l] * b;
+            };
+            if (j == 0)
+              add(0, beta_ - a * gamma0_);
+            else
               {
-                const double b = (l == j ? beta_ : 0.0) - a * law_.sign() * gamma_column[l];
-                if (b == 0)
-                  continue;
-                for (unsigned int i = 0; i < n; ++i)
-                  (*jacobian)[i + std::size_t(j) * n] -= dense[std::size_t(i) * n + l] * b;
+                const unsigned int k = (j + 1) / 2, sine = 2 * k - 1, cosine = 2 * k;
+                const double gr = gamma_[k].real(), gi = gamma_[k].imag();
+                // Gamma e_cos = (g_r, -g_i) on (cos, sin); Gamma e_sin = (g_i, g_r).
+                const bool   is_sine = j == sine;
+                add(cosine, (j == cosine ? beta_ : 0.0) - a * (is_sine ? gi : gr));
+                add(sine, (is_sine ? beta_ : 0.0) - a * (is_sine ? gr : -gi));
               }
-            (*jacobian)[j + std::size_t(j) * n] += 1;
+            column[j] += 1;
           }
+      }
+    if (domega)
+      {
+        // dv/dW = a (dGamma/dW) P / F_s at fixed x.
+        std::vector<double> dv = apply(gamma_slope_, tip_force(x));
+        for (double &d : dv)
+          d *= law_.gap_weight() / force_scale_;
+        gram.multiply(dv, *domega);
+        for (double &d : *domega)
+          d = -d;
       }
   }
 
@@ -158,6 +181,11 @@ namespace nsm
     return sum / samples.size();
   }
 
+  double ForcedHarmonicBalance::contact_fraction(const std::vector<double> &x) const
+  {
+    return active_set_.gram(contact_coefficients(x)).share();
+  }
+
   ForcedMeasures ForcedHarmonicBalance::measure(const std::vector<double> &x) const
   {
     ForcedMeasures            m;
@@ -180,7 +208,7 @@ namespace nsm
         m.phase       = std::atan2(u[1], u[2]);
         m.input_power = 0.5 * forcing_ * omega_ * u[1];
       }
-    m.contact_fraction = active_set_.gram(contact_coefficients(x)).share();
+    m.contact_fraction = contact_fraction(x);
     std::vector<double> force(x.size()), samples;
     for (unsigned int i = 0; i < x.size(); ++i)
       force[i] = force_scale_ * x[i];

@@ -9,20 +9,32 @@ namespace nsm
       coefficients_.push_back(damping.coefficient(l));
   }
 
-  std::complex<double> DampedReceptance::operator()(const double omega) const
+  DampedReceptance::Value DampedReceptance::value(const double omega) const
   {
-    const double         sigma = omega * omega;
-    const ModalData     &modes = receptance_.modes();
-    const bool           modal = receptance_.is_modal_sum(omega);
-    std::complex<double> gamma = modal ? receptance_.remainder(sigma).gamma : receptance_(omega).gamma;
+    // r / d and its slope r (2 w - i c) / d^2 with d = l - w^2 + i c w, in
+    // real arithmetic (complex division checks for infinities per call).
+    const double     sigma = omega * omega;
+    const ModalData &modes = receptance_.modes();
+    const bool       modal = receptance_.is_modal_sum(omega);
+    const ReceptanceValue rest = modal ? receptance_.remainder(sigma) : receptance_(omega);
+    double gr = rest.gamma, gi = 0, sr = 2 * omega * rest.dgamma_domega2, si = 0;
     for (unsigned int j = 0; j < modes.eigenvalues.size(); ++j)
       {
-        const double distance = modes.eigenvalues[j] - sigma;
-        gamma += modes.contact_residues[j] / std::complex<double>(distance, coefficients_[j] * omega);
+        const double r = modes.contact_residues[j], a = modes.eigenvalues[j] - sigma, b = coefficients_[j] * omega;
+        const double size = a * a + b * b, qr = r * a / size, qi = -r * b / size; // r / d
+        gr += qr;
+        gi += qi;
+        // (r / d) (2 w - i c) / d: (qr + i qi) (2 w - i c) (a - i b) / |d|^2
+        const double pr = qr * 2 * omega + qi * coefficients_[j], pi = qi * 2 * omega - qr * coefficients_[j];
+        sr += (pr * a + pi * b) / size;
+        si += (pi * a - pr * b) / size;
         if (!modal)
-          gamma -= modes.contact_residues[j] / distance;
+          {
+            gr -= r / a;
+            sr -= 2 * omega * r / (a * a);
+          }
       }
-    return gamma;
+    return {{gr, gi}, {sr, si}};
   }
 
   double DampedReceptance::energy_factor(const double omega) const

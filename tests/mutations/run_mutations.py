@@ -33,8 +33,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 # re-wrapping the code it plants into keeps the mutation.
 MUTATIONS = [
     ("forced response: the damping's sign flipped", "source/model/damped_receptance.cc",
-     "gamma += modes.contact_residues[j] / std::complex<double>(distance, coefficients_[j] * omega);",
-     "gamma += modes.contact_residues[j] / std::complex<double>(distance, -coefficients_[j] * omega);"),
+     "b = coefficients_[j] * omega;", "b = -coefficients_[j] * omega;"),
     ("forced response: the drive as a sine", "source/harmonic_balance/forced_harmonic_balance.cc",
      "p[2] += forcing_;", "p[1] += forcing_;"),
     ("forced response: the receptance's imaginary part flipped in the sine row",
@@ -91,7 +90,7 @@ MUTATIONS = [
      "c[k][1] -= 0.5 * v[i];", "c[k][1] += 0.5 * v[i];"),
     ("the series at the samples with the cosines at full weight", "source/harmonic_balance/series_samples.cc",
      "c[k][0] += 0.5 * v[i];", "c[k][0] += v[i];"),
-    ("LOCA's solves keep the factors of a Jacobian that changed", "source/continuation/loca_arclength.cc",
+    ("LOCA's solves keep the factors of a Jacobian that changed", "source/continuation/dense_lu_group.cc",
      "if (factored_ && std::equal(a, a + std::size_t(n) * n, matrix_.begin()))", "if (factored_)"),
     ("the LU's pivot search takes the first row", "source/base/dense_lu.cc",
      "while (std::abs(column[pivot]) != largest)", "while (false)"),

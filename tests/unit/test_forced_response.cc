@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 
@@ -163,4 +164,59 @@ TEST(ForcedResponse, FarModesUndampedWithinTheirBound)
       largest = std::max(largest, moved);
     }
   EXPECT_GT(largest, 0.1 * 0.54 * damping.modal_ratio * share);
+}
+
+TEST(ForcedResponse, JacobianAndOmegaSlopeMatchCentralDifferences)
+{
+  // At a point in contact of the seed bar's curve (F = 4e-5, zeta = 0.002,
+  // M = 8) the Jacobian's columns and dR/dW against central differences of
+  // the residual: step 1e-7 (relative), truncation ~1e-14 and rounding
+  // ~1e-16 / 1e-7 of the entries, so agreement to 1e-6 of the largest entry
+  // unless the active set's roots move discontinuously (they do not at a
+  // converged point away from grazing).
+  const Model                  model("1.5 - x", 10, 10, 8 * 2.2);
+  nsm::DampingParameters       damping;
+  damping.modal_ratio = 0.002;
+  const nsm::DampedReceptance  damped(model.receptance, damping);
+  nsm::HarmonicBalanceParameters params;
+  params.harmonics = 8;
+  nsm::ForcedHarmonicBalance   hb(params, nsm::ContactParameters(), damped);
+  nsm::ContinuationParameters  continuation;
+  const nsm::ForcedCurve curve = nsm::trace_forced_curve(hb, params, continuation, 1.9, 2.0, 4e-5);
+  const auto in_contact = std::find_if(curve.points.begin(), curve.points.end(), [](const nsm::ForcedPoint &p) {
+    return p.measures.contact_fraction > 0.1;
+  });
+  ASSERT_NE(in_contact, curve.points.end());
+  const std::vector<double> &x = in_contact->x;
+  const double               w = in_contact->omega;
+  const unsigned int         n = hb.n_unknowns();
+  std::vector<double>        jacobian, slope, plus, minus;
+  hb.set_omega(w);
+  hb.evaluate(x, nullptr, &jacobian, &slope);
+  double largest = 0;
+  for (const double j : jacobian)
+    largest = std::max(largest, std::abs(j));
+  for (unsigned int c = 0; c < n; ++c)
+    {
+      std::vector<double> xp = x, xm = x;
+      const double        h  = 1e-7 * std::max(1.0, std::abs(x[c]));
+      xp[c] += h;
+      xm[c] -= h;
+      hb.evaluate(xp, &plus, nullptr);
+      hb.evaluate(xm, &minus, nullptr);
+      for (unsigned int r = 0; r < n; ++r)
+        EXPECT_NEAR(jacobian[r + std::size_t(c) * n], (plus[r] - minus[r]) / (2 * h), 1e-6 * largest)
+          << "row " << r << ", column " << c;
+    }
+  const double h = 1e-7 * w;
+  hb.set_omega(w + h);
+  hb.evaluate(x, &plus, nullptr);
+  hb.set_omega(w - h);
+  hb.evaluate(x, &minus, nullptr);
+  double slope_size = 0;
+  for (const double s : slope)
+    slope_size = std::max(slope_size, std::abs(s));
+  ASSERT_GT(slope_size, 0);
+  for (unsigned int r = 0; r < n; ++r)
+    EXPECT_NEAR(slope[r], (plus[r] - minus[r]) / (2 * h), 1e-6 * slope_size) << "row " << r;
 }

@@ -65,11 +65,15 @@ namespace nsm
     void   set_omega(double omega);
     double omega() const { return omega_; }
 
-    /// Residual, and (if asked) the Jacobian (column-major n x n).
+    /// Residual, and (if asked) the Jacobian (column-major n x n) and dR/dW
+    /// (-G dv/dW: the active set's edges, where q = 0, add nothing).
     void evaluate(const std::vector<double> &x, std::vector<double> *residual,
-                  std::vector<double> *jacobian) const;
+                  std::vector<double> *jacobian, std::vector<double> *domega = nullptr) const;
 
     ForcedMeasures measure(const std::vector<double> &x) const;
+
+    /// Share of the period in contact (measure()'s, alone).
+    double contact_fraction(const std::vector<double> &x) const;
 
     /// Coefficients of the tip displacement u(L, t) on the basis.
     std::vector<double> displacement(const std::vector<double> &x) const;
@@ -79,7 +83,9 @@ namespace nsm
 
   private:
     /// Gamma y for coefficients y on the basis (block k per harmonic).
-    std::vector<double> apply_receptance(const std::vector<double> &y) const;
+    std::vector<double> apply_receptance(const std::vector<double> &y) const { return apply(gamma_, y); }
+    /// The blocks of `values` (one complex number per harmonic) applied to y.
+    std::vector<double> apply(const std::vector<std::complex<double>> &values, const std::vector<double> &y) const;
     /// The indicator's scaled coefficients v.
     std::vector<double> contact_coefficients(const std::vector<double> &x) const;
     /// The tip force's coefficients: the drive minus s times the contact force.
@@ -99,5 +105,6 @@ namespace nsm
     double                            forcing_ = 0;
     double                            omega_   = -1;
     std::vector<std::complex<double>> gamma_; ///< gamma_d(k W), k = 0..M
+    std::vector<std::complex<double>> gamma_slope_; ///< d gamma_d(k W) / dW = k gamma_d'(k W)
   };
 } // namespace nsm

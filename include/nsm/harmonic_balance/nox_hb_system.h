@@ -17,8 +17,19 @@
 
 namespace nsm
 {
+  /// A system LOCA's dense group solves (continuation/dense_lu_group.h): the
+  /// LAPACK interface with dR/dW, and a clock for its linear solves.
+  class LocaSystem : public LOCA::LAPACK::Interface
+  {
+  public:
+    /// dR/dW at x.
+    virtual bool compute_domega(NOX::LAPACK::Vector &result, const NOX::LAPACK::Vector &x) = 0;
+    /// Records the wall time of a Jacobian's LU and its solves.
+    virtual void record_linear_solve(double /*seconds*/) {}
+  };
+
   /// The HB system at the Omega LOCA or the Newton driver sets.
-  class HbInterface : public LOCA::LAPACK::Interface
+  class HbInterface : public LocaSystem
   {
   public:
     HbInterface(HarmonicBalance &hb, std::vector<double> guess)
@@ -55,7 +66,7 @@ namespace nsm
       return all_finite(scratch_);
     }
 
-    bool compute_domega(NOX::LAPACK::Vector &result, const NOX::LAPACK::Vector &x)
+    bool compute_domega(NOX::LAPACK::Vector &result, const NOX::LAPACK::Vector &x) override
     {
       hb_.set_omega(omega_);
       hb_.evaluate(to_std(x), nullptr, nullptr, &scratch_);
@@ -73,6 +84,8 @@ namespace nsm
     }
 
     void set_omega(double omega) { omega_ = omega; }
+
+    void record_linear_solve(const double seconds) override { hb_.record_linear_solve(seconds); }
 
     std::function<void(const std::vector<double> &, double)> on_step;
 

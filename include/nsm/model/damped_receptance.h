@@ -29,7 +29,15 @@ namespace nsm
     /// `receptance` must use the modal method; both are kept by reference.
     DampedReceptance(const Receptance &receptance, const DampingParameters &damping);
 
-    std::complex<double> operator()(double omega) const;
+    std::complex<double> operator()(double omega) const { return value(omega).gamma; }
+
+    struct Value
+    {
+      std::complex<double> gamma;
+      std::complex<double> slope; ///< d gamma_d / d w
+    };
+    /// gamma_d and its slope in w.
+    Value value(double omega) const;
 
     /// sum_j r_j (w_j^2 + w^2) / |w_j^2 - w^2 + i c_j w|^2 (the far modes'
     /// g + 2 w^2 g'): a force P cos(w t) at the contact DoF, w > 0, gives the

@@ -1,0 +1,80 @@
+#!/usr/bin/env python3
+"""The forced response's peaks against the backbone at decreasing damping.
+
+usage: forced_damping.py NSM_BAR [WORK_DIRECTORY]
+Runs prm/forced.prm (the seed bar, FE_Q(10) x 20, M = 40) at modal damping
+0.01, 0.004, 0.002 and 0.001 with F = zeta x (5e-3, 1e-2, 2e-2), so that the
+peaks reach about the same energies, and prints the table of doc/method.md,
+"The forced response": per curve its peak (most energy) and where its phase
+lag crosses pi/2, each against the backbone's main branch, read from frc.csv
+and backbone.csv (main points on both sides at most 0.02 apart). About 15 s.
+Not part of CTest (scene.forced_response checks the 0.002 row).
+"""
+import bisect
+import csv
+import math
+import os
+import subprocess
+import sys
+
+EXE = sys.argv[1]
+WORK = sys.argv[2] if len(sys.argv) > 2 else "/tmp/nsm-forced-damping"
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def rows(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def main_at(main, omega):
+    xs = [w for w, _ in main]
+    i = bisect.bisect_left(xs, omega)
+    if i == 0 or i == len(xs) or xs[i] - xs[i - 1] > 0.02:
+        return None
+    (w0, e0), (w1, e1) = main[i - 1], main[i]
+    return e0 + (e1 - e0) * (omega - w0) / (w1 - w0)
+
+
+def against(main, omega, energy):
+    reference = main_at(main, omega)
+    return f"{100 * (energy / reference - 1):+.1f} %" if reference else "-"
+
+
+def quadratures(curve):
+    found = []
+    for p, q in zip(curve, curve[1:]):
+        a, b = float(p["phase"]) - math.pi / 2, float(q["phase"]) - math.pi / 2
+        if p["segment"] == q["segment"] and a * b <= 0 and a != b:
+            t = a / (a - b)
+            found.append((float(p["Omega"]) + t * (float(q["Omega"]) - float(p["Omega"])),
+                          float(p["energy"]) + t * (float(q["energy"]) - float(p["energy"]))))
+    return found
+
+
+def main():
+    os.makedirs(WORK, exist_ok=True)
+    print("| zeta | F | Omega reached | peak's Omega | peak / main - 1 | phase lag there | phase lag pi/2: Omega, E / main - 1 |")
+    print("|---|---|---|---|---|---|---|")
+    for zeta in (0.01, 0.004, 0.002, 0.001):
+        out = os.path.join(WORK, f"zeta_{zeta}")
+        forces = [zeta * k for k in (5e-3, 1e-2, 2e-2)]
+        subprocess.run([EXE, os.path.join(ROOT, "prm", "forced.prm"), "--output", out,
+                        "--set", f"Damping/Modal ratio={zeta}",
+                        "--set", "Forcing/Amplitudes=" + ", ".join(f"{f:g}" for f in forces),
+                        "--set", "Output/Plots=false"], check=True, capture_output=True)
+        main = sorted((float(r["Omega"]), float(r["energy"])) for r in rows(os.path.join(out, "backbone.csv"))
+                      if r["branch"] == "main")
+        frc = rows(os.path.join(out, "frc.csv"))
+        for force in forces:
+            curve = [r for r in frc if math.isclose(float(r["forcing"]), force, rel_tol=1e-12)]
+            omegas = [float(r["Omega"]) for r in curve]
+            peak = max(curve, key=lambda r: float(r["energy"]))
+            w, e = float(peak["Omega"]), float(peak["energy"])
+            crossings = "; ".join(f"{q:.4f}, {against(main, q, qe)}" for q, qe in quadratures(curve)) or "none"
+            print(f"| {zeta} | {force:g} | {min(omegas):.3f} to {max(omegas):.4f} | {w:.4f} | {against(main, w, e)} | "
+                  f"{float(peak['phase']):.2f} | {crossings} |", flush=True)
+
+
+if __name__ == "__main__":
+    main()
