@@ -361,6 +361,9 @@ namespace nsm
       /// or a per-point stage, ended before its last point.
       bool cut_short() const { return cut_short_ || backbone().end == BackboneEnd::interrupted; }
 
+      /// The forced curves a stop signal left out ("" if none).
+      const std::string &forced_left_out() const { return forced_left_out_; }
+
       /// The band the backbone used: M times its highest Omega (its points
       /// lie in the range; M Omega max if it has none).
       double used_band() const
@@ -464,10 +467,19 @@ namespace nsm
           const DampedReceptance  damped(stages_.receptance(), scene_.damping);
           ForcedHarmonicBalance   forced(scene_.harmonic_balance, scene_.contact, damped);
           std::vector<ForcedCurve> curves;
+          // A stop signal ends the stage between curves (each takes a second
+          // or so): the curves traced are written.
           for (const double amplitude : scene_.forcing.amplitudes)
-            curves.push_back(trace_forced_curve(forced, scene_.harmonic_balance, scene_.continuation,
-                                                scene_.continuation.omega_min, scene_.continuation.omega_max,
-                                                amplitude));
+            {
+              if (point_stop_signal() != 0)
+                {
+                  forced_left_out_ = "forced response's curves from F = " + significant(amplitude, 4) + " on";
+                  break;
+                }
+              curves.push_back(trace_forced_curve(forced, scene_.harmonic_balance, scene_.continuation,
+                                                  scene_.continuation.omega_min, scene_.continuation.omega_max,
+                                                  amplitude));
+            }
           tables_.push_back(forced_response_table(curves));
           for (std::string &line : forced_response_summary(curves, traces_branch() ? &backbone() : nullptr))
             report_.result.push_back(std::move(line));
@@ -659,6 +671,7 @@ namespace nsm
       std::vector<double>             estimates_; ///< per point; empty without Output/Error estimate
       std::unique_ptr<SpaceReference> space_;     ///< the band check's model (Output/Error estimate)
       bool cut_short_ = false; ///< a stop signal ended a stage before its last point
+      std::string                     forced_left_out_; ///< the curves a stop signal left out
       std::vector<PeriodicField>      fields_;
       CheckpointCompanions            companions_; ///< of the checkpoint resumed from
     };
@@ -777,6 +790,8 @@ namespace nsm
     if (scene.output.backbone)
       run.backbone_tables();
     stage(needs_forced, "forced response", [&] { run.forced_response(); });
+    if (!run.forced_left_out().empty())
+      skipped.push_back(run.forced_left_out());
     stage(needs_fields, "fields", [&] { run.fields(); });
     run.write(output.staging());
     // The plots are an output like the others, drawn also after a stop: a

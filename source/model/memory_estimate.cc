@@ -101,6 +101,17 @@ namespace nsm
         add(fields * 8 * dofs * (n + 2.0 * scene.field_time_samples()),
             "Output/Fields at, Output/Fields every and Output/Field time samples");
       }
+    if (scene.forcing.enabled())
+      {
+        // The forced harmonic balance's dense matrices (full basis), and
+        // every curve's points up to Max steps, each with its unknowns.
+        const double n       = 2.0 * scene.harmonic_balance.harmonics + 1;
+        const double samples = std::max<double>(scene.harmonic_balance.samples(), 8 * (n + 1));
+        add(8 * (6 * n * n + 4 * n * samples), "Harmonic balance/Harmonics");
+        add(double(scene.forcing.amplitudes.size()) * double(scene.continuation.max_steps) *
+              (bytes_per_point + bytes_per_point_unknown * n),
+            "Forcing/Amplitudes and Continuation/Max steps");
+      }
     estimate.bytes = std::min(estimate.bytes + process_bytes, 1e19);
     return estimate;
   }

@@ -19,7 +19,7 @@ namespace nsm
                       "",
                       Patterns::Anything(),
                       "Force levels F of the drive F cos(W t) at the contact end (x = L, along +x, towards "
-                      "the wall), comma-separated, each in (0, 1e20]: one frequency-response curve each, "
+                      "the wall), comma-separated, at most 100, each in (0, 1e20]: one frequency-response curve each, "
                       "written to frc.csv over Continuation's Omega range; needs damping (Damping). Empty: "
                       "no forced response.");
     prm.leave_subsection();
@@ -39,6 +39,8 @@ namespace nsm
         const double f = parse_double(item, "Forcing/Amplitudes");
         require(f > 0 && f <= magnitude_limit, "Forcing/Amplitudes", "numbers in (0, 1e20]", item);
         amplitudes.push_back(f);
+        require(amplitudes.size() <= max_amplitudes, "Forcing/Amplitudes",
+                "at most " + std::to_string(max_amplitudes) + " numbers (one curve each)", "a longer list");
       }
     prm.leave_subsection();
   }

@@ -10,7 +10,6 @@ lag crosses pi/2, each against the backbone's main branch, read from frc.csv
 and backbone.csv (main points on both sides at most 0.02 apart). About 15 s.
 Not part of CTest (scene.forced_response checks the 0.002 row).
 """
-import bisect
 import csv
 import math
 import os
@@ -20,6 +19,8 @@ import sys
 EXE = sys.argv[1]
 WORK = sys.argv[2] if len(sys.argv) > 2 else "/tmp/nsm-forced-damping"
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "tests", "common"))
+from main_branch import main_branch, main_energy_at  # noqa: E402
 
 
 def rows(path):
@@ -27,17 +28,8 @@ def rows(path):
         return list(csv.DictReader(f))
 
 
-def main_at(main, omega):
-    xs = [w for w, _ in main]
-    i = bisect.bisect_left(xs, omega)
-    if i == 0 or i == len(xs) or xs[i] - xs[i - 1] > 0.02:
-        return None
-    (w0, e0), (w1, e1) = main[i - 1], main[i]
-    return e0 + (e1 - e0) * (omega - w0) / (w1 - w0)
-
-
 def against(main, omega, energy):
-    reference = main_at(main, omega)
+    reference = main_energy_at(main, omega)
     return f"{100 * (energy / reference - 1):+.1f} %" if reference else "-"
 
 
@@ -63,8 +55,7 @@ def main():
                         "--set", f"Damping/Modal ratio={zeta}",
                         "--set", "Forcing/Amplitudes=" + ", ".join(f"{f:g}" for f in forces),
                         "--set", "Output/Plots=false"], check=True, capture_output=True)
-        main = sorted((float(r["Omega"]), float(r["energy"])) for r in rows(os.path.join(out, "backbone.csv"))
-                      if r["branch"] == "main")
+        main = main_branch(out)
         frc = rows(os.path.join(out, "frc.csv"))
         for force in forces:
             curve = [r for r in frc if math.isclose(float(r["forcing"]), force, rel_tol=1e-12)]

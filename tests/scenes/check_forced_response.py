@@ -20,13 +20,15 @@ damping 0.002, F = 1e-5, 2e-5, 4e-5) with its backbone, and checks (exit 0):
 A planted error in the damping's sign, the drive's phase or the damped
 receptance moves the ends' lags or the balance (and ForcedResponse.* fails).
 """
-import bisect
 import csv
 import math
 import os
 import shutil
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from main_branch import main_branch, main_energy_at  # noqa: E402
 
 EXE, SCENE = sys.argv[1], sys.argv[2]
 OUT = os.path.abspath("forced")
@@ -39,20 +41,6 @@ def check(ok, message):
         failures.append(message)
 
 
-def main_branch():
-    with open(os.path.join(OUT, "backbone.csv")) as f:
-        return sorted((float(r["Omega"]), float(r["energy"])) for r in csv.DictReader(f) if r["branch"] == "main")
-
-
-def main_at(main, omega):
-    xs = [w for w, _ in main]
-    i = bisect.bisect_left(xs, omega)
-    if i == 0 or i == len(xs) or xs[i] - xs[i - 1] > 0.02:
-        return None
-    (w0, e0), (w1, e1) = main[i - 1], main[i]
-    return e0 + (e1 - e0) * (omega - w0) / (w1 - w0)
-
-
 def main():
     shutil.rmtree(OUT, ignore_errors=True)
     run = subprocess.run([EXE, SCENE, "--output", OUT], capture_output=True, text=True)
@@ -60,7 +48,7 @@ def main():
         sys.exit(f"nsm-bar {SCENE} exited {run.returncode}: {run.stderr.strip()}")
     with open(os.path.join(OUT, "frc.csv")) as f:
         rows = list(csv.DictReader(f))
-    main = main_branch()
+    main = main_branch(OUT)
     forces = sorted({float(r["forcing"]) for r in rows})
     check(forces == [1e-5, 2e-5, 4e-5], f"curves {forces}, expected 1e-5, 2e-5, 4e-5")
     peaks = []
@@ -79,7 +67,7 @@ def main():
             balance = float(r["input_power"]) / float(r["dissipated_power"]) - 1
             check(abs(balance) <= 1e-6, f"F = {force}: drive's power / damping's - 1 = {balance} at W = {r['Omega']}")
         peak = max(curve, key=lambda r: float(r["energy"]))
-        reference = main_at(main, float(peak["Omega"]))
+        reference = main_energy_at(main, float(peak["Omega"]))
         distance = float(peak["energy"]) / reference - 1 if reference else None
         check(distance is not None and abs(distance) <= 0.05,
               f"F = {force}: peak at W = {peak['Omega']}, energy / main - 1 = {distance}")

@@ -53,6 +53,9 @@ namespace
       {"forcing_negative", "subsection Damping\n set Modal ratio = 0.01\nend\nsubsection Forcing\n set Amplitudes = 1e-5, -2\nend\n", "Forcing/Amplitudes", "numbers in (0, 1e20]"},
       {"forcing_direct", "subsection Damping\n set Modal ratio = 0.01\nend\nsubsection Receptance\n set Method = direct\nend\nsubsection Forcing\n set Amplitudes = 1e-5\nend\n", "Receptance/Method", "modal when Forcing/Amplitudes is set"},
       {"damping_ratio_large", "subsection Damping\n set Modal ratio = 2\nend\n", "Damping/Modal ratio", "a number in [0, 1]"},
+      {"forcing_too_many", "subsection Damping\n set Modal ratio = 0.01\nend\nsubsection Forcing\n set Amplitudes = " +
+         [] { std::string list = "1e-5"; for (int i = 0; i < 100; ++i) list += ", 1e-5"; return list; }() + "\nend\n",
+       "Forcing/Amplitudes", "at most 100 numbers"},
       {"sign_unknown", "subsection Contact\n set Force sign = attractive\nend\n", "Contact/Force sign", "one of physical, seed-eq5"},
       {"degree_zero", "subsection Discretisation\n set Degree = 0\nend\n", "Discretisation/Degree", "[1, 20]"},
       {"degree_large", "subsection Discretisation\n set Degree = 21\nend\n", "Discretisation/Degree", "[1, 20]"},

@@ -21,6 +21,10 @@ namespace nsm
 
     bool enabled() const { return !amplitudes.empty(); }
 
+    /// The longest list of amplitudes: each is a curve of up to Max steps
+    /// points, and a study of the damping needs a handful.
+    static constexpr unsigned int max_amplitudes = 100;
+
     static void declare(dealii::ParameterHandler &prm);
     void        parse(dealii::ParameterHandler &prm);
   };
