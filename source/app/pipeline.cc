@@ -480,10 +480,35 @@ namespace nsm
                                                   scene_.continuation.omega_min, scene_.continuation.omega_max,
                                                   amplitude));
             }
-          tables_.push_back(forced_response_table(curves));
+          const ForcedVerifications verifications = verify_forced_curves(forced, curves);
+          tables_.push_back(forced_response_table(curves, verifications));
+          if (!verifications.empty())
+            report_.result.push_back(forced_verification_summary(curves, verifications));
           for (std::string &line : forced_response_summary(curves, traces_branch() ? &backbone() : nullptr))
             report_.result.push_back(std::move(line));
         });
+      }
+
+      /// Every Forcing/Verify every-th point of each curve integrated in
+      /// time; empty without it. A stop signal ends it at a point.
+      ForcedVerifications verify_forced_curves(ForcedHarmonicBalance &forced, const std::vector<ForcedCurve> &curves)
+      {
+        const unsigned int every = scene_.forcing.verify_every;
+        ForcedVerifications verifications;
+        if (every == 0)
+          return verifications;
+        for (const ForcedCurve &curve : curves)
+          {
+            verifications.emplace_back(curve.points.size());
+            forced.set_forcing(curve.forcing);
+            for (std::size_t i = 0; i < curve.points.size() && point_stop_signal() == 0; i += every)
+              {
+                forced.set_omega(curve.points[i].omega);
+                verifications.back()[i] = verify_forced_point(forced, curve.points[i].x, scene_.output.verify_steps,
+                                                              scene_.forcing.verify_periods);
+              }
+          }
+        return verifications;
       }
 
       void fields()

@@ -80,20 +80,56 @@ namespace nsm
     }
   } // namespace
 
-  CsvTable forced_response_table(const std::vector<ForcedCurve> &curves)
+  CsvTable forced_response_table(const std::vector<ForcedCurve> &curves, const ForcedVerifications &verifications)
   {
     CsvTable table{"frc.csv",
-                   {"forcing", "segment", "Omega", "energy", "tip_amplitude", "phase", "contact_fraction", "max_contact_force",
-                    "input_power", "dissipated_power", "residual"},
+                   {"forcing", "segment", "Omega", "energy", "tip_amplitude", "phase", "contact_fraction",
+                    "max_contact_force", "input_power", "dissipated_power", "residual"},
                    {}};
-    for (const ForcedCurve &curve : curves)
-      for (const ForcedPoint &p : curve.points)
+    if (!verifications.empty())
+      for (const char *column : {"verified_tip_amplitude", "verified_energy", "verified_drift"})
+        table.columns.push_back(column);
+    for (std::size_t c = 0; c < curves.size(); ++c)
+      for (std::size_t i = 0; i < curves[c].points.size(); ++i)
         {
+          const ForcedPoint    &p = curves[c].points[i];
           const ForcedMeasures &m = p.measures;
-          table.rows.push_back({curve.forcing, double(p.segment), p.omega, m.energy, m.tip_amplitude, m.phase, m.contact_fraction,
-                                m.max_contact_force, m.input_power, m.dissipated_power, p.residual});
+          table.rows.push_back({curves[c].forcing, double(p.segment), p.omega, m.energy, m.tip_amplitude, m.phase,
+                                m.contact_fraction, m.max_contact_force, m.input_power, m.dissipated_power,
+                                p.residual});
+          if (verifications.empty())
+            continue;
+          const std::optional<ForcedVerification> &v = verifications[c][i];
+          for (const double value : {v ? v->tip_amplitude : 0.0, v ? v->energy : 0.0, v ? v->drift : 0.0})
+            table.rows.back().push_back(v ? CsvCell(value) : CsvCell(std::string()));
         }
     return table;
+  }
+
+  std::string forced_verification_summary(const std::vector<ForcedCurve> &curves,
+                                          const ForcedVerifications      &verifications)
+  {
+    std::vector<double> amplitude, energy, drift;
+    for (std::size_t c = 0; c < curves.size(); ++c)
+      for (std::size_t i = 0; i < curves[c].points.size(); ++i)
+        if (const auto &v = verifications[c][i])
+          {
+            const ForcedMeasures &m = curves[c].points[i].measures;
+            amplitude.push_back(std::abs(v->tip_amplitude / m.tip_amplitude - 1));
+            energy.push_back(std::abs(v->energy / m.energy - 1));
+            drift.push_back(v->drift);
+          }
+    if (amplitude.empty())
+      return "forced response verified in time: no point";
+    const auto median_and_largest = [](std::vector<double> values) {
+      std::sort(values.begin(), values.end());
+      return "median " + significant(values[values.size() / 2], 2) + ", largest " + significant(values.back(), 2);
+    };
+    return "forced response verified in time (the damped, driven model from each point's motion, the last period "
+           "of those integrated): " +
+           std::to_string(amplitude.size()) + " points; |tip amplitude / the point's - 1| " +
+           median_and_largest(amplitude) + "; |energy / the point's - 1| " + median_and_largest(energy) +
+           "; the last period's drift max |u(L, t) - u(L, t - T)| / g0 " + median_and_largest(drift);
   }
 
   std::vector<std::string> forced_response_summary(const std::vector<ForcedCurve> &curves,

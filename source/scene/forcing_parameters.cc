@@ -22,12 +22,25 @@ namespace nsm
                       "the wall), comma-separated, at most 100, each in (0, 1e20]: one frequency-response curve each, "
                       "written to frc.csv over Continuation's Omega range; needs damping (Damping). Empty: "
                       "no forced response.");
+    const ForcingParameters d;
+    prm.declare_entry("Verify every",
+                      text(d.verify_every),
+                      Patterns::Integer(0, 1000000),
+                      "Integrate every n-th point of each forced curve in time (the damped, driven model with "
+                      "the physical wall, Output/Verify steps per period, from the point's own motion) and write "
+                      "the last period's tip amplitude and energy to frc.csv; 0 = none.");
+    prm.declare_entry("Verify periods",
+                      text(d.verify_periods),
+                      Patterns::Integer(1, 100000),
+                      "Periods integrated from each verified point; the last one is compared with the point.");
     prm.leave_subsection();
   }
 
   void ForcingParameters::parse(ParameterHandler &prm)
   {
     prm.enter_subsection("Forcing");
+    verify_every   = get_unsigned(prm, "Verify every");
+    verify_periods = get_unsigned(prm, "Verify periods");
     amplitudes.clear();
     std::stringstream items(prm.get("Amplitudes"));
     std::string       item;

@@ -119,6 +119,9 @@ namespace nsm
             "response's unknowns; a gap no motion reaches gives the linear response)", "false");
     require(receptance.method == ReceptanceMethod::modal, "Receptance/Method",
             "modal when Forcing/Amplitudes is set (the damped receptance is a modal sum)", "direct");
+    require(forcing.verify_every == 0 || contact.sign == ForceSign::physical, "Forcing/Verify every",
+            "0 when Contact/Force sign = seed-eq5 (the time integration has the physical wall)",
+            std::to_string(forcing.verify_every));
   }
 
   Scene Scene::from_file(const std::string &path)

@@ -114,6 +114,8 @@ namespace
       {"Damping/Rayleigh alpha", "0.1", {}, NSM_MEMBER(damping.rayleigh_alpha)},
       {"Damping/Rayleigh beta", "0.001", {}, NSM_MEMBER(damping.rayleigh_beta)},
       {"Forcing/Amplitudes", "1e-5, 2e-5", {"Damping/Modal ratio=0.01"}, NSM_MEMBER(forcing.amplitudes)},
+      {"Forcing/Verify every", "5", {}, NSM_MEMBER(forcing.verify_every)},
+      {"Forcing/Verify periods", "7", {}, NSM_MEMBER(forcing.verify_periods)},
       {"Output/Directory", "elsewhere", {}, NSM_MEMBER(output.directory)},
       {"Output/Spectrum modes", "4", {}, NSM_MEMBER(output.spectrum_modes)},
       {"Output/Receptance frequencies", "0.5, 1", {}, NSM_MEMBER(output.receptance_frequencies)},

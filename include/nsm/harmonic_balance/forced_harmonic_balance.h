@@ -77,6 +77,11 @@ namespace nsm
 
     /// Coefficients of the tip displacement u(L, t) on the basis.
     std::vector<double> displacement(const std::vector<double> &x) const;
+    /// Coefficients of the tip force on the basis: the drive less s times
+    /// the contact force.
+    std::vector<double> tip_force(const std::vector<double> &x) const;
+
+    const DampedReceptance &receptance() const { return receptance_; }
 
     double force_scale() const { return force_scale_; }
     const ContactLaw &law() const { return law_; }
@@ -88,8 +93,6 @@ namespace nsm
     std::vector<double> apply(const std::vector<std::complex<double>> &values, const std::vector<double> &y) const;
     /// The indicator's scaled coefficients v.
     std::vector<double> contact_coefficients(const std::vector<double> &x) const;
-    /// The tip force's coefficients: the drive minus s times the contact force.
-    std::vector<double> tip_force(const std::vector<double> &x) const;
     /// max over the period of |series|, from the samples refined near the largest.
     double largest_magnitude(const std::vector<double> &coefficients) const;
     double compliant_wall_energy(const std::vector<double> &u) const;

@@ -50,6 +50,8 @@ namespace nsm
     double dissipation_factor(double omega) const;
 
     const Receptance &undamped() const { return receptance_; }
+    /// c_j of each mode of undamped().modes().
+    const std::vector<double> &coefficients() const { return coefficients_; }
 
   private:
     const Receptance   &receptance_;

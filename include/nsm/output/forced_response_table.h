@@ -5,14 +5,28 @@
 #include <nsm/base/csv.h>
 #include <nsm/continuation/continuation.h>
 #include <nsm/continuation/forced_response.h>
+#include <nsm/verification/forced_time_verification.h>
+
+#include <optional>
 
 #include <string>
 #include <vector>
 
 namespace nsm
 {
-  /// One row per point of each curve, in the curves' order and along each.
-  CsvTable forced_response_table(const std::vector<ForcedCurve> &curves);
+  /// Per curve, per point: its verification in time, if it has one.
+  using ForcedVerifications = std::vector<std::vector<std::optional<ForcedVerification>>>;
+
+  /// One row per point of each curve, in the curves' order and along each;
+  /// with `verifications` not empty, the verification columns (empty cells
+  /// for a point not verified).
+  CsvTable forced_response_table(const std::vector<ForcedCurve> &curves, const ForcedVerifications &verifications);
+
+  /// The verification's Result line: points, and the medians and largest of
+  /// |A_t / A - 1| (tip amplitude) and |E_t / E - 1| (energy), and of the
+  /// last period's drift.
+  std::string forced_verification_summary(const std::vector<ForcedCurve> &curves,
+                                          const ForcedVerifications      &verifications);
 
   /// Per curve: its points and Omega extent, whether it reached the range's
   /// end, and its peak (largest energy): Omega, energy, phase lag; with a

@@ -18,6 +18,10 @@ namespace nsm
   {
     /// Force levels F, one curve each; empty: no forced response.
     std::vector<double> amplitudes;
+    /// Every n-th point of each curve integrated in time (0: none).
+    unsigned int verify_every = 0;
+    /// Periods integrated from each such point.
+    unsigned int verify_periods = 20;
 
     bool enabled() const { return !amplitudes.empty(); }
 
