@@ -83,6 +83,13 @@ namespace nsm
       std::vector<double> displacement;          ///< u(L, t)'s coefficients
     };
 
+    /// The guard's view of the point x at omega.
+    LastPoint last_point(ForcedHarmonicBalance &hb, const double omega, const std::vector<double> &x)
+    {
+      hb.set_omega(omega);
+      return {hb.contact_fraction(x), hb.displacement(x)};
+    }
+
     /// 2-norm of a - b over 2-norm of the larger.
     double relative_change(const std::vector<double> &a, const std::vector<double> &b)
     {
@@ -94,6 +101,16 @@ namespace nsm
           size_b += b[i] * b[i];
         }
       return std::sqrt(difference / std::max({size_a, size_b, std::numeric_limits<double>::min()}));
+    }
+
+    /// The step's guard: the contact fraction within Max contact change of
+    /// the last point's, and the contact end's motion (its coefficients)
+    /// within Max solution change of the last point's, relative.
+    bool within_guard(const ContinuationParameters &continuation, const LastPoint &last, const double contact,
+                      const std::vector<double> &displacement)
+    {
+      return std::abs(contact - last.contact) <= continuation.max_contact_change &&
+             relative_change(displacement, last.displacement) <= continuation.max_solution_change;
     }
 
     /// Newton's tests, and where they converge, the step's guard: a step
@@ -112,8 +129,7 @@ namespace nsm
                   const ContinuationParameters &continuation, const LastPoint &last)
         : newton_(newton)
         , hb_(hb)
-        , max_contact_change_(continuation.max_contact_change)
-        , max_solution_change_(continuation.max_solution_change)
+        , continuation_(continuation)
         , last_(last)
       {}
 
@@ -128,9 +144,7 @@ namespace nsm
         const auto &x = dynamic_cast<const NOX::LAPACK::Vector &>(*extended.getXVec());
         hb_.set_omega(extended.getScalar(0));
         const std::vector<double> unknowns = HbInterface::to_std(x);
-        const double              contact  = hb_.contact_fraction(unknowns);
-        if (std::abs(contact - last_.contact) > max_contact_change_ ||
-            relative_change(hb_.displacement(unknowns), last_.displacement) > max_solution_change_)
+        if (!within_guard(continuation_, last_, hb_.contact_fraction(unknowns), hb_.displacement(unknowns)))
           status_ = NOX::StatusTest::Failed;
         return status_;
       }
@@ -139,13 +153,13 @@ namespace nsm
 
       std::ostream &print(std::ostream &stream, int indent) const override
       {
-        return stream << std::string(indent, ' ') << status_ << " contact fraction within Max contact change\n";
+        return stream << std::string(indent, ' ') << status_ << " contact and motion within Max contact change and Max solution change\n";
       }
 
     private:
       Teuchos::RCP<NOX::StatusTest::Generic> newton_;
       ForcedHarmonicBalance                 &hb_;
-      double                                 max_contact_change_, max_solution_change_;
+      const ContinuationParameters          &continuation_;
       const LastPoint                       &last_;
       NOX::StatusTest::StatusType            status_ = NOX::StatusTest::Unevaluated;
     };
@@ -185,10 +199,7 @@ namespace nsm
                                                       Teuchos::RCP<std::ostream>(new Teuchos::oblackholestream));
       return params;
     }
-  } // namespace
 
-  namespace
-  {
     /// Where a stepper run starts, and how.
     struct StepperStart
     {
@@ -223,10 +234,7 @@ namespace nsm
       auto       data          = LOCA::createGlobalData(params);
       LastPoint  last;
       if (!start.keep_start)
-        {
-          hb.set_omega(start.omega);
-          last = {hb.measure(start.x).contact_fraction, hb.displacement(start.x)};
-        }
+        last = last_point(hb, start.omega, start.x);
       bool       finished      = false;
       {
         ForcedInterface interface(hb, start.x);
@@ -268,17 +276,11 @@ namespace nsm
     bool within_guard(ForcedHarmonicBalance &hb, const ContinuationParameters &continuation, const ForcedPoint &last,
                       const ForcedPoint &next)
     {
-      hb.set_omega(last.omega);
-      const std::vector<double> u_last = hb.displacement(last.x);
+      const LastPoint guard = last_point(hb, last.omega, last.x);
       hb.set_omega(next.omega);
-      return std::abs(next.measures.contact_fraction - last.measures.contact_fraction) <=
-               continuation.max_contact_change &&
-             relative_change(hb.displacement(next.x), u_last) <= continuation.max_solution_change;
+      return within_guard(continuation, guard, next.measures.contact_fraction, hb.displacement(next.x));
     }
-  } // namespace
 
-  namespace
-  {
     /// The direction of travel at a stall is read over this many points
     /// back: near a stall the last steps may go back and forth.
     constexpr std::size_t travel_points = 10;

@@ -1,6 +1,7 @@
 #include <nsm/base/assertions.h>
 #include <nsm/harmonic_balance/forced_harmonic_balance.h>
 #include <nsm/harmonic_balance/trigonometric.h>
+#include <nsm/harmonic_balance/trigonometric_series.h>
 
 #include <algorithm>
 #include <cmath>
@@ -96,10 +97,11 @@ namespace nsm
                                        std::vector<double>       *domega) const
   {
     const unsigned int        n    = n_unknowns();
-    const StructuredGram     &gram = active_set_.gram(contact_coefficients(x));
+    const std::vector<double> v    = contact_coefficients(x);
+    const StructuredGram     &gram = active_set_.gram(v);
     if (residual)
       {
-        gram.multiply(contact_coefficients(x), *residual);
+        gram.multiply(v, *residual);
         for (unsigned int i = 0; i < n; ++i)
           (*residual)[i] = x[i] - (*residual)[i];
       }
@@ -152,8 +154,9 @@ namespace nsm
     for (unsigned int s = 1; s < samples.size(); ++s)
       if (std::abs(samples[s]) > std::abs(samples[best]))
         best = s;
-    const double spacing = two_pi / samples.size();
-    const auto   size    = [&](double tau) { return std::abs(active_set_.value(coefficients, tau, nullptr)); };
+    const double              spacing = two_pi / samples.size();
+    const TrigonometricSeries series(functions_, coefficients);
+    const auto                size = [&](double tau) { return std::abs(series(tau, nullptr)); };
     double       low = (best - 1.0) * spacing, high = (best + 1.0) * spacing;
     const double ratio = (std::sqrt(5.0) - 1) / 2;
     double       c = high - ratio * (high - low), d = low + ratio * (high - low);
