@@ -3,7 +3,6 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <sstream>
 
 namespace nsm
 {
@@ -42,13 +41,8 @@ namespace nsm
     verify_every   = get_unsigned(prm, "Verify every");
     verify_periods = get_unsigned(prm, "Verify periods");
     amplitudes.clear();
-    std::stringstream items(prm.get("Amplitudes"));
-    std::string       item;
-    while (std::getline(items, item, ','))
+    for (const std::string &item : list_items(prm.get("Amplitudes")))
       {
-        item = trim(item);
-        if (item.empty())
-          continue;
         const double f = parse_double(item, "Forcing/Amplitudes");
         require(f > 0 && f <= magnitude_limit, "Forcing/Amplitudes", "numbers in (0, 1e20]", item);
         amplitudes.push_back(f);

@@ -19,13 +19,8 @@ namespace nsm
                                            const std::string &parameter)
   {
     std::vector<double> values;
-    std::stringstream   items(text);
-    std::string         item;
-    while (std::getline(items, item, ','))
+    for (const std::string &item : list_items(text))
       {
-        item = trim(item);
-        if (item.empty())
-          continue;
         std::vector<std::string> parts;
         std::stringstream        fields(item);
         std::string              field;

@@ -41,6 +41,16 @@ namespace nsm::scene_entries
     return s.substr(first, last - first + 1);
   }
 
+  std::vector<std::string> list_items(const std::string &text)
+  {
+    std::vector<std::string> items;
+    std::stringstream        in(text);
+    for (std::string item; std::getline(in, item, ',');)
+      if (!(item = trim(item)).empty())
+        items.push_back(item);
+    return items;
+  }
+
   bool outside_normal_range(const std::string &text)
   {
     errno              = 0;

@@ -37,6 +37,9 @@ namespace nsm::scene_entries
   /// `s` without its leading and trailing blanks and tabs.
   std::string trim(const std::string &s);
 
+  /// The comma-separated items of a list entry, trimmed; empty ones left out.
+  std::vector<std::string> list_items(const std::string &text);
+
   /// A finite number, all of `text`; else an InputError naming `parameter`.
   /// A subnormal one is refused too (outside_normal_range).
   double parse_double(const std::string &text, const std::string &parameter);
