@@ -361,7 +361,7 @@ namespace nsm
       /// or a per-point stage, ended before its last point.
       bool cut_short() const { return cut_short_ || backbone().end == BackboneEnd::interrupted; }
 
-      /// The forced curves a stop signal left out ("" if none).
+      /// The forced work (curves, verification) a stop signal left out ("" if none).
       const std::string &forced_left_out() const { return forced_left_out_; }
 
       /// The band the backbone used: M times its highest Omega (its points
@@ -490,7 +490,8 @@ namespace nsm
       }
 
       /// Every Forcing/Verify every-th point of each curve integrated in
-      /// time; empty without it. A stop signal ends it at a point.
+      /// time; empty without it. A stop signal ends it at a point, and the
+      /// summary says what it left out.
       ForcedVerifications verify_forced_curves(ForcedHarmonicBalance &forced, const std::vector<ForcedCurve> &curves)
       {
         const unsigned int every = scene_.forcing.verify_every;
@@ -501,8 +502,16 @@ namespace nsm
           {
             verifications.emplace_back(curve.points.size());
             forced.set_forcing(curve.forcing);
-            for (std::size_t i = 0; i < curve.points.size() && point_stop_signal() == 0; i += every)
+            for (std::size_t i = 0; i < curve.points.size(); i += every)
               {
+                if (point_stop_signal() != 0)
+                  {
+                    if (forced_left_out_.empty())
+                      forced_left_out_ = "the forced response's verification in time from F = " +
+                                         significant(curve.forcing, 4) + ", Omega = " +
+                                         significant(curve.points[i].omega, 6) + " on";
+                    return verifications;
+                  }
                 forced.set_omega(curve.points[i].omega);
                 verifications.back()[i] = verify_forced_point(forced, curve.points[i].x, scene_.output.verify_steps,
                                                               scene_.forcing.verify_periods);
@@ -696,7 +705,7 @@ namespace nsm
       std::vector<double>             estimates_; ///< per point; empty without Output/Error estimate
       std::unique_ptr<SpaceReference> space_;     ///< the band check's model (Output/Error estimate)
       bool cut_short_ = false; ///< a stop signal ended a stage before its last point
-      std::string                     forced_left_out_; ///< the curves a stop signal left out
+      std::string                     forced_left_out_; ///< the forced work a stop signal left out
       std::vector<PeriodicField>      fields_;
       CheckpointCompanions            companions_; ///< of the checkpoint resumed from
     };
