@@ -135,7 +135,7 @@ def checked(path, line, row, columns):
 # frc.csv's columns (doc/output.md): the forced response's curves.
 FRC = {"forcing": Column(required=True, positive=True), "segment": Column(required=True, whole=True),
        "Omega": Column(required=True), "energy": Column(required=True, positive=True),
-       "tip_amplitude": Column(required=True), "phase": Column(required=True),
+       "tip_amplitude": Column(required=True), "phase": Column(required=True), "stable": Column(whole=True),
        **{name: Column() for name in ("contact_fraction", "max_contact_force", "input_power", "dissipated_power",
                                       "residual")}}
 

@@ -313,20 +313,29 @@ def frc_plot(directory):
     for n, force in enumerate(sorted(set(frc["forcing"]))):
         rows = [i for i, f in enumerate(frc["forcing"]) if f == force]
         color = f"C{n % 10}"
-        # A line through consecutive points of one segment (a leap starts a new one).
+        stable = frc.get("stable") or [1] * len(frc["forcing"])
+        # A line through consecutive points of one segment (a leap starts a
+        # new one), solid where the fold test finds them stable and dashed
+        # where not; a change of verdict joins the two at its last point.
         runs, run = [], []
         for i in rows:
             if run and frc["segment"][i] != frc["segment"][run[-1]]:
                 runs.append(run)
                 run = []
+            elif run and stable[i] != stable[run[-1]]:
+                runs.append(run)
+                run = [run[-1]]
             run.append(i)
         runs.append(run)
         for k, r in enumerate(runs):
             label = f"F = {force:g}" if k == 0 else None
-            top.semilogy([frc["Omega"][i] for i in r], [frc["energy"][i] / e_g for i in r], "-", linewidth=1,
+            style = "-" if stable[r[-1]] == 1 else "--"
+            top.semilogy([frc["Omega"][i] for i in r], [frc["energy"][i] / e_g for i in r], style, linewidth=1,
                          color=color, label=label)
-            bottom.plot([frc["Omega"][i] for i in r], [frc["tip_amplitude"][i] / GAP for i in r], "-",
+            bottom.plot([frc["Omega"][i] for i in r], [frc["tip_amplitude"][i] / GAP for i in r], style,
                         linewidth=1, color=color, label=label)
+    if any(s == 0 for s in frc.get("stable") or []):
+        bottom.plot([], [], "--", linewidth=1, color="0.3", label="unstable (fold test)")
     top.set_ylabel(f"energy / E_g (E_g of mode {mode}, grazing.csv)" if mode else "energy")
     bottom.set_ylabel("max |u(L, t)| / g0")
     bottom.axhline(1, color="0.6", linewidth=0.6, linestyle=":")

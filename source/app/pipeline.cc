@@ -486,6 +486,8 @@ namespace nsm
             report_.result.push_back(forced_verification_summary(curves, verifications));
           for (std::string &line : forced_response_summary(curves, traces_branch() ? &backbone() : nullptr))
             report_.result.push_back(std::move(line));
+          for (std::string &event : forced_response_events(curves))
+            report_.events.push_back(std::move(event));
         });
       }
 
@@ -513,8 +515,12 @@ namespace nsm
                     return verifications;
                   }
                 forced.set_omega(curve.points[i].omega);
-                verifications.back()[i] = verify_forced_point(forced, curve.points[i].x, scene_.output.verify_steps,
-                                                              scene_.forcing.verify_periods);
+                const unsigned int periods =
+                  scene_.forcing.verify_periods > 0 ?
+                    scene_.forcing.verify_periods :
+                    steady_state_periods(forced.receptance(), curve.points[i].omega, ForcingParameters::max_verify_periods);
+                verifications.back()[i] =
+                  verify_forced_point(forced, curve.points[i].x, scene_.output.verify_steps, periods);
               }
           }
         return verifications;

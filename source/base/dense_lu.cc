@@ -256,6 +256,15 @@ namespace nsm
       }
   }
 
+  int lu_determinant_sign(const int n, const double *lu, const int *pivots)
+  {
+    int sign = 1;
+    for (int k = 0; k < n; ++k)
+      if ((pivots[k] != k) != (lu[k + std::size_t(k) * n] < 0))
+        sign = -sign;
+    return sign;
+  }
+
   bool dense_solve(const int n, double *a, double *x)
   {
     std::vector<int> pivots(n);

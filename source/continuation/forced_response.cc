@@ -259,7 +259,7 @@ namespace nsm
             ++rejected;
           else
             {
-              points.push_back({start.segment, omega, hb.measure(x), norm, x});
+              points.push_back({start.segment, omega, hb.measure(x), norm, hb.stable(x), x});
               last = {points.back().measures.contact_fraction, hb.displacement(x)};
             }
         };
@@ -344,11 +344,15 @@ namespace nsm
       /// Where every step fails, the curve may turn at a corner (a contact
       /// interval opening or closing) that the stepper's tangent does not
       /// follow: start again from the last point, along the tangent either
-      /// way or by a step of Initial step in W at fixed W, with the first
-      /// start whose first point leaves the point before behind within the
-      /// step's guard. Where the curve meets the linear response (its contact
-      /// ends) only the fixed-W start leaves the contact branch. Not twice
-      /// from one Omega: a curve back there cycles.
+      /// way, or at fixed W a distance away on either side, halving from
+      /// Initial step to Min step, with the first start whose first point
+      /// leaves the point before behind within the step's guard. Where the
+      /// curve meets the linear response (its contact ends) only a fixed-W
+      /// start leaves the contact branch, and near a light damping's
+      /// resonance only a short one: the linear response's amplitude changes
+      /// by a share 2 W dW / |w1^2 - W^2| per dW, more than Max solution
+      /// change over Initial step at 0.1 % damping. Not twice from one
+      /// Omega: a curve back there cycles.
       bool restart_at_corner()
       {
         const ForcedPoint last = curve_.points.back(), before = curve_.points[curve_.points.size() - 2];
@@ -361,11 +365,14 @@ namespace nsm
         const auto leaves_behind = [&](const ForcedPoint &next) {
           return distance(next, before) > distance(last, before) && within_guard(hb_, continuation_, last, next);
         };
-        const double step = continuation_.initial_step;
-        for (const StepperStart &start : {StepperStart{last.omega, last.x, step, 1, false, last.segment},
-                                          StepperStart{last.omega, last.x, -step, 1, false, last.segment},
-                                          StepperStart{last.omega + step, last.x, step, 1, true, last.segment},
-                                          StepperStart{last.omega - step, last.x, -step, 1, true, last.segment}})
+        std::vector<StepperStart> starts;
+        const double              step = continuation_.initial_step;
+        for (const double direction : {1.0, -1.0})
+          starts.push_back({last.omega, last.x, direction * step, 1, false, last.segment});
+        for (double distance = step; distance >= continuation_.min_step; distance /= 2)
+          for (const double direction : {1.0, -1.0})
+            starts.push_back({last.omega + direction * distance, last.x, direction * distance, 1, true, last.segment});
+        for (const StepperStart &start : starts)
           if (go_on(start, leaves_behind))
             {
               ++curve_.restarts;

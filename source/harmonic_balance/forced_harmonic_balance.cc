@@ -1,4 +1,5 @@
 #include <nsm/base/assertions.h>
+#include <nsm/base/dense_lu.h>
 #include <nsm/harmonic_balance/forced_harmonic_balance.h>
 #include <nsm/harmonic_balance/trigonometric.h>
 #include <nsm/harmonic_balance/trigonometric_series.h>
@@ -187,6 +188,15 @@ namespace nsm
   double ForcedHarmonicBalance::contact_fraction(const std::vector<double> &x) const
   {
     return active_set_.gram(contact_coefficients(x)).share();
+  }
+
+  bool ForcedHarmonicBalance::stable(const std::vector<double> &x) const
+  {
+    std::vector<double> jacobian;
+    evaluate(x, nullptr, &jacobian);
+    const int        n = n_unknowns();
+    std::vector<int> pivots(n);
+    return lu_factor(n, jacobian.data(), pivots.data()) && lu_determinant_sign(n, jacobian.data(), pivots.data()) > 0;
   }
 
   ForcedMeasures ForcedHarmonicBalance::measure(const std::vector<double> &x) const

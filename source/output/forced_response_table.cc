@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 namespace nsm
@@ -76,14 +77,23 @@ namespace nsm
                 " leaps past stalls";
       if (curve.rejected > 0)
         text += ", " + std::to_string(curve.rejected) + " steps above the tolerance not written";
-      return text;
+      const auto unstable =
+        std::count_if(curve.points.begin(), curve.points.end(), [](const ForcedPoint &p) { return !p.stable; });
+      text += "; " + std::to_string(unstable) + " unstable by the fold test";
+      std::string changes;
+      for (std::size_t i = 1; i < curve.points.size(); ++i)
+        if (curve.points[i].segment == curve.points[i - 1].segment &&
+            curve.points[i].stable != curve.points[i - 1].stable)
+          changes += (changes.empty() ? ", the verdict changing at Omega " : ", ") +
+                     significant(curve.points[i].omega, 6);
+      return text + changes;
     }
   } // namespace
 
   CsvTable forced_response_table(const std::vector<ForcedCurve> &curves, const ForcedVerifications &verifications)
   {
     CsvTable table{"frc.csv",
-                   {"forcing", "segment", "Omega", "energy", "tip_amplitude", "phase", "contact_fraction",
+                   {"forcing", "segment", "Omega", "energy", "tip_amplitude", "phase", "contact_fraction", "stable",
                     "max_contact_force", "input_power", "dissipated_power", "residual"},
                    {}};
     if (!verifications.empty())
@@ -95,7 +105,7 @@ namespace nsm
           const ForcedPoint    &p = curves[c].points[i];
           const ForcedMeasures &m = p.measures;
           table.rows.push_back({curves[c].forcing, double(p.segment), p.omega, m.energy, m.tip_amplitude, m.phase,
-                                m.contact_fraction, m.max_contact_force, m.input_power, m.dissipated_power,
+                                m.contact_fraction, double(p.stable), m.max_contact_force, m.input_power, m.dissipated_power,
                                 p.residual});
           if (verifications.empty())
             continue;
@@ -109,27 +119,69 @@ namespace nsm
   std::string forced_verification_summary(const std::vector<ForcedCurve> &curves,
                                           const ForcedVerifications      &verifications)
   {
+    // The stable points' agreement; the unstable ones only as left or kept.
     std::vector<double> amplitude, energy, drift;
+    unsigned int        fewest = std::numeric_limits<unsigned int>::max(), most = 0;
+    unsigned int        points = 0, unstable = 0, left = 0;
+    const double        within = forced_verification_constants::stays_within;
     for (std::size_t c = 0; c < curves.size(); ++c)
       for (std::size_t i = 0; i < curves[c].points.size(); ++i)
         if (const auto &v = verifications[c][i])
           {
-            const ForcedMeasures &m = curves[c].points[i].measures;
-            amplitude.push_back(std::abs(v->tip_amplitude / m.tip_amplitude - 1));
-            energy.push_back(std::abs(v->energy / m.energy - 1));
+            const ForcedPoint &p      = curves[c].points[i];
+            const double       change = std::abs(v->tip_amplitude / p.measures.tip_amplitude - 1);
+            ++points;
+            fewest = std::min(fewest, v->periods);
+            most   = std::max(most, v->periods);
+            if (!p.stable)
+              {
+                ++unstable;
+                left += change > within ? 1 : 0;
+                continue;
+              }
+            amplitude.push_back(change);
+            energy.push_back(std::abs(v->energy / p.measures.energy - 1));
             drift.push_back(v->drift);
           }
-    if (amplitude.empty())
+    if (points == 0)
       return "forced response verified in time: no point";
     const auto median_and_largest = [](std::vector<double> values) {
       std::sort(values.begin(), values.end());
       return "median " + significant(values[values.size() / 2], 2) + ", largest " + significant(values.back(), 2);
     };
-    return "forced response verified in time (the damped, driven model from each point's motion, the last period "
-           "of those integrated): " +
-           std::to_string(amplitude.size()) + " points; |tip amplitude / the point's - 1| " +
-           median_and_largest(amplitude) + "; |energy / the point's - 1| " + median_and_largest(energy) +
-           "; the last period's drift max |u(L, t) - u(L, t - T)| / g0 " + median_and_largest(drift);
+    const std::string percent = significant(100 * within, 2) + " %";
+    std::string       line =
+      "forced response verified in time (the damped, driven model from each point's motion; the last of " +
+      (fewest == most ? std::to_string(most) : std::to_string(fewest) + " to " + std::to_string(most)) +
+      " periods integrated): " + std::to_string(points) + " points, " + std::to_string(amplitude.size()) +
+      " stable and " + std::to_string(unstable) + " unstable by the fold test";
+    if (!amplitude.empty())
+      line += "; the stable ones: |tip amplitude / the point's - 1| " + median_and_largest(amplitude) +
+              ", kept within " + percent + " on " +
+              std::to_string(std::count_if(amplitude.begin(), amplitude.end(), [&](double a) { return a <= within; })) +
+              "; |energy / the point's - 1| " + median_and_largest(energy) +
+              "; the last period's drift max |u(L, t) - u(L, t - T)| / g0 " + median_and_largest(drift);
+    if (unstable > 0)
+      line += "; the unstable ones left by more than " + percent + ": " + std::to_string(left) + " of " +
+              std::to_string(unstable);
+    return line;
+  }
+
+  std::vector<std::string> forced_response_events(const std::vector<ForcedCurve> &curves)
+  {
+    std::vector<std::string> events;
+    for (const ForcedCurve &curve : curves)
+      for (std::size_t i = 1; i < curve.points.size(); ++i)
+        {
+          const ForcedPoint &p = curve.points[i - 1], &q = curve.points[i];
+          if (p.segment == q.segment && p.stable != q.stable)
+            events.push_back("forced response F = " + significant(curve.forcing, 4) + ": " +
+                             (q.stable ? "stable again" : "unstable (fold test)") + " between Omega " +
+                             significant(p.omega, 7) + " and " + significant(q.omega, 7) + ", energy " +
+                             significant(q.measures.energy, 4) + " (points " + std::to_string(i - 1) + " and " +
+                             std::to_string(i) + " of the curve)");
+        }
+    return events;
   }
 
   std::vector<std::string> forced_response_summary(const std::vector<ForcedCurve> &curves,

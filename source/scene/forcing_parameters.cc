@@ -30,8 +30,10 @@ namespace nsm
                       "the last period's tip amplitude and energy to frc.csv; 0 = none.");
     prm.declare_entry("Verify periods",
                       text(d.verify_periods),
-                      Patterns::Integer(1, 100000),
-                      "Periods integrated from each verified point; the last one is compared with the point.");
+                      Patterns::Integer(0, max_verify_periods),
+                      "Periods integrated from each verified point; the last one is compared with the point. 0: "
+                      "to steady state, the periods in which the slowest mode's free motion decays to 1e-3 of its "
+                      "start (ln(1000) / (min_j c_j / 2) / T; about 550 with Modal ratio 0.002), at most 100000.");
     prm.leave_subsection();
   }
 

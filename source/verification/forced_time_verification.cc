@@ -51,6 +51,16 @@ namespace nsm
     }
   } // namespace
 
+  unsigned int steady_state_periods(const DampedReceptance &receptance, const double omega, const unsigned int limit)
+  {
+    const double rate = receptance.slowest_decay();
+    if (!(rate > 0))
+      return limit;
+    const double periods =
+      std::ceil(std::log(1 / forced_verification_constants::transient_share) / (rate * two_pi / omega));
+    return periods >= limit ? limit : std::max(1u, static_cast<unsigned int>(periods));
+  }
+
   ForcedVerification verify_forced_point(const ForcedHarmonicBalance &hb, const std::vector<double> &x,
                                          const unsigned int steps, const unsigned int periods)
   {
@@ -65,7 +75,7 @@ namespace nsm
       m.a = m.residue * force - m.damping * m.v - m.eigenvalue * m.q;
 
     std::vector<double> previous(steps, 0.0), current(steps, 0.0);
-    ForcedVerification  result{0, 0, 0};
+    ForcedVerification  result{0, 0, 0, periods};
     std::vector<double> constant(modes.size()), slope(modes.size());
     for (unsigned int period = 0; period < periods; ++period)
       {

@@ -13,6 +13,11 @@ namespace nsm
   /// x <- A^{-1} x from lu_factor's factors and interchanges.
   void lu_solve(int n, const double *lu, const int *pivots, double *x);
 
+  /// The sign of det A (+1 or -1) from lu_factor's factors and
+  /// interchanges: the product of U's diagonal's signs, less for each
+  /// interchange.
+  int lu_determinant_sign(int n, const double *lu, const int *pivots);
+
   /// x <- A^{-1} x, A n x n column-major (overwritten by its LU factors).
   /// False if a pivot is exactly zero (A singular).
   bool dense_solve(int n, double *a, double *x);

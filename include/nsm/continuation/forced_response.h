@@ -19,6 +19,7 @@ namespace nsm
     double              omega;
     ForcedMeasures      measures;
     double              residual; ///< unscaled 2-norm of R
+    bool                stable;   ///< ForcedHarmonicBalance::stable's verdict
     std::vector<double> x;
   };
 

@@ -72,6 +72,17 @@ namespace nsm
 
     ForcedMeasures measure(const std::vector<double> &x) const;
 
+    /// The fold test's verdict on x at the current W: det J > 0. Off the
+    /// wall J = I (G = 0), and the damped linear response is stable; along
+    /// a curve J changes continuously and its determinant changes sign where
+    /// a real Floquet multiplier passes +1 (a fold in W, or a branch point).
+    /// So det J < 0 means an odd number of multipliers beyond +1: unstable.
+    /// det J > 0 rules out only these: a period doubling (a multiplier
+    /// through -1) or a Neimark-Sacker pair leaves it unchanged
+    /// (doc/method.md, "The forced response"; the verification in time
+    /// checks the verdicts).
+    bool stable(const std::vector<double> &x) const;
+
     /// Share of the period in contact (measure()'s, alone).
     double contact_fraction(const std::vector<double> &x) const;
 

@@ -53,6 +53,10 @@ namespace nsm
     /// c_j of each mode of undamped().modes().
     const std::vector<double> &coefficients() const { return coefficients_; }
 
+    /// min_j c_j / 2: the rate at which the slowest of the summed modes'
+    /// free motions decays, exp(-c_j t / 2).
+    double slowest_decay() const;
+
   private:
     const Receptance   &receptance_;
     /// c_j of each mode of receptance_.modes().

@@ -22,16 +22,23 @@ namespace nsm
   /// for a point not verified).
   CsvTable forced_response_table(const std::vector<ForcedCurve> &curves, const ForcedVerifications &verifications);
 
-  /// The verification's Result line: points, and the medians and largest of
-  /// |A_t / A - 1| (tip amplitude) and |E_t / E - 1| (energy), and of the
-  /// last period's drift.
+  /// The verification's Result line: points and periods; of the points
+  /// stable by the fold test, the medians and largest of |A_t / A - 1| (tip
+  /// amplitude), |E_t / E - 1| (energy) and the last period's drift, and how
+  /// many the integration keeps (A_t within
+  /// forced_verification_constants::stays_within of A); of the unstable
+  /// ones, how many it leaves.
   std::string forced_verification_summary(const std::vector<ForcedCurve> &curves,
                                           const ForcedVerifications      &verifications);
 
   /// Per curve: its points and Omega extent, whether it reached the range's
-  /// end, and its peak (largest energy): Omega, energy, phase lag; with a
+  /// end, its unstable points (the fold test), and its peak (largest energy): Omega, energy, phase lag; with a
   /// backbone (not null), the main branch's energy at the peak's Omega, read
   /// between the main points that bracket it, and the relative distance.
+  /// The continuation log's events of the forced response: each change of
+  /// the fold test's verdict along a curve, between which points.
+  std::vector<std::string> forced_response_events(const std::vector<ForcedCurve> &curves);
+
   std::vector<std::string> forced_response_summary(const std::vector<ForcedCurve> &curves,
                                                    const Backbone                 *backbone);
 } // namespace nsm

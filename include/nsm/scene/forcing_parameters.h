@@ -20,8 +20,11 @@ namespace nsm
     std::vector<double> amplitudes;
     /// Every n-th point of each curve integrated in time (0: none).
     unsigned int verify_every = 0;
-    /// Periods integrated from each such point.
-    unsigned int verify_periods = 20;
+    /// Periods integrated from each such point; 0: to steady state
+    /// (verification/forced_time_verification.h, steady_state_periods).
+    unsigned int verify_periods = 0;
+    /// The most periods a verification integrates, given or to steady state.
+    static constexpr unsigned int max_verify_periods = 100000;
 
     bool enabled() const { return !amplitudes.empty(); }
 
