@@ -33,6 +33,15 @@ namespace nsm
       return MainEnergy{w1 == w0 ? e0 : e0 + (e1 - e0) * (omega - w0) / (w1 - w0), w1 - w0};
     }
 
+    /// The point of most energy of a curve with points.
+    const ForcedPoint &peak_point(const ForcedCurve &curve)
+    {
+      return *std::max_element(curve.points.begin(), curve.points.end(),
+                               [](const ForcedPoint &a, const ForcedPoint &b) {
+                                 return a.measures.energy < b.measures.energy;
+                               });
+    }
+
     /// "E / main - 1 = d (main points b apart)", or why there is none.
     std::string against_backbone(const Backbone *backbone, const double omega, const double energy)
     {
@@ -44,6 +53,23 @@ namespace nsm
       return ", against the backbone's main branch " + significant(100 * (energy / main->energy - 1), 3) +
              " % (its main points " + significant(main->bracket, 2) + " apart there)";
     }
+  } // namespace
+
+  ForcedPeak forced_peak(const ForcedCurve &curve, const Backbone *backbone)
+  {
+    const ForcedPoint &peak = peak_point(curve);
+    ForcedPeak result{peak.omega, peak.measures.energy, peak.measures.phase, std::nullopt, std::nullopt};
+    if (backbone)
+      if (const std::optional<MainEnergy> main = main_energy_at(*backbone, peak.omega))
+        {
+          result.distance = peak.measures.energy / main->energy - 1;
+          result.bracket  = main->bracket;
+        }
+    return result;
+  }
+
+  namespace
+  {
 
     /// Where the fundamental's phase lag crosses pi / 2 between two points
     /// of a segment: Omega and energy, linear between them.
@@ -196,10 +222,7 @@ namespace nsm
             lines.push_back(line + "no point (the start did not converge)");
             continue;
           }
-        const ForcedPoint &peak = *std::max_element(curve.points.begin(), curve.points.end(),
-                                                    [](const ForcedPoint &a, const ForcedPoint &b) {
-                                                      return a.measures.energy < b.measures.energy;
-                                                    });
+        const ForcedPoint &peak = peak_point(curve);
         line += extent(curve) + "; peak (most energy) at Omega " + significant(peak.omega, 6) + ": energy " +
                 significant(peak.measures.energy, 4) + ", phase lag " + significant(peak.measures.phase, 3) +
                 " (pi/2 at phase resonance), contact fraction " + significant(peak.measures.contact_fraction, 2) +

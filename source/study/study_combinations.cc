@@ -1,3 +1,4 @@
+#include <nsm/scene/scene_entries.h>
 #include <nsm/scene/scene_file.h>
 #include <nsm/study/study_combinations.h>
 
@@ -46,6 +47,20 @@ namespace nsm
       set_entry(prm, "Output", "VTK", "false");
       set_entry(prm, "Output", "Plots", "false");
       set_entry(prm, "Output", "Verify in time", "false");
+    }
+
+    /// With Study/Forcing scaled with damping: the scene's amplitudes times
+    /// the row's modal ratio (as `prm` holds it) over the scene's.
+    void scale_forcing(dealii::ParameterHandler &prm, const StudyScene &base)
+    {
+      if (!base.study.forcing_scaled)
+        return;
+      const double ratio = in_subsection(prm, "Damping", [&] { return prm.get_double("Modal ratio"); }) /
+                           base.scene.damping.modal_ratio;
+      std::string amplitudes;
+      for (const double f : base.scene.forcing.amplitudes)
+        amplitudes += (amplitudes.empty() ? "" : ", ") + scene_entries::format_value(f * ratio);
+      set_entry(prm, "Forcing", "Amplitudes", amplitudes);
     }
 
     dealii::ParameterHandler &read(dealii::ParameterHandler &prm, const std::string &path)
@@ -136,6 +151,7 @@ namespace nsm
         c.key = used_values(base.study.sweeps, std::move(c.key));
         if (used.insert(c.key).second)
           {
+            scale_forcing(prm, base);
             c.scene = StudyScene::from_parameters(prm, path + ", study row " + std::to_string(combinations.size() + 1));
             combinations.push_back(std::move(c));
           }

@@ -1,4 +1,7 @@
+#include <nsm/continuation/forced_response.h>
 #include <nsm/model/bar_model.h>
+#include <nsm/model/damped_receptance.h>
+#include <nsm/output/forced_response_table.h>
 #include <nsm/model/discretisation.h>
 #include <nsm/harmonic_balance/harmonic_balance.h>
 #include <nsm/model/receptance.h>
@@ -105,6 +108,33 @@ namespace nsm
 
     /// The one-period defects of the main-branch points found at the
     /// Backbone omegas, integrated in time on the row's own FE model.
+    /// The row's forced-response curves, one per Forcing/Amplitudes, and
+    /// their peaks against its main branch: the largest |E / E_main - 1| and
+    /// the phase lags' extremes.
+    void forced_peaks(const Receptance &receptance, const Scene &scene, const Backbone &backbone, RowMeasures &m)
+    {
+      const DampedReceptance damped(receptance, scene.damping);
+      ForcedHarmonicBalance  forced(scene.harmonic_balance, scene.contact, damped);
+      for (const double amplitude : scene.forcing.amplitudes)
+        {
+          const ForcedCurve curve = trace_forced_curve(forced, scene.harmonic_balance, scene.continuation,
+                                                       scene.continuation.omega_min, scene.continuation.omega_max,
+                                                       amplitude);
+          if (curve.points.empty())
+            continue;
+          ++m.forced_curves;
+          const ForcedPeak peak = forced_peak(curve, &backbone);
+          m.forced_peak_phase_min = std::min(m.forced_peak_phase_min.value_or(peak.phase), peak.phase);
+          m.forced_peak_phase_max = std::max(m.forced_peak_phase_max.value_or(peak.phase), peak.phase);
+          if (peak.distance)
+            {
+              ++m.forced_peaks_compared;
+              m.forced_peak_distance_max =
+                std::max(m.forced_peak_distance_max.value_or(0.0), std::abs(*peak.distance));
+            }
+        }
+    }
+
     void time_defects(HarmonicBalance &hb, const Discretisation &d, const Scene &scene, RowMeasures &m)
     {
       std::vector<double> defects;
@@ -135,7 +165,7 @@ namespace nsm
   {
     static const std::vector<std::string> stages = {"mesh", "refinement", "spectrum", "receptance set-up",
                                                     "receptance", "harmonic balance", "energy solves",
-                                                    "verification in time"};
+                                                    "verification in time", "forced response"};
     return stages;
   }
 
@@ -228,6 +258,8 @@ namespace nsm
     stages.timed("energy solves", [&] { backbone_errors(hb, row, backbone, reference, m); });
     if (study.verify_in_time)
       stages.timed("verification in time", [&] { time_defects(hb, d, scene, m); });
+    if (study.forced_peaks)
+      stages.timed("forced response", [&] { forced_peaks(stages.receptance(), scene, backbone, m); });
     return m;
   }
 } // namespace nsm

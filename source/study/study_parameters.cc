@@ -36,7 +36,8 @@ namespace nsm
       {"Receptance", "Method", "Receptance methods", "receptance_method"},
       {"Harmonic balance", "Harmonics", "Harmonics", "harmonics"},
       {"Harmonic balance", "Integration", "Integrations", "integration"},
-      {"Harmonic balance", "Time samples", "Time samples", "time_samples", "integration", "sampled"}};
+      {"Harmonic balance", "Time samples", "Time samples", "time_samples", "integration", "sampled"},
+      {"Damping", "Modal ratio", "Damping ratios", "modal_ratio"}};
 
     /// Two spellings of one value: the same text, or the same number ("2"
     /// and "02", "0.5" and "5e-1").
@@ -147,6 +148,19 @@ namespace nsm
                       "study.csv gives the median and largest one-period defect max |u(T) - u(0)| / g0, "
                       "a measure against a true periodic motion for bars whose mode is not known. "
                       "Needs Backbone omegas.");
+    prm.declare_entry("Forced peaks",
+                      "false",
+                      Patterns::Bool(),
+                      "Trace each row's forced-response curves (Forcing/Amplitudes; timed as the forced "
+                      "response stage) and write the peaks' largest distance from the row's main branch and "
+                      "their phase lags to study.csv: with Damping ratios, the backbone check at decreasing "
+                      "damping. Needs Backbone omegas and Forcing/Amplitudes.");
+    prm.declare_entry("Forcing scaled with damping",
+                      "false",
+                      Patterns::Bool(),
+                      "Scale each row's Forcing/Amplitudes by its Damping/Modal ratio over the scene's, so "
+                      "that every row's peaks reach about the same energies. Needs Forced peaks and a "
+                      "scene's Modal ratio > 0.");
     prm.declare_entry("Repeats",
                       "1",
                       Patterns::Integer(1, 100),
@@ -193,6 +207,8 @@ namespace nsm
                            " is listed twice; allowed: distinct frequencies");
     repeats               = static_cast<unsigned int>(prm.get_integer("Repeats"));
     verify_in_time        = prm.get_bool("Verify in time");
+    forced_peaks          = prm.get_bool("Forced peaks");
+    forcing_scaled        = prm.get_bool("Forcing scaled with damping");
     reference_degree      = prm.get("Reference degree");
     reference_cells       = split_list(prm.get("Reference cells"), "Reference cells");
     if (!reference_degree.empty())
@@ -205,6 +221,12 @@ namespace nsm
     if (verify_in_time && backbone_omega_values.empty())
       throw InputError("parameter 'Study/Verify in time' = true is not allowed; allowed: false "
                        "unless Study/Backbone omegas is set");
+    if (forced_peaks && backbone_omega_values.empty())
+      throw InputError("parameter 'Study/Forced peaks' = true is not allowed; allowed: false "
+                       "unless Study/Backbone omegas is set (the peaks are compared with the row's backbone)");
+    if (forcing_scaled && !forced_peaks)
+      throw InputError("parameter 'Study/Forcing scaled with damping' = true is not allowed; allowed: false "
+                       "unless Study/Forced peaks = true");
 
     bool sweeps_something = false;
     for (const Sweep &s : sweeps)
@@ -283,6 +305,14 @@ namespace nsm
       throw InputError("parameter " + missing + (missing.find(" and ") != std::string::npos ? " are" : " is") +
                        " out of range: allowed > 0 in a study with Backbone omegas (its rows share one range and one "
                        "energy ceiling; 0, automatic, is for a single run)");
+    if (study.forced_peaks)
+      scene_entries::require(scene.forcing.enabled(), "Forcing/Amplitudes",
+                             "one or more force levels with Study/Forced peaks = true", "''");
+    if (study.forcing_scaled)
+      scene_entries::require(scene.damping.modal_ratio > 0, "Damping/Modal ratio",
+                             "> 0 with Study/Forcing scaled with damping = true (the rows' amplitudes are scaled "
+                             "by their ratio over it)",
+                             format_value(scene.damping.modal_ratio));
     for (const double w : study.backbone_omega_values)
       scene_entries::require(scene.contact.enabled && w >= c.omega_min && w <= c.omega_max,
                              "Study/Backbone omegas",

@@ -115,6 +115,8 @@ namespace nsm
                                         "main_time_defect_max", "energy_points",
                                         "main_points", "newton_iterations", "failed_solves",
                                         "backbone_end", "omega_reached", "energy_error_partial",
+                                        "forced_curves", "forced_peaks_compared", "forced_peak_distance_max",
+                                        "forced_peak_phase_min", "forced_peak_phase_max",
                                         "peak_memory_mib", "wall_total_min", "wall_total_median",
                                         "wall_total_max", "cpu_total_median"};
     for (const std::string &stage : study_stages())
@@ -137,6 +139,7 @@ namespace nsm
     // integration: a reference level needs only its backbone.
     StudyScene level           = row;
     level.study.verify_in_time = false;
+    level.study.forced_peaks   = false;
     return measure_run(level, no_reference(level), stages).points;
   }
 
@@ -172,6 +175,11 @@ namespace nsm
                                     m.backbone_end,
                                     text(m.omega_reached),
                                     m.energy_error_partial ? (*m.energy_error_partial ? "yes" : "no") : "",
+                                    run.study.forced_peaks ? std::to_string(m.forced_curves) : "",
+                                    run.study.forced_peaks ? std::to_string(m.forced_peaks_compared) : "",
+                                    text(m.forced_peak_distance_max),
+                                    text(m.forced_peak_phase_min),
+                                    text(m.forced_peak_phase_max),
                                     text(status_mib("VmHWM")),
                                     text(*std::min_element(totals.begin(), totals.end())),
                                     text(median(totals)),

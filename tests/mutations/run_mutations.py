@@ -33,7 +33,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 # re-wrapping the code it plants into keeps the mutation.
 MUTATIONS = [
     ("forced response: the damping's sign flipped", "source/model/damped_receptance.cc",
-     "b = coefficients_[j] * omega;", "b = -coefficients_[j] * omega;"),
+     "b = damping[j] * omega;", "b = -damping[j] * omega;"),
     ("forced response: the drive as a sine", "source/harmonic_balance/forced_harmonic_balance.cc",
      "p[2] += forcing_;", "p[1] += forcing_;"),
     ("forced response: the receptance's imaginary part flipped in the sine row",
@@ -66,6 +66,10 @@ MUTATIONS = [
     ("forced response's verification: a tenth of the steady state's periods", "source/verification/forced_time_verification.cc",
      "std::ceil(std::log(1 / forced_verification_constants::transient_share)",
      "0.1 * std::ceil(std::log(1 / forced_verification_constants::transient_share)"),
+    ("study: the force levels scaled against the damping", "source/study/study_combinations.cc",
+     "format_value(f * ratio)", "format_value(f / ratio)"),
+    ("study: the forced peaks' distance signed", "source/study/study_measures.cc",
+     "std::abs(*peak.distance)", "*peak.distance"),
     ("harmonic balance's wall at g0 / 2", "source/harmonic_balance/harmonic_balance.cc",
      "force_scale_  = law_.gap() / gamma0_;", "force_scale_  = 0.5 * law_.gap() / gamma0_;"),
     ("harmonic balance's gap doubled", "source/harmonic_balance/harmonic_balance.cc",

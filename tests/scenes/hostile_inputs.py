@@ -436,6 +436,23 @@ def rows(executable):
              output(Directory="out"), code=2, words=["Study/Backbone omegas", "[Omega min, Omega max]"]),
         dict(name="study_verify_without_omegas", scene=section("Study", Spectrum_modes=2, Verify_in_time="true") +
              output(Directory="out"), code=2, words=["Study/Verify in time", "Study/Backbone omegas"]),
+        dict(name="study_forced_peaks_without_omegas",
+             scene=section("Study", Spectrum_modes=2, Forced_peaks="true") + output(Directory="out"),
+             code=2, words=["Study/Forced peaks", "Study/Backbone omegas"]),
+        dict(name="study_forced_peaks_without_forcing",
+             scene=section("Study", Backbone_omegas="1.95", Forced_peaks="true") +
+             section("Continuation", Omega_max=2.2, Energy_max=1) + output(Directory="out"),
+             code=2, words=["Forcing/Amplitudes", "Study/Forced peaks"]),
+        dict(name="study_forcing_scaled_without_peaks",
+             scene=section("Study", Backbone_omegas="1.95", Forcing_scaled_with_damping="true") +
+             section("Continuation", Omega_max=2.2, Energy_max=1) + output(Directory="out"),
+             code=2, words=["Study/Forcing scaled with damping", "Study/Forced peaks"]),
+        dict(name="study_forcing_scaled_by_rayleigh",
+             scene=section("Study", Backbone_omegas="1.95", Forced_peaks="true", Forcing_scaled_with_damping="true") +
+             section("Damping", Rayleigh_alpha=0.01) + section("Forcing", Amplitudes="1e-5") +
+             section("Receptance", Method="modal") +
+             section("Continuation", Omega_max=2.2, Energy_max=1) + output(Directory="out"),
+             code=2, words=["Damping/Modal ratio", "> 0"]),
         dict(name="study_reference_one_level", scene=section("Study", Backbone_omegas="1.95",
                                                              Reference_cells="28") +
              output(Directory="out"), code=2, words=["Study/Reference cells", "two or more"]),

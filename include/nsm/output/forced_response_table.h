@@ -14,6 +14,19 @@
 
 namespace nsm
 {
+  /// A curve's peak (its point of most energy) against the backbone's main
+  /// branch, read between the main points that bracket its Omega.
+  struct ForcedPeak
+  {
+    double omega, energy, phase;
+    /// E / E_main - 1, and the spacing of the main points it is read
+    /// between; empty without a backbone or a main point on both sides.
+    std::optional<double> distance, bracket;
+  };
+
+  /// The peak of a curve with points; `backbone` may be null.
+  ForcedPeak forced_peak(const ForcedCurve &curve, const Backbone *backbone);
+
   /// Per curve, per point: its verification in time, if it has one.
   using ForcedVerifications = std::vector<std::vector<std::optional<ForcedVerification>>>;
 

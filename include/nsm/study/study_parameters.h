@@ -43,6 +43,12 @@ namespace nsm
     /// the harmonic balance against a true periodic motion where no exact mode
     /// is known.
     bool verify_in_time = false;
+    /// Trace the row's forced-response curves and compare their peaks with
+    /// its main branch (needs Backbone omegas and Forcing/Amplitudes).
+    bool forced_peaks = false;
+    /// Each row's Forcing/Amplitudes times its Damping/Modal ratio over the
+    /// scene's (study_combinations sets them).
+    bool forcing_scaled = false;
     /// The fine backbone reference's degree ("" = the base scene's) and its
     /// cell counts, coarse to fine (empty: no fine reference). The finest
     /// level is the reference; the others show its convergence.
