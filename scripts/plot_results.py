@@ -91,7 +91,8 @@ def grid(table):
 
 
 # Each input by its name: its columns, its fewest and most rows, a check of the whole.
-RULES = ((r"backbone\.csv", BACKBONE, 0, None, None), (r"frc\.csv", FRC, 0, None, None), (r"grazing\.csv", GRAZING, 1, 1, None),
+RULES = ((r"backbone\.csv", BACKBONE, 0, None, None), (r"frc\.csv", FRC, 0, None, None),
+         (r"force_response\.csv", FRC, 0, None, None), (r"grazing\.csv", GRAZING, 1, 1, None),
          (r"tongues\.csv", TONGUES, 0, None, None), (r"resonances\.csv", RESONANCES, 0, None, None),
          (r"fields\.csv", FIELDS, 0, None, None), (r"field_\d+_tip\.csv", TIP, 2, None, one_period),
          (r"field_\d+_spacetime\.csv", SPACETIME, 4, None, grid))
@@ -316,18 +317,8 @@ def frc_plot(directory):
         stable = frc.get("stable") or [1] * len(frc["forcing"])
         # A line through consecutive points of one segment (a leap starts a
         # new one), solid where the fold test finds them stable and dashed
-        # where not; a change of verdict joins the two at its last point.
-        runs, run = [], []
-        for i in rows:
-            if run and frc["segment"][i] != frc["segment"][run[-1]]:
-                runs.append(run)
-                run = []
-            elif run and stable[i] != stable[run[-1]]:
-                runs.append(run)
-                run = [run[-1]]
-            run.append(i)
-        runs.append(run)
-        for k, r in enumerate(runs):
+        # where not.
+        for k, r in enumerate(stability_runs(rows, frc, stable)):
             label = f"F = {force:g}" if k == 0 else None
             style = "-" if stable[r[-1]] == 1 else "--"
             top.semilogy([frc["Omega"][i] for i in r], [frc["energy"][i] / e_g for i in r], style, linewidth=1,
@@ -345,6 +336,52 @@ def frc_plot(directory):
     top.legend(fontsize=7, loc="best")
     bottom.legend(fontsize=7, loc="best")
     save(figure, os.path.join(directory, "frc.png"))
+
+
+def stability_runs(rows, values, stable):
+    """The rows' indices (one curve's, in order) cut into runs of one segment
+    and one verdict; a change of verdict joins the two at its last point."""
+    runs, run = [], []
+    for i in rows:
+        if run and values["segment"][i] != values["segment"][run[-1]]:
+            runs.append(run)
+            run = []
+        elif run and stable[i] != stable[run[-1]]:
+            runs.append(run)
+            run = [run[-1]]
+        run.append(i)
+    runs.append(run)
+    return runs
+
+
+def force_response_plot(directory):
+    """force_response.png: each curve in F at its fixed W, energy over the
+    grazing energy (log) and the contact end's amplitude over g0, solid where
+    the fold test finds it stable and dashed where not."""
+    table = read(os.path.join(directory, "force_response.csv"))
+    mode, _, e_g = grazing_scale(directory)
+    stable = table.get("stable") or [1] * len(table["Omega"])
+    figure, (top, bottom) = plt.subplots(2, 1, figsize=(8, 8), sharex=True)
+    for n, omega in enumerate(sorted(set(table["Omega"]))):
+        rows = [i for i, w in enumerate(table["Omega"]) if w == omega]
+        for k, r in enumerate(stability_runs(rows, table, stable)):
+            label = f"Omega = {omega:g}" if k == 0 else None
+            style = "-" if stable[r[-1]] == 1 else "--"
+            top.semilogy([table["forcing"][i] for i in r], [table["energy"][i] / e_g for i in r], style,
+                         linewidth=1, color=f"C{n % 10}", label=label)
+            bottom.plot([table["forcing"][i] for i in r], [table["tip_amplitude"][i] / GAP for i in r], style,
+                        linewidth=1, color=f"C{n % 10}", label=label)
+    if any(s == 0 for s in stable):
+        bottom.plot([], [], "--", linewidth=1, color="0.3", label="unstable (fold test)")
+    top.set_ylabel(f"energy / E_g (E_g of mode {mode}, grazing.csv)" if mode else "energy")
+    bottom.set_ylabel("max |u(L, t)| / g0")
+    bottom.axhline(1, color="0.6", linewidth=0.6, linestyle=":")
+    bottom.set_xlabel("F, the drive's amplitude")
+    title = "Forced response in F at fixed Omega: a sweep in force jumps at the folds"
+    top.set_title((CAPTION + "\n" + title) if CAPTION else title, fontsize=10)
+    top.legend(fontsize=7, loc="best")
+    bottom.legend(fontsize=7, loc="best")
+    save(figure, os.path.join(directory, "force_response.png"))
 
 
 def orbit_error_plot(directory):
@@ -605,7 +642,8 @@ def read_inputs(directory):
     """Reads and checks every file the plots draw, before any is drawn."""
     if not os.path.isdir(directory):
         raise BadInput(f"{directory}: not a folder")
-    for name in ("backbone.csv", "frc.csv", "grazing.csv", "tongues.csv", "resonances.csv", "fields.csv"):
+    for name in ("backbone.csv", "frc.csv", "force_response.csv", "grazing.csv", "tongues.csv", "resonances.csv",
+                 "fields.csv"):
         if os.path.exists(os.path.join(directory, name)):
             read(os.path.join(directory, name))
     for _, path in field_tips(directory):
@@ -641,6 +679,9 @@ def main():
     frc = os.path.join(arguments.directory, "frc.csv")
     if os.path.exists(frc) and read(frc)["Omega"]:
         frc_plot(arguments.directory)
+    force = os.path.join(arguments.directory, "force_response.csv")
+    if os.path.exists(force) and read(force)["Omega"]:
+        force_response_plot(arguments.directory)
     field_plots(arguments.directory, arguments.gap, arguments.wall == "rigid")
     if os.path.exists(os.path.join(arguments.directory, "study.csv")):
         study_plot(arguments.directory)

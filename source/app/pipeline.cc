@@ -481,14 +481,40 @@ namespace nsm
                                                   amplitude));
             }
           const ForcedVerifications verifications = verify_forced_curves(forced, curves);
-          tables_.push_back(forced_response_table(curves, verifications));
+          if (!curves.empty())
+            tables_.push_back(forced_response_table(curves, verifications));
           if (!verifications.empty())
             report_.result.push_back(forced_verification_summary(curves, verifications));
           for (std::string &line : forced_response_summary(curves, traces_branch() ? &backbone() : nullptr))
             report_.result.push_back(std::move(line));
-          for (std::string &event : forced_response_events(curves))
-            report_.events.push_back(std::move(event));
+          std::vector<ForcedCurve> force_curves = force_response(forced);
+          if (!force_curves.empty())
+            tables_.push_back(forced_response_table(force_curves, {}, "force_response.csv"));
+          for (std::string &line : force_response_summary(force_curves))
+            report_.result.push_back(std::move(line));
+          for (const std::vector<ForcedCurve> *traced : {&curves, &force_curves})
+            for (std::string &event : forced_response_events(*traced))
+              report_.events.push_back(std::move(event));
         });
+      }
+
+      /// One curve in F per Forcing/Omegas, over [0, Amplitude max]; a stop
+      /// signal ends them between curves, as the frequency-response curves.
+      std::vector<ForcedCurve> force_response(ForcedHarmonicBalance &forced)
+      {
+        std::vector<ForcedCurve> curves;
+        for (const double omega : scene_.forcing.omegas)
+          {
+            if (point_stop_signal() != 0)
+              {
+                if (forced_left_out_.empty())
+                  forced_left_out_ = "force response's curves from Omega = " + significant(omega, 6) + " on";
+                break;
+              }
+            curves.push_back(trace_force_curve(forced, scene_.harmonic_balance, scene_.continuation, omega,
+                                               scene_.forcing.force_range()));
+          }
+        return curves;
       }
 
       /// Every Forcing/Verify every-th point of each curve integrated in

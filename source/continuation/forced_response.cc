@@ -1,3 +1,4 @@
+#include <nsm/base/dense_lu.h>
 #include <nsm/continuation/constants.h>
 #include <nsm/continuation/dense_lu_group.h>
 #include <nsm/continuation/forced_response.h>
@@ -11,17 +12,52 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace nsm
 {
   namespace
   {
-    /// The forced system at the W LOCA sets, with its dR/dW.
+    /// The parameter a curve is traced in, as LOCA sees it: W, or the load
+    /// F / F_max (in [0, 1], so that the scene's steps suit it).
+    struct Sweep
+    {
+      ForcedSweep kind;
+      double      scale; ///< F_max (forcing), 1 (omega)
+
+      double value(const ForcedPoint &p) const { return kind == ForcedSweep::omega ? p.omega : p.forcing / scale; }
+
+      void set(ForcedHarmonicBalance &hb, const double v) const
+      {
+        if (kind == ForcedSweep::omega)
+          hb.set_omega(v);
+        else
+          hb.set_forcing(v * scale);
+      }
+
+      /// dR / d(value) at x, the parameter set.
+      std::vector<double> derivative(const ForcedHarmonicBalance &hb, const std::vector<double> &x) const
+      {
+        std::vector<double> d;
+        if (kind == ForcedSweep::omega)
+          {
+            hb.evaluate(x, nullptr, nullptr, &d);
+            return d;
+          }
+        d = hb.dforcing(x);
+        for (double &v : d)
+          v *= scale;
+        return d;
+      }
+    };
+
+    /// The forced system at the parameter LOCA sets, with its derivative.
     class ForcedInterface : public LocaSystem
     {
     public:
-      ForcedInterface(ForcedHarmonicBalance &hb, const std::vector<double> &guess)
+      ForcedInterface(ForcedHarmonicBalance &hb, const Sweep &sweep, const std::vector<double> &guess)
         : hb_(hb)
+        , sweep_(sweep)
         , guess_(hb.n_unknowns())
       {
         for (unsigned int i = 0; i < guess.size(); ++i)
@@ -32,31 +68,30 @@ namespace nsm
 
       bool computeF(NOX::LAPACK::Vector &f, const NOX::LAPACK::Vector &x) override
       {
-        hb_.set_omega(omega_);
+        sweep_.set(hb_, value_);
         hb_.evaluate(HbInterface::to_std(x), &scratch_, nullptr);
         return copy(scratch_, &f(0));
       }
 
       bool computeJacobian(NOX::LAPACK::Matrix<double> &jacobian, const NOX::LAPACK::Vector &x) override
       {
-        hb_.set_omega(omega_);
+        sweep_.set(hb_, value_);
         hb_.evaluate(HbInterface::to_std(x), nullptr, &scratch_);
         return copy(scratch_, &jacobian(0, 0));
       }
 
       bool compute_domega(NOX::LAPACK::Vector &result, const NOX::LAPACK::Vector &x) override
       {
-        hb_.set_omega(omega_);
-        hb_.evaluate(HbInterface::to_std(x), nullptr, nullptr, &scratch_);
-        return copy(scratch_, &result(0));
+        sweep_.set(hb_, value_);
+        return copy(sweep_.derivative(hb_, HbInterface::to_std(x)), &result(0));
       }
 
-      void setParams(const LOCA::ParameterVector &p) override { omega_ = p.getValue("Omega"); }
+      void setParams(const LOCA::ParameterVector &p) override { value_ = p.getValue("Omega"); }
 
-      void printSolution(const NOX::LAPACK::Vector &x, const double omega) override
+      void printSolution(const NOX::LAPACK::Vector &x, const double value) override
       {
         if (on_step)
-          on_step(HbInterface::to_std(x), omega);
+          on_step(HbInterface::to_std(x), value);
       }
 
       std::function<void(const std::vector<double> &, double)> on_step;
@@ -71,8 +106,9 @@ namespace nsm
       }
 
       ForcedHarmonicBalance &hb_;
+      const Sweep           &sweep_;
       NOX::LAPACK::Vector    guess_;
-      double                 omega_ = 0;
+      double                 value_ = 0;
       std::vector<double>    scratch_;
     };
 
@@ -83,10 +119,11 @@ namespace nsm
       std::vector<double> displacement;          ///< u(L, t)'s coefficients
     };
 
-    /// The guard's view of the point x at omega.
-    LastPoint last_point(ForcedHarmonicBalance &hb, const double omega, const std::vector<double> &x)
+    /// The guard's view of the point x at the parameter's value.
+    LastPoint last_point(ForcedHarmonicBalance &hb, const Sweep &sweep, const double value,
+                         const std::vector<double> &x)
     {
-      hb.set_omega(omega);
+      sweep.set(hb, value);
       return {hb.contact_fraction(x), hb.displacement(x)};
     }
 
@@ -125,10 +162,11 @@ namespace nsm
     class GuardedStep : public NOX::StatusTest::Generic
     {
     public:
-      GuardedStep(Teuchos::RCP<NOX::StatusTest::Generic> newton, ForcedHarmonicBalance &hb,
+      GuardedStep(Teuchos::RCP<NOX::StatusTest::Generic> newton, ForcedHarmonicBalance &hb, const Sweep &sweep,
                   const ContinuationParameters &continuation, const LastPoint &last)
         : newton_(newton)
         , hb_(hb)
+        , sweep_(sweep)
         , continuation_(continuation)
         , last_(last)
       {}
@@ -142,7 +180,7 @@ namespace nsm
         const auto &extended =
           dynamic_cast<const LOCA::MultiContinuation::ExtendedVector &>(problem.getSolutionGroup().getX());
         const auto &x = dynamic_cast<const NOX::LAPACK::Vector &>(*extended.getXVec());
-        hb_.set_omega(extended.getScalar(0));
+        sweep_.set(hb_, extended.getScalar(0));
         const std::vector<double> unknowns = HbInterface::to_std(x);
         if (!within_guard(continuation_, last_, hb_.contact_fraction(unknowns), hb_.displacement(unknowns)))
           status_ = NOX::StatusTest::Failed;
@@ -159,25 +197,27 @@ namespace nsm
     private:
       Teuchos::RCP<NOX::StatusTest::Generic> newton_;
       ForcedHarmonicBalance                 &hb_;
+      const Sweep                           &sweep_;
       const ContinuationParameters          &continuation_;
       const LastPoint                       &last_;
       NOX::StatusTest::StatusType            status_ = NOX::StatusTest::Unevaluated;
     };
 
-    /// LOCA's parameters: pseudo-arclength in W over the range with the
-    /// scene's step bounds, Newton as the backbone's, LOCA's messages discarded.
+    /// LOCA's parameters: pseudo-arclength in the swept parameter (LOCA's
+    /// "Omega", W or the load) over the range with the scene's step bounds,
+    /// Newton as the backbone's, LOCA's messages discarded.
     Teuchos::RCP<Teuchos::ParameterList> forced_parameters(const HarmonicBalanceParameters &hb,
                                                            const ContinuationParameters    &c,
-                                                           const double omega_min, const double omega_max,
-                                                           const double omega_start)
+                                                           const double low, const double high,
+                                                           const double start)
     {
       auto  params  = Teuchos::rcp(new Teuchos::ParameterList);
       auto &stepper = params->sublist("LOCA").sublist("Stepper");
       stepper.set("Continuation Method", "Arc Length");
       stepper.set("Continuation Parameter", "Omega");
-      stepper.set("Initial Value", omega_start);
-      stepper.set("Max Value", omega_max);
-      stepper.set("Min Value", omega_min);
+      stepper.set("Initial Value", start);
+      stepper.set("Max Value", high);
+      stepper.set("Min Value", low);
       stepper.set("Max Steps", static_cast<int>(c.max_steps));
       stepper.set("Max Nonlinear Iterations", static_cast<int>(hb.iterations()));
       stepper.set("Compute Eigenvalues", false);
@@ -203,18 +243,19 @@ namespace nsm
     /// Where a stepper run starts, and how.
     struct StepperStart
     {
-      double              omega;
+      double              value; ///< the swept parameter's
       std::vector<double> x;
-      double              step;           ///< signed: the first step's direction in W
+      double              step;           ///< signed: the first step's direction in the parameter
       unsigned int        max_steps;
       bool                keep_start;     ///< the start is a new point (else already written)
       unsigned int        segment = 0;    ///< of the points it writes
     };
 
-    /// Distance in the stepper's unscaled arclength metric (W and x).
-    double distance(const ForcedPoint &a, const ForcedPoint &b)
+    /// Distance in the stepper's unscaled arclength metric (the parameter and x).
+    double distance(const Sweep &sweep, const ForcedPoint &a, const ForcedPoint &b)
     {
-      double sum = (a.omega - b.omega) * (a.omega - b.omega);
+      const double d   = sweep.value(a) - sweep.value(b);
+      double       sum = d * d;
       for (std::size_t i = 0; i < a.x.size(); ++i)
         sum += (a.x[i] - b.x[i]) * (a.x[i] - b.x[i]);
       return std::sqrt(sum);
@@ -223,32 +264,32 @@ namespace nsm
     /// One LOCA run from `start`, appending the points that meet the
     /// tolerance to `points` (counting the others in `rejected`). Returns
     /// whether it reached an end of the range.
-    bool run_stepper(ForcedHarmonicBalance &hb, const HarmonicBalanceParameters &harmonic_balance,
-                     const ContinuationParameters &continuation, const double omega_min, const double omega_max,
+    bool run_stepper(ForcedHarmonicBalance &hb, const Sweep &sweep, const HarmonicBalanceParameters &harmonic_balance,
+                     const ContinuationParameters &continuation, const double low, const double high,
                      const StepperStart &start, std::vector<ForcedPoint> &points, unsigned int &rejected)
     {
       ContinuationParameters c = continuation;
       c.initial_step           = start.step;
       c.max_steps              = start.max_steps;
-      const auto params        = forced_parameters(harmonic_balance, c, omega_min, omega_max, start.omega);
+      const auto params        = forced_parameters(harmonic_balance, c, low, high, start.value);
       auto       data          = LOCA::createGlobalData(params);
       LastPoint  last;
       if (!start.keep_start)
-        last = last_point(hb, start.omega, start.x);
+        last = last_point(hb, sweep, start.value, start.x);
       bool       finished      = false;
       {
-        ForcedInterface interface(hb, start.x);
+        ForcedInterface interface(hb, sweep, start.x);
         auto            group = Teuchos::rcp(new DenseLuGroup(data, interface));
         LOCA::ParameterVector parameters;
-        parameters.addParameter("Omega", start.omega);
+        parameters.addParameter("Omega", start.value);
         group->setParams(parameters);
         bool at_start = true;
-        interface.on_step = [&](const std::vector<double> &x, const double omega) {
+        interface.on_step = [&](const std::vector<double> &x, const double value) {
           const bool skip = at_start && !start.keep_start;
           at_start        = false;
           if (skip)
             return;
-          hb.set_omega(omega);
+          sweep.set(hb, value);
           std::vector<double> residual;
           hb.evaluate(x, &residual, nullptr);
           double norm = 0;
@@ -259,12 +300,12 @@ namespace nsm
             ++rejected;
           else
             {
-              points.push_back({start.segment, omega, hb.measure(x), norm, hb.stable(x), x});
+              points.push_back({start.segment, hb.omega(), hb.forcing(), hb.measure(x), norm, hb.stable(x), x});
               last = {points.back().measures.contact_fraction, hb.displacement(x)};
             }
         };
         const auto status = Teuchos::rcp(
-          new GuardedStep(newton_status(harmonic_balance), hb, continuation, last));
+          new GuardedStep(newton_status(harmonic_balance), hb, sweep, continuation, last));
         LOCA::Stepper stepper(data, group, status, params);
         finished = stepper.run() == LOCA::Abstract::Iterator::Finished;
       }
@@ -273,11 +314,11 @@ namespace nsm
     }
 
     /// Whether `next` lies within the step's guard of `last` (GuardedStep).
-    bool within_guard(ForcedHarmonicBalance &hb, const ContinuationParameters &continuation, const ForcedPoint &last,
-                      const ForcedPoint &next)
+    bool within_guard(ForcedHarmonicBalance &hb, const Sweep &sweep, const ContinuationParameters &continuation,
+                      const ForcedPoint &last, const ForcedPoint &next)
     {
-      const LastPoint guard = last_point(hb, last.omega, last.x);
-      hb.set_omega(next.omega);
+      const LastPoint guard = last_point(hb, sweep, sweep.value(last), last.x);
+      sweep.set(hb, sweep.value(next));
       return within_guard(continuation, guard, next.measures.contact_fraction, hb.displacement(next.x));
     }
 
@@ -285,29 +326,33 @@ namespace nsm
     /// back: near a stall the last steps may go back and forth.
     constexpr std::size_t travel_points = 10;
 
-    /// One curve: the stepper from the linear response at Omega min, and
-    /// where every step fails, restarts at a corner and leaps past a stall.
+    /// One curve: the stepper from the linear response (or the bar at rest)
+    /// at the range's low end, and where every step fails, restarts at a
+    /// corner and leaps past a stall.
     class CurveTracer
     {
     public:
-      CurveTracer(ForcedHarmonicBalance &hb, const HarmonicBalanceParameters &harmonic_balance,
-                  const ContinuationParameters &continuation, const double omega_min, const double omega_max)
+      CurveTracer(ForcedHarmonicBalance &hb, const Sweep &sweep, const HarmonicBalanceParameters &harmonic_balance,
+                  const ContinuationParameters &continuation, const double low, const double high)
         : hb_(hb)
+        , sweep_(sweep)
         , harmonic_balance_(harmonic_balance)
         , continuation_(continuation)
-        , omega_min_(omega_min)
-        , omega_max_(omega_max)
+        , low_(low)
+        , high_(high)
       {}
 
-      ForcedCurve trace(const double forcing)
+      /// The curve, with the drive's fixed value (F, or W) set in hb.
+      ForcedCurve trace()
       {
-        hb_.set_forcing(forcing);
-        curve_.forcing  = forcing;
-        curve_.finished = run({omega_min_, std::vector<double>(hb_.n_unknowns(), 0.0), continuation_.initial_step,
+        curve_.sweep    = sweep_.kind;
+        curve_.forcing  = sweep_.kind == ForcedSweep::omega ? hb_.forcing() : sweep_.scale;
+        curve_.omega    = sweep_.kind == ForcedSweep::omega ? 0.0 : hb_.omega();
+        curve_.finished = run({low_, std::vector<double>(hb_.n_unknowns(), 0.0), continuation_.initial_step,
                                continuation_.max_steps, true, 0},
                               curve_.points);
         while (!curve_.finished && curve_.restarts + curve_.leaps < continuation_constants::forced_restarts &&
-               curve_.points.size() >= 2 && steps_left() > 0 && (restart_at_corner() || leap()))
+               curve_.points.size() >= 2 && steps_left() > 0 && (restart_at_corner() || enter_contact() || leap()))
           {}
         return curve_;
       }
@@ -315,7 +360,7 @@ namespace nsm
     private:
       bool run(const StepperStart &start, std::vector<ForcedPoint> &points)
       {
-        return run_stepper(hb_, harmonic_balance_, continuation_, omega_min_, omega_max_, start, points,
+        return run_stepper(hb_, sweep_, harmonic_balance_, continuation_, low_, high_, start, points,
                            curve_.rejected);
       }
 
@@ -330,7 +375,7 @@ namespace nsm
       template <typename Accept>
       bool go_on(StepperStart start, const Accept &accept)
       {
-        if (start.omega < omega_min_ || start.omega > omega_max_)
+        if (start.value < low_ || start.value > high_)
           return false;
         std::vector<ForcedPoint> probe;
         run(start, probe);
@@ -357,27 +402,117 @@ namespace nsm
       {
         const ForcedPoint last = curve_.points.back(), before = curve_.points[curve_.points.size() - 2];
         const bool        revisited = std::any_of(origins_.begin(), origins_.end(), [&](double w) {
-          return std::abs(w - last.omega) <= continuation_.min_step;
+          return std::abs(w - sweep_.value(last)) <= continuation_.min_step;
         });
-        origins_.push_back(last.omega);
+        origins_.push_back(sweep_.value(last));
         if (revisited)
           return false;
         const auto leaves_behind = [&](const ForcedPoint &next) {
-          return distance(next, before) > distance(last, before) && within_guard(hb_, continuation_, last, next);
+          return distance(sweep_, next, before) > distance(sweep_, last, before) && !retraces(next) &&
+                 within_guard(hb_, sweep_, continuation_, last, next);
         };
         std::vector<StepperStart> starts;
         const double              step = continuation_.initial_step;
         for (const double direction : {1.0, -1.0})
-          starts.push_back({last.omega, last.x, direction * step, 1, false, last.segment});
+          starts.push_back({sweep_.value(last), last.x, direction * step, 1, false, last.segment});
         for (double distance = step; distance >= continuation_.min_step; distance /= 2)
           for (const double direction : {1.0, -1.0})
-            starts.push_back({last.omega + direction * distance, last.x, direction * distance, 1, true, last.segment});
+            starts.push_back(
+              {sweep_.value(last) + direction * distance, last.x, direction * distance, 1, true, last.segment});
         for (const StepperStart &start : starts)
           if (go_on(start, leaves_behind))
             {
               ++curve_.restarts;
               return true;
             }
+        return false;
+      }
+
+      /// Where the curve meets the wall at a corner whose contact branch
+      /// turns back (a curve in F above the resonance: beyond the grazing
+      /// load only the linear response, which penetrates, goes on), neither
+      /// the tangent nor a fixed start leaves the branch it came on: Newton
+      /// on R = 0 with the contact force's mean moved by a small share from
+      /// the last point's, instead of the parameter (both F or W and the
+      /// other unknowns free), lands on the branch that the mean parameterises
+      /// there, at shares from contact_share down by tenths, more contact
+      /// first; the stepper goes on from the first landing that is new and
+      /// within the step's guard, away from the last point.
+      bool enter_contact()
+      {
+        const ForcedPoint last = curve_.points.back();
+        for (double share = continuation_constants::contact_share; share >= continuation_constants::contact_share * 1e-4;
+             share /= 10)
+          for (const double sign : {1.0, -1.0})
+            if (const std::optional<ForcedPoint> p = solve_with_contact_mean(last, last.x[0] + sign * share);
+                p && !retraces(*p) && within_guard(hb_, sweep_, continuation_, last, *p))
+              {
+                const double away = sweep_.value(*p) >= sweep_.value(last) ? 1.0 : -1.0;
+                if (go_on({sweep_.value(*p), p->x, away * continuation_.initial_step, 1, true, last.segment},
+                          [](const ForcedPoint &) { return true; }))
+                  {
+                    ++curve_.restarts;
+                    return true;
+                  }
+              }
+        return false;
+      }
+
+      /// Newton from `from` on R(x, v) = 0 with x_0 = mean (the contact
+      /// force's mean over F_s) and v the swept parameter free; the point if
+      /// it converges to the tolerance.
+      std::optional<ForcedPoint> solve_with_contact_mean(const ForcedPoint &from, const double mean)
+      {
+        const unsigned int  n = hb_.n_unknowns();
+        std::vector<double> x = from.x, residual, jacobian;
+        x[0]                  = mean;
+        double value          = sweep_.value(from);
+        for (unsigned int iteration = 0; iteration <= harmonic_balance_.iterations(); ++iteration)
+          {
+            sweep_.set(hb_, value);
+            hb_.evaluate(x, &residual, &jacobian);
+            double norm = 0;
+            for (const double r : residual)
+              norm += r * r;
+            if (!std::isfinite(norm))
+              return std::nullopt;
+            if (std::sqrt(norm) <= harmonic_balance_.tolerance)
+              {
+                const ForcedMeasures m = hb_.measure(x);
+                return ForcedPoint{from.segment, hb_.omega(), hb_.forcing(), m, std::sqrt(norm), hb_.stable(x), x};
+              }
+            // The mean's column gives way to dR/dv: unknowns (v, x_1, ...).
+            const std::vector<double> dv = sweep_.derivative(hb_, x);
+            std::copy(dv.begin(), dv.end(), jacobian.begin());
+            for (double &r : residual)
+              r = -r;
+            if (!dense_solve(n, jacobian.data(), residual.data()))
+              return std::nullopt;
+            value += residual[0];
+            for (unsigned int i = 1; i < n; ++i)
+              x[i] += residual[i];
+            if (value < low_ || value > high_)
+              return std::nullopt;
+          }
+        return std::nullopt;
+      }
+
+      /// Whether `next` lies on the curve already: its parameter between two
+      /// consecutive points of a segment, and its motion within the step's
+      /// guard of the first. At a corner where the branch
+      /// turns back (a curve in F meeting the wall above the resonance) the
+      /// tangent points either way along the branch it came on, and a fixed
+      /// start lands on that branch too.
+      bool retraces(const ForcedPoint &next)
+      {
+        const double v = sweep_.value(next);
+        for (std::size_t i = 1; i < curve_.points.size(); ++i)
+          {
+            const ForcedPoint &a = curve_.points[i - 1], &b = curve_.points[i];
+            if (a.segment == b.segment && std::min(sweep_.value(a), sweep_.value(b)) <= v &&
+                v <= std::max(sweep_.value(a), sweep_.value(b)) && within_guard(hb_, sweep_, continuation_, a, next))
+              return true;
+          }
         return false;
       }
 
@@ -394,17 +529,20 @@ namespace nsm
         const ForcedPoint &last    = curve_.points.back();
         const ForcedPoint &earlier = curve_.points[curve_.points.size() -
                                                    std::min<std::size_t>(curve_.points.size(), travel_points)];
-        const double       travel  = last.omega >= earlier.omega ? 1.0 : -1.0;
+        const double       travel  = sweep_.value(last) >= sweep_.value(earlier) ? 1.0 : -1.0;
         const double       step    = continuation_.initial_step;
-        const auto same_motion = [&](const ForcedPoint &next) { return within_guard(hb_, continuation_, last, next); };
-        const auto any_motion  = [](const ForcedPoint &) { return true; };
+        const auto same_motion = [&](const ForcedPoint &next) {
+          return !retraces(next) && within_guard(hb_, sweep_, continuation_, last, next);
+        };
+        const auto any_motion = [&](const ForcedPoint &next) { return !retraces(next); };
         for (const bool same : {true, false})
           for (const double direction : {travel, -travel})
             {
-              double reached = last.omega;
+              const double here    = sweep_.value(last);
+              double       reached = here;
               for (const ForcedPoint &p : curve_.points)
-                if (std::abs(p.omega - last.omega) <= continuation_.search_reach)
-                  reached = direction > 0 ? std::max(reached, p.omega) : std::min(reached, p.omega);
+                if (std::abs(sweep_.value(p) - here) <= continuation_.search_reach)
+                  reached = direction > 0 ? std::max(reached, sweep_.value(p)) : std::min(reached, sweep_.value(p));
               for (double ahead = step; ahead <= continuation_.search_reach;
                    ahead *= continuation_constants::search_growth)
                 {
@@ -421,11 +559,12 @@ namespace nsm
       }
 
       ForcedHarmonicBalance           &hb_;
+      const Sweep                      sweep_;
       const HarmonicBalanceParameters &harmonic_balance_;
       const ContinuationParameters    &continuation_;
-      double                           omega_min_, omega_max_;
+      double                           low_, high_;
       ForcedCurve                      curve_;
-      std::vector<double>              origins_; ///< W of every restart
+      std::vector<double>              origins_; ///< the parameter at every restart
     };
   } // namespace
 
@@ -436,6 +575,22 @@ namespace nsm
                                  const double                     omega_max,
                                  const double                     forcing)
   {
-    return CurveTracer(hb, harmonic_balance, continuation, omega_min, omega_max).trace(forcing);
+    hb.set_forcing(forcing);
+    return CurveTracer(hb, {ForcedSweep::omega, 1.0}, harmonic_balance, continuation, omega_min, omega_max).trace();
+  }
+
+  ForcedCurve trace_force_curve(ForcedHarmonicBalance           &hb,
+                                const HarmonicBalanceParameters &harmonic_balance,
+                                const ContinuationParameters    &continuation,
+                                const double                     omega,
+                                const double                     forcing_max)
+  {
+    // From the linear response at the load Initial step, not from rest:
+    // the step's guard measures the motion's change relative to the last
+    // point's, which at rest is all of it.
+    hb.set_omega(omega);
+    return CurveTracer(hb, {ForcedSweep::forcing, forcing_max}, harmonic_balance, continuation,
+                       continuation.initial_step, 1.0)
+      .trace();
   }
 } // namespace nsm

@@ -147,6 +147,20 @@ namespace nsm
       }
   }
 
+  std::vector<double> ForcedHarmonicBalance::dforcing(const std::vector<double> &x) const
+  {
+    std::vector<double> drive(n_unknowns(), 0.0), result;
+    if (harmonics_ > 0)
+      drive[2] = 1;
+    std::vector<double> dv = apply_receptance(drive);
+    for (double &d : dv)
+      d *= law_.gap_weight() / force_scale_;
+    active_set_.gram(contact_coefficients(x)).multiply(dv, result);
+    for (double &d : result)
+      d = -d;
+    return result;
+  }
+
   double ForcedHarmonicBalance::largest_magnitude(const std::vector<double> &coefficients) const
   {
     std::vector<double> samples;

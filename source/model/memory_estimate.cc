@@ -108,9 +108,9 @@ namespace nsm
         const double n       = 2.0 * scene.harmonic_balance.harmonics + 1;
         const double samples = std::max<double>(scene.harmonic_balance.samples(), 8 * (n + 1));
         add(8 * (6 * n * n + 4 * n * samples), "Harmonic balance/Harmonics");
-        add(double(scene.forcing.amplitudes.size()) * double(scene.continuation.max_steps) *
-              (bytes_per_point + bytes_per_point_unknown * n),
-            "Forcing/Amplitudes and Continuation/Max steps");
+        add(double(scene.forcing.amplitudes.size() + scene.forcing.omegas.size()) *
+              double(scene.continuation.max_steps) * (bytes_per_point + bytes_per_point_unknown * n),
+            "Forcing/Amplitudes, Forcing/Omegas and Continuation/Max steps");
       }
     estimate.bytes = std::min(estimate.bytes + process_bytes, 1e19);
     return estimate;

@@ -33,6 +33,13 @@ namespace nsm
       return MainEnergy{w1 == w0 ? e0 : e0 + (e1 - e0) * (omega - w0) / (w1 - w0), w1 - w0};
     }
 
+    /// "forced response F = ..." or "force response at Omega = ...".
+    std::string curve_name(const ForcedCurve &curve)
+    {
+      return curve.sweep == ForcedSweep::omega ? "forced response F = " + significant(curve.forcing, 4) :
+                                                 "force response at Omega " + significant(curve.omega, 6);
+    }
+
     /// The point of most energy of a curve with points.
     const ForcedPoint &peak_point(const ForcedCurve &curve)
     {
@@ -92,10 +99,14 @@ namespace nsm
     /// The curve's points, Omega extent, and how its tracing went.
     std::string extent(const ForcedCurve &curve)
     {
-      const auto by_omega = [](const ForcedPoint &a, const ForcedPoint &b) { return a.omega < b.omega; };
-      const auto [low, high] = std::minmax_element(curve.points.begin(), curve.points.end(), by_omega);
-      std::string text = std::to_string(curve.points.size()) + " points on [" + significant(low->omega, 6) + ", " +
-                         significant(high->omega, 6) + "]";
+      const bool in_omega = curve.sweep == ForcedSweep::omega;
+      const auto value    = [&](const ForcedPoint &p) { return in_omega ? p.omega : p.forcing; };
+      const auto [low, high] = std::minmax_element(curve.points.begin(), curve.points.end(),
+                                                   [&](const ForcedPoint &a, const ForcedPoint &b) {
+                                                     return value(a) < value(b);
+                                                   });
+      std::string text = std::to_string(curve.points.size()) + " points on " + (in_omega ? "" : "F in ") + "[" +
+                         significant(value(*low), 6) + ", " + significant(value(*high), 6) + "]";
       if (!curve.finished)
         text += ", stopped before the range's end (no step, restart or leap went on)";
       if (curve.restarts + curve.leaps > 0)
@@ -110,15 +121,17 @@ namespace nsm
       for (std::size_t i = 1; i < curve.points.size(); ++i)
         if (curve.points[i].segment == curve.points[i - 1].segment &&
             curve.points[i].stable != curve.points[i - 1].stable)
-          changes += (changes.empty() ? ", the verdict changing at Omega " : ", ") +
-                     significant(curve.points[i].omega, 6);
+          changes += (changes.empty() ? std::string(", the verdict changing at ") + (in_omega ? "Omega " : "F ") :
+                                        std::string(", ")) +
+                     significant(value(curve.points[i]), 6);
       return text + changes;
     }
   } // namespace
 
-  CsvTable forced_response_table(const std::vector<ForcedCurve> &curves, const ForcedVerifications &verifications)
+  CsvTable forced_response_table(const std::vector<ForcedCurve> &curves, const ForcedVerifications &verifications,
+                                 const std::string &name)
   {
-    CsvTable table{"frc.csv",
+    CsvTable table{name,
                    {"forcing", "segment", "Omega", "energy", "tip_amplitude", "phase", "contact_fraction", "stable",
                     "max_contact_force", "input_power", "dissipated_power", "residual"},
                    {}};
@@ -130,7 +143,7 @@ namespace nsm
         {
           const ForcedPoint    &p = curves[c].points[i];
           const ForcedMeasures &m = p.measures;
-          table.rows.push_back({curves[c].forcing, double(p.segment), p.omega, m.energy, m.tip_amplitude, m.phase,
+          table.rows.push_back({p.forcing, double(p.segment), p.omega, m.energy, m.tip_amplitude, m.phase,
                                 m.contact_fraction, double(p.stable), m.max_contact_force, m.input_power, m.dissipated_power,
                                 p.residual});
           if (verifications.empty())
@@ -200,14 +213,35 @@ namespace nsm
       for (std::size_t i = 1; i < curve.points.size(); ++i)
         {
           const ForcedPoint &p = curve.points[i - 1], &q = curve.points[i];
+          const bool in_omega = curve.sweep == ForcedSweep::omega;
           if (p.segment == q.segment && p.stable != q.stable)
-            events.push_back("forced response F = " + significant(curve.forcing, 4) + ": " +
-                             (q.stable ? "stable again" : "unstable (fold test)") + " between Omega " +
-                             significant(p.omega, 7) + " and " + significant(q.omega, 7) + ", energy " +
+            events.push_back(curve_name(curve) + ": " + (q.stable ? "stable again" : "unstable (fold test)") +
+                             (in_omega ? " between Omega " + significant(p.omega, 7) + " and " + significant(q.omega, 7) :
+                                         " between F " + significant(p.forcing, 7) + " and " + significant(q.forcing, 7)) +
+                             ", energy " +
                              significant(q.measures.energy, 4) + " (points " + std::to_string(i - 1) + " and " +
                              std::to_string(i) + " of the curve)");
         }
     return events;
+  }
+
+  std::vector<std::string> force_response_summary(const std::vector<ForcedCurve> &curves)
+  {
+    std::vector<std::string> lines;
+    for (const ForcedCurve &curve : curves)
+      {
+        std::string line = curve_name(curve) + ": ";
+        if (curve.points.empty())
+          {
+            lines.push_back(line + "no point (the start did not converge)");
+            continue;
+          }
+        const ForcedPoint &peak = peak_point(curve);
+        lines.push_back(line + extent(curve) + "; most energy at F " + significant(peak.forcing, 4) + ": energy " +
+                        significant(peak.measures.energy, 4) + ", phase lag " + significant(peak.measures.phase, 3) +
+                        ", contact fraction " + significant(peak.measures.contact_fraction, 2));
+      }
+    return lines;
   }
 
   std::vector<std::string> forced_response_summary(const std::vector<ForcedCurve> &curves,
@@ -216,7 +250,7 @@ namespace nsm
     std::vector<std::string> lines;
     for (const ForcedCurve &curve : curves)
       {
-        std::string line = "forced response F = " + significant(curve.forcing, 4) + ": ";
+        std::string line = curve_name(curve) + ": ";
         if (curve.points.empty())
           {
             lines.push_back(line + "no point (the start did not converge)");

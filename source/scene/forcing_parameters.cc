@@ -3,6 +3,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <algorithm>
+
 
 namespace nsm
 {
@@ -21,7 +23,18 @@ namespace nsm
                       "the wall), comma-separated, at most 100, each in (0, 1e20]: one frequency-response curve each, "
                       "written to frc.csv over Continuation's Omega range; needs damping (Damping). Empty: "
                       "no forced response.");
+    prm.declare_entry("Omegas",
+                      "",
+                      Patterns::Anything(),
+                      "Drive frequencies W, comma-separated, at most 100, each in (0, 1e20]: one force-response "
+                      "curve each, traced in F from the bar at rest to Amplitude max (through its folds: the "
+                      "jumps of a slow sweep in force), written to force_response.csv; needs damping. Empty: none.");
     const ForcingParameters d;
+    prm.declare_entry("Amplitude max",
+                      text(d.amplitude_max),
+                      Patterns::Double(0, magnitude_limit),
+                      "The force-response curves' largest F; 0: the largest of Amplitudes (one of the two is "
+                      "needed with Omegas).");
     prm.declare_entry("Verify every",
                       text(d.verify_every),
                       Patterns::Integer(0, 1000000),
@@ -42,6 +55,16 @@ namespace nsm
     prm.enter_subsection("Forcing");
     verify_every   = get_unsigned(prm, "Verify every");
     verify_periods = get_unsigned(prm, "Verify periods");
+    amplitude_max  = prm.get_double("Amplitude max");
+    omegas.clear();
+    for (const std::string &item : list_items(prm.get("Omegas")))
+      {
+        const double w = parse_double(item, "Forcing/Omegas");
+        require(w > 0 && w <= magnitude_limit, "Forcing/Omegas", "numbers in (0, 1e20]", item);
+        omegas.push_back(w);
+        require(omegas.size() <= max_amplitudes, "Forcing/Omegas",
+                "at most " + std::to_string(max_amplitudes) + " numbers (one curve each)", "a longer list");
+      }
     amplitudes.clear();
     for (const std::string &item : list_items(prm.get("Amplitudes")))
       {
@@ -52,5 +75,14 @@ namespace nsm
                 "at most " + std::to_string(max_amplitudes) + " numbers (one curve each)", "a longer list");
       }
     prm.leave_subsection();
+    require(omegas.empty() || force_range() > 0, "Forcing/Amplitude max",
+            "> 0, or Forcing/Amplitudes set, when Forcing/Omegas is set (the force-response curves' range)", "0");
+  }
+
+  double ForcingParameters::force_range() const
+  {
+    if (amplitude_max > 0 || amplitudes.empty())
+      return amplitude_max;
+    return *std::max_element(amplitudes.begin(), amplitudes.end());
   }
 } // namespace nsm

@@ -112,13 +112,13 @@ namespace nsm
     if (!forcing.enabled())
       return;
     require(damping.any(), "Damping/Modal ratio",
-            "a number in (0, 1], or Rayleigh alpha or beta > 0, when Forcing/Amplitudes is set (an undamped "
+            "a number in (0, 1], or Rayleigh alpha or beta > 0, when Forcing/Amplitudes or Omegas is set (an undamped "
             "drive has no bounded linear response at resonance)",
             "0");
-    require(contact.enabled, "Contact/Enabled", "true when Forcing/Amplitudes is set (the gap scales the forced "
+    require(contact.enabled, "Contact/Enabled", "true when Forcing/Amplitudes or Omegas is set (the gap scales the forced "
             "response's unknowns; a gap no motion reaches gives the linear response)", "false");
     require(receptance.method == ReceptanceMethod::modal, "Receptance/Method",
-            "modal when Forcing/Amplitudes is set (the damped receptance is a modal sum)", "direct");
+            "modal when Forcing/Amplitudes or Omegas is set (the damped receptance is a modal sum)", "direct");
     require(forcing.verify_every == 0 || contact.sign == ForceSign::physical, "Forcing/Verify every",
             "0 when Contact/Force sign = seed-eq5 (the time integration has the physical wall)",
             std::to_string(forcing.verify_every));

@@ -220,6 +220,62 @@ TEST(ForcedResponse, JacobianAndOmegaSlopeMatchCentralDifferences)
   ASSERT_GT(slope_size, 0);
   for (unsigned int r = 0; r < n; ++r)
     EXPECT_NEAR(slope[r], (plus[r] - minus[r]) / (2 * h), 1e-6 * slope_size) << "row " << r;
+  // dR/dF the same way (R is affine in F for a fixed active set).
+  hb.set_omega(w);
+  const std::vector<double> dforcing = hb.dforcing(x);
+  const double              f = hb.forcing(), hf = 1e-7 * f;
+  hb.set_forcing(f + hf);
+  hb.evaluate(x, &plus, nullptr);
+  hb.set_forcing(f - hf);
+  hb.evaluate(x, &minus, nullptr);
+  hb.set_forcing(f);
+  double dforcing_size = 0;
+  for (const double d : dforcing)
+    dforcing_size = std::max(dforcing_size, std::abs(d));
+  ASSERT_GT(dforcing_size, 0);
+  for (unsigned int r = 0; r < n; ++r)
+    EXPECT_NEAR(dforcing[r], (plus[r] - minus[r]) / (2 * hf), 1e-6 * dforcing_size) << "row " << r;
+}
+
+TEST(ForcedResponse, ForceCurveIsLinearWithoutTheWall)
+{
+  // The uniform bar at W = 1.4 and 4.0 (below the first resonance, and
+  // between the first two) with a gap of 1e3 that F up to 1 never closes:
+  // the curve in F is the linear response F gamma_d(W), amplitude F
+  // |gamma_d|, phase lag -arg gamma_d, energy F^2 / 4 times the energy
+  // factor, to the linear limit's 1e-6; it runs from the load Initial step
+  // (F = 1e-3) to 1, every point stable.
+  nsm::Scene scene                 = testing_helpers::bar_scene("1", 10, 20);
+  scene.contact.gap                = 1e3;
+  scene.harmonic_balance.harmonics = 3;
+  const double                zeta = 0.01;
+  const nsm::BarModel         bar(scene.bar);
+  const nsm::Discretisation   discretisation(bar, scene.discretisation);
+  const nsm::Receptance       receptance(discretisation, {nsm::ReceptanceMethod::modal, 0}, 1e4);
+  nsm::DampingParameters      damping;
+  damping.modal_ratio = zeta;
+  const nsm::DampedReceptance damped(receptance, damping);
+  nsm::ForcedHarmonicBalance  hb(scene.harmonic_balance, scene.contact, damped);
+  for (const double omega : {1.4, 4.0})
+    {
+      const nsm::ForcedCurve curve =
+        nsm::trace_force_curve(hb, scene.harmonic_balance, scene.continuation, omega, 1.0);
+      EXPECT_TRUE(curve.finished) << omega;
+      EXPECT_EQ(curve.sweep, nsm::ForcedSweep::forcing);
+      ASSERT_GE(curve.points.size(), 10u);
+      EXPECT_NEAR(curve.points.front().forcing, scene.continuation.initial_step, 1e-15);
+      EXPECT_NEAR(curve.points.back().forcing, 1.0, 1e-12);
+      const complex gamma = uniform_damped_receptance(omega, zeta);
+      for (const nsm::ForcedPoint &p : curve.points)
+        {
+          EXPECT_EQ(p.omega, omega);
+          EXPECT_NEAR(p.measures.tip_amplitude / (p.forcing * std::abs(gamma)), 1.0, 1e-6) << "F = " << p.forcing;
+          EXPECT_NEAR(p.measures.phase, -std::arg(gamma), 1e-6) << "F = " << p.forcing;
+          EXPECT_NEAR(p.measures.energy / (p.forcing * p.forcing / 4 * uniform_energy_factor(omega, zeta)), 1.0, 1e-6)
+            << "F = " << p.forcing;
+          EXPECT_TRUE(p.stable) << "F = " << p.forcing;
+        }
+    }
 }
 
 TEST(ForcedResponse, TimeIntegrationKeepsTheLinearResponse)

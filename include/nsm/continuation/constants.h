@@ -35,6 +35,12 @@ namespace nsm::continuation_constants
   /// many times (forced_response.h): on the seed bar's curves each corner
   /// needs one.
   constexpr unsigned int forced_restarts = 50;
+  /// The first move of the contact force's mean (over F_s = g0 / gamma(0),
+  /// the force that closes the gap statically) by which a forced curve
+  /// leaves a corner whose branch turns back (then tenths of it, to 1e-4
+  /// of it): a thousandth of the force that closes the gap keeps the
+  /// landing within the step's guard of a grazing point.
+  constexpr double contact_share = 1e-3;
   /// The spectral criterion looks at harmonics from this one up: k = 0 is
   /// the static part, 1 the fundamental, and 2 has no oscillating neighbour
   /// of its parity below it.

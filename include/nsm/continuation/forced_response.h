@@ -11,12 +11,21 @@
 
 namespace nsm
 {
+  /// What a curve is traced in: the drive's frequency W at a fixed F (a
+  /// frequency-response curve), or its amplitude F at a fixed W.
+  enum class ForcedSweep
+  {
+    omega,
+    forcing
+  };
+
   struct ForcedPoint
   {
     /// 0, 1, ...: a new segment starts after each leap (do not join points
     /// of different segments).
     unsigned int        segment;
     double              omega;
+    double              forcing;
     ForcedMeasures      measures;
     double              residual; ///< unscaled 2-norm of R
     bool                stable;   ///< ForcedHarmonicBalance::stable's verdict
@@ -25,7 +34,11 @@ namespace nsm
 
   struct ForcedCurve
   {
+    ForcedSweep              sweep = ForcedSweep::omega;
+    /// The drive's amplitude (W sweeps), or the largest (F sweeps).
     double                   forcing;
+    /// The drive's fixed frequency (F sweeps).
+    double                   omega = 0;
     std::vector<ForcedPoint> points;
     /// LOCA reached an end of the range; false: a step failed at Min step or
     /// Max steps ran out, and the curve ends where it stopped.
@@ -53,4 +66,14 @@ namespace nsm
                                  double                           omega_min,
                                  double                           omega_max,
                                  double                           forcing);
+
+  /// The curve at the drive's frequency `omega` over F up to forcing_max,
+  /// traced as a frequency-response curve is, in the load F / forcing_max
+  /// (the scene's steps are in it), from the linear response at the load
+  /// Initial step to 1.
+  ForcedCurve trace_force_curve(ForcedHarmonicBalance           &hb,
+                                const HarmonicBalanceParameters &harmonic_balance,
+                                const ContinuationParameters    &continuation,
+                                double                           omega,
+                                double                           forcing_max);
 } // namespace nsm

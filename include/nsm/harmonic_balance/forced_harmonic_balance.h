@@ -70,6 +70,11 @@ namespace nsm
     void evaluate(const std::vector<double> &x, std::vector<double> *residual,
                   std::vector<double> *jacobian, std::vector<double> *domega = nullptr) const;
 
+    /// dR/dF at x: -G a Gamma e_cos1 / F_s (the drive's response, u_F =
+    /// F Gamma e_cos1, is the only term F enters; the active set's edges add
+    /// nothing, as for dR/dW).
+    std::vector<double> dforcing(const std::vector<double> &x) const;
+
     ForcedMeasures measure(const std::vector<double> &x) const;
 
     /// The fold test's verdict on x at the current W: det J > 0. Off the

@@ -33,7 +33,8 @@ namespace nsm
   /// One row per point of each curve, in the curves' order and along each;
   /// with `verifications` not empty, the verification columns (empty cells
   /// for a point not verified).
-  CsvTable forced_response_table(const std::vector<ForcedCurve> &curves, const ForcedVerifications &verifications);
+  CsvTable forced_response_table(const std::vector<ForcedCurve> &curves, const ForcedVerifications &verifications,
+                                 const std::string &name = "frc.csv");
 
   /// The verification's Result line: points and periods; of the points
   /// stable by the fold test, the medians and largest of |A_t / A - 1| (tip
@@ -51,6 +52,11 @@ namespace nsm
   /// The continuation log's events of the forced response: each change of
   /// the fold test's verdict along a curve, between which points.
   std::vector<std::string> forced_response_events(const std::vector<ForcedCurve> &curves);
+
+  /// Per force-response curve (an F sweep at fixed W): its points and F
+  /// extent, how its tracing went, its unstable points (the fold test) and
+  /// its point of most energy.
+  std::vector<std::string> force_response_summary(const std::vector<ForcedCurve> &curves);
 
   std::vector<std::string> forced_response_summary(const std::vector<ForcedCurve> &curves,
                                                    const Backbone                 *backbone);

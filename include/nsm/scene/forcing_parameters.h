@@ -16,8 +16,13 @@ namespace nsm
 {
   struct ForcingParameters
   {
-    /// Force levels F, one curve each; empty: no forced response.
+    /// Force levels F, one curve each; empty: no frequency-response curve.
     std::vector<double> amplitudes;
+    /// Drive frequencies W, one curve in F each over [0, amplitude_max];
+    /// empty: none.
+    std::vector<double> omegas;
+    /// The F-curves' largest F; 0: the largest of amplitudes.
+    double amplitude_max = 0;
     /// Every n-th point of each curve integrated in time (0: none).
     unsigned int verify_every = 0;
     /// Periods integrated from each such point; 0: to steady state
@@ -26,7 +31,10 @@ namespace nsm
     /// The most periods a verification integrates, given or to steady state.
     static constexpr unsigned int max_verify_periods = 100000;
 
-    bool enabled() const { return !amplitudes.empty(); }
+    bool enabled() const { return !amplitudes.empty() || !omegas.empty(); }
+
+    /// The F-curves' range's end: Amplitude max, or the largest amplitude.
+    double force_range() const;
 
     /// The longest list of amplitudes: each is a curve of up to Max steps
     /// points, and a study of the damping needs a handful.
