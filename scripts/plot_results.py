@@ -17,6 +17,7 @@ checked where present; empty cells only where a run leaves them empty.
 """
 import argparse
 import glob
+import math
 import os
 import re
 import sys
@@ -550,6 +551,29 @@ def study_rows(path):
     return TABLES[path]
 
 
+def forced_study_plot(directory):
+    """study_forced.png (Study/Forced peaks): per row, the largest distance of
+    a forced curve's peak from the main branch, and the peaks' phase lags
+    (pi / 2 at phase resonance), against the modal damping ratio."""
+    rows = [r for r in study_rows(os.path.join(directory, "study.csv")) if r.get("forced_peak_distance_max")]
+    if not rows or not all(r.get("modal_ratio", "-") not in ("", "-") for r in rows):
+        return
+    rows.sort(key=lambda r: float(r["modal_ratio"]))
+    ratio = [float(r["modal_ratio"]) for r in rows]
+    figure, (top, bottom) = plt.subplots(2, 1, figsize=(7, 7), sharex=True)
+    top.semilogx(ratio, [100 * float(r["forced_peak_distance_max"]) for r in rows], "o-", color="C0")
+    top.set_ylabel("largest |E_peak / E_main - 1| (%)")
+    top.set_title((CAPTION + "\n" if CAPTION else "") + "Forced curves' peaks against the backbone's main branch",
+                  fontsize=10)
+    bottom.semilogx(ratio, [float(r["forced_peak_phase_min"]) for r in rows], "v-", color="C1", label="smallest")
+    bottom.semilogx(ratio, [float(r["forced_peak_phase_max"]) for r in rows], "^-", color="C2", label="largest")
+    bottom.axhline(math.pi / 2, color="0.5", linestyle="--", linewidth=1, label="pi / 2 (phase resonance)")
+    bottom.set_ylabel("phase lag at the peaks")
+    bottom.set_xlabel("Damping/Modal ratio")
+    bottom.legend(fontsize=8)
+    save(figure, os.path.join(directory, "study_forced.png"))
+
+
 def study_plot(directory):
     rows = study_rows(os.path.join(directory, "study.csv"))
     if not rows:
@@ -685,6 +709,7 @@ def main():
     field_plots(arguments.directory, arguments.gap, arguments.wall == "rigid")
     if os.path.exists(os.path.join(arguments.directory, "study.csv")):
         study_plot(arguments.directory)
+        forced_study_plot(arguments.directory)
     # The run takes the plots as drawn only after this line (a script that
     # ended early with status 0 drew some of them at most).
     print(DONE, flush=True)

@@ -22,7 +22,7 @@ namespace nsm
                       "Force levels F of the drive F cos(W t) at the contact end (x = L, along +x, towards "
                       "the wall), comma-separated, at most 100, each in (0, 1e20]: one frequency-response curve each, "
                       "written to frc.csv over Continuation's Omega range; needs damping (Damping). Empty: "
-                      "no forced response.");
+                      "no frequency-response curve.");
     prm.declare_entry("Omegas",
                       "",
                       Patterns::Anything(),
