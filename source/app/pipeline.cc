@@ -467,6 +467,7 @@ namespace nsm
           const DampedReceptance  damped(stages_.receptance(), scene_.damping);
           ForcedHarmonicBalance   forced(scene_.harmonic_balance, scene_.contact, damped);
           std::vector<ForcedCurve> curves;
+          Progress                 progress("forced response", scene_.output.progress_every);
           // A stop signal ends the stage between curves (each takes a second
           // or so): the curves traced are written.
           for (const double amplitude : scene_.forcing.amplitudes)
@@ -479,6 +480,10 @@ namespace nsm
               curves.push_back(trace_forced_curve(forced, scene_.harmonic_balance, scene_.continuation,
                                                   scene_.continuation.omega_min, scene_.continuation.omega_max,
                                                   amplitude));
+              progress.update([&] {
+                return "curve F = " + significant(amplitude, 4) + " traced, " +
+                       std::to_string(curves.back().points.size()) + " points";
+              });
             }
           const ForcedVerifications verifications = verify_forced_curves(forced, curves);
           if (!curves.empty())
@@ -503,6 +508,7 @@ namespace nsm
       std::vector<ForcedCurve> force_response(ForcedHarmonicBalance &forced)
       {
         std::vector<ForcedCurve> curves;
+        Progress                 progress("forced response", scene_.output.progress_every);
         for (const double omega : scene_.forcing.omegas)
           {
             if (point_stop_signal() != 0)
@@ -513,6 +519,10 @@ namespace nsm
               }
             curves.push_back(trace_force_curve(forced, scene_.harmonic_balance, scene_.continuation, omega,
                                                scene_.forcing.force_range()));
+            progress.update([&] {
+              return "curve in F at Omega " + significant(omega, 6) + " traced, " +
+                     std::to_string(curves.back().points.size()) + " points";
+            });
           }
         return curves;
       }
@@ -526,6 +536,8 @@ namespace nsm
         ForcedVerifications verifications;
         if (every == 0)
           return verifications;
+        Progress     progress("forced response's verification in time", scene_.output.progress_every);
+        unsigned int verified = 0;
         for (const ForcedCurve &curve : curves)
           {
             verifications.emplace_back(curve.points.size());
@@ -547,6 +559,11 @@ namespace nsm
                     steady_state_periods(forced.receptance(), curve.points[i].omega, ForcingParameters::max_verify_periods);
                 verifications.back()[i] =
                   verify_forced_point(forced, curve.points[i].x, scene_.output.verify_steps, periods);
+                ++verified;
+                progress.update([&] {
+                  return std::to_string(verified) + " points verified (F = " + significant(curve.forcing, 4) + ", Omega " +
+                         significant(curve.points[i].omega, 6) + ", " + std::to_string(periods) + " periods)";
+                });
               }
           }
         return verifications;

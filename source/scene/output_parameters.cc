@@ -125,7 +125,7 @@ namespace nsm
                       text(d.progress_every),
                       Patterns::Double(0, 1e6),
                       "Seconds between progress lines on stderr during long stages "
-                      "(continuation, adaptive refinement, fields, verification); 0 = never.");
+                      "(continuation, adaptive refinement, fields, verification, forced curves); 0 = never.");
     prm.declare_entry("Verify in time",
                       text(d.verify_in_time),
                       Patterns::Bool(),

@@ -10,6 +10,9 @@ load (no timer races the run). The stopped run must exit 130, say so on
 stderr, in the summary and in its manifest, and write a backbone.csv whose
 rows are the first rows of an uninterrupted run's, byte for byte, and fewer
 (but for the error estimate's last column, which the stopped run leaves out).
+Then the same for the forced stage, in a run without the backbone: SIGINT at
+its first progress line, after its first curve, leaves the second curve and
+the curve in F out, and the first curve as an uninterrupted run writes it.
 Standard library only.
 """
 import os
@@ -65,7 +68,46 @@ def main():
     for name in ("tongues.csv", "resonances.csv"):
         if not os.path.exists(f"stopped/{name}"):
             failures.append(f"{name} missing from the stopped run")
+    failures += forced_stop(executable)
     return report(failures, f"stopped after {len(stopped) - 1} of {len(expected) - 1} points")
+
+
+FORCED = SCENE.replace("subsection Output\n", "subsection Damping\n  set Modal ratio = 0.002\nend\n"
+                       "subsection Forcing\n  set Amplitudes = 1e-5, 2e-5\n  set Omegas = 1.97\n"
+                       "  set Amplitude max = 1e-4\nend\nsubsection Output\n") \
+    .replace("set Backbone = true", "set Backbone = false").replace("set Directory = whole", "set Directory = forced-whole")
+
+
+def forced_stop(executable):
+    """SIGINT while the forced stage announces its first curve (the first
+    progress line of a run without the backbone): the run stops before the
+    second, exits 130, says what it left out, and writes the first curve as
+    an uninterrupted run does, byte for byte, and no curve in F."""
+    for d in ("forced-whole", "forced-stopped"):
+        shutil.rmtree(d, ignore_errors=True)
+    with open("forced.prm", "w") as f:
+        f.write(FORCED)
+    whole = subprocess.run([executable, "forced.prm"], capture_output=True, text=True, timeout=600)
+    if whole.returncode != 0:
+        return [f"the forced run exited {whole.returncode}: {whole.stderr.strip()[-300:]}"]
+    returncode, stdout, stderr = signal_when_blocked([executable, "forced.prm", "--output", "forced-stopped"],
+                                                     signal.SIGINT, "a forced curve")
+    failures = []
+    if returncode != 128 + signal.SIGINT:
+        failures.append(f"forced: exit {returncode}, not 130: {stderr[-300:]}")
+    if "left out: forced response's curves from F = 2e-05 on" not in stdout:
+        failures.append(f"forced: the summary does not say the second curve was left out: {stdout[-500:]}")
+    with open("forced-whole/frc.csv") as f:
+        lines = f.read().splitlines()
+    first = [line for line in lines[1:] if float(line.split(",")[0]) < 1.5e-5]
+    with open("forced-stopped/frc.csv") as f:
+        stopped = f.read().splitlines()
+    if stopped != lines[:1] + first or not first:
+        failures.append(f"forced: the stopped frc.csv ({len(stopped)} lines) is not the whole run's first curve "
+                        f"({len(first)} points)")
+    if not os.path.exists("forced-whole/force_response.csv") or os.path.exists("forced-stopped/force_response.csv"):
+        failures.append("forced: force_response.csv written by the stopped run, or not by the whole one")
+    return failures
 
 
 if __name__ == "__main__":
