@@ -585,12 +585,18 @@ namespace nsm
                                 const double                     omega,
                                 const double                     forcing_max)
   {
-    // From the linear response at the load Initial step, not from rest:
-    // the step's guard measures the motion's change relative to the last
-    // point's, which at rest is all of it.
+    // The steps in the load are the scene's as shares of its Omega range, so
+    // that a curve in F takes as many steps over its load as a curve in W
+    // over the range, whatever W's units. From the linear response at the
+    // first step's load, not from rest: the step's guard measures the
+    // motion's change relative to the last point's, which at rest is all.
+    ContinuationParameters in_load = continuation;
+    const double           range   = continuation.omega_max - continuation.omega_min;
+    if (range > 0)
+      for (double *step : {&in_load.initial_step, &in_load.min_step, &in_load.max_step, &in_load.search_reach})
+        *step /= range;
     hb.set_omega(omega);
-    return CurveTracer(hb, {ForcedSweep::forcing, forcing_max}, harmonic_balance, continuation,
-                       continuation.initial_step, 1.0)
+    return CurveTracer(hb, {ForcedSweep::forcing, forcing_max}, harmonic_balance, in_load, in_load.initial_step, 1.0)
       .trace();
   }
 } // namespace nsm

@@ -27,8 +27,9 @@ namespace nsm
                       "",
                       Patterns::Anything(),
                       "Drive frequencies W, comma-separated, at most 100, each in (0, 1e20]: one force-response "
-                      "curve each, traced in F from the bar at rest to Amplitude max (through its folds: the "
-                      "jumps of a slow sweep in force), written to force_response.csv; needs damping. Empty: none.");
+                      "curve each, traced in F up to Amplitude max (through its folds: the jumps of a slow sweep "
+                      "in force) with Continuation's steps as shares of its Omega range, written to "
+                      "force_response.csv; needs damping. Empty: none.");
     const ForcingParameters d;
     prm.declare_entry("Amplitude max",
                       text(d.amplitude_max),

@@ -148,8 +148,12 @@ def check_force_curves(rows, force_rows):
         check(len(curve) > 10, f"no curve in F at W = {omega}")
         if not curve:
             continue
-        check(curve[0]["stable"] == "1" and abs(float(curve[0]["forcing"]) - 1.5e-7) < 1e-18 and
-              abs(max(float(r["forcing"]) for r in curve) / 1.5e-4 - 1) < 1e-6,
+        # The first load: Initial step (1e-3) as a share of the Omega range (0.7).
+        check(curve[0]["stable"] == "1" and abs(float(curve[0]["forcing"]) / (1.5e-4 * 1e-3 / 0.7) - 1) < 1e-9 and
+              # LOCA aims its last step at the end along the tangent and the
+              # corrector moves across it: the end is missed by up to 3.2e-6
+              # of the load (measured).
+              abs(max(float(r["forcing"]) for r in curve) / 1.5e-4 - 1) < 1e-5,
               f"W = {omega}: the curve in F runs from {curve[0]['forcing']} to "
               f"{max(float(r['forcing']) for r in curve)}")
         for force in (2e-5, 4e-5):

@@ -243,8 +243,8 @@ TEST(ForcedResponse, ForceCurveIsLinearWithoutTheWall)
   // between the first two) with a gap of 1e3 that F up to 1 never closes:
   // the curve in F is the linear response F gamma_d(W), amplitude F
   // |gamma_d|, phase lag -arg gamma_d, energy F^2 / 4 times the energy
-  // factor, to the linear limit's 1e-6; it runs from the load Initial step
-  // (F = 1e-3) to 1, every point stable.
+  // factor, to the linear limit's 1e-6; it runs from the load's first step
+  // to 1, every point stable.
   nsm::Scene scene                 = testing_helpers::bar_scene("1", 10, 20);
   scene.contact.gap                = 1e3;
   scene.harmonic_balance.harmonics = 3;
@@ -263,7 +263,9 @@ TEST(ForcedResponse, ForceCurveIsLinearWithoutTheWall)
       EXPECT_TRUE(curve.finished) << omega;
       EXPECT_EQ(curve.sweep, nsm::ForcedSweep::forcing);
       ASSERT_GE(curve.points.size(), 10u);
-      EXPECT_NEAR(curve.points.front().forcing, scene.continuation.initial_step, 1e-15);
+      // The load's first step: Initial step as a share of the Omega range.
+      const double range = scene.continuation.omega_max - scene.continuation.omega_min;
+      EXPECT_NEAR(curve.points.front().forcing, scene.continuation.initial_step / (range > 0 ? range : 1.0), 1e-15);
       EXPECT_NEAR(curve.points.back().forcing, 1.0, 1e-12);
       const complex gamma = uniform_damped_receptance(omega, zeta);
       for (const nsm::ForcedPoint &p : curve.points)

@@ -69,8 +69,8 @@ namespace nsm
 
   /// The curve at the drive's frequency `omega` over F up to forcing_max,
   /// traced as a frequency-response curve is, in the load F / forcing_max
-  /// (the scene's steps are in it), from the linear response at the load
-  /// Initial step to 1.
+  /// with the scene's steps as shares of its Omega range (Omega max - Omega
+  /// min), from the linear response at the first step's load to 1.
   ForcedCurve trace_force_curve(ForcedHarmonicBalance           &hb,
                                 const HarmonicBalanceParameters &harmonic_balance,
                                 const ContinuationParameters    &continuation,
