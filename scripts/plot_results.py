@@ -303,8 +303,7 @@ def backbone_plot(directory):
 def frc_plot(directory):
     """frc.png: the forced curves over the backbone's main branch (energy over
     the grazing energy against Omega), and the contact end's amplitude over g0."""
-    frc = read(os.path.join(directory, "frc.csv"))
-    mode, w_mode, e_g = grazing_scale(directory)
+    _, _, e_g = grazing_scale(directory)
     backbone_path = os.path.join(directory, "backbone.csv")
     figure, (top, bottom) = plt.subplots(2, 1, figsize=(8, 8), sharex=True)
     if os.path.exists(backbone_path):
@@ -312,31 +311,8 @@ def frc_plot(directory):
         main = [(w, e / e_g) for w, e, b in zip(points["Omega"], points["energy"], points["branch"]) if b == "main"]
         top.semilogy([w for w, _ in main], [e for _, e in main], ".", markersize=3, color="0.3",
                      label="backbone, main branch", zorder=3)
-    for n, force in enumerate(sorted(set(frc["forcing"]))):
-        rows = [i for i, f in enumerate(frc["forcing"]) if f == force]
-        color = f"C{n % 10}"
-        stable = frc.get("stable") or [1] * len(frc["forcing"])
-        # A line through consecutive points of one segment (a leap starts a
-        # new one), solid where the fold test finds them stable and dashed
-        # where not.
-        for k, r in enumerate(stability_runs(rows, frc, stable)):
-            label = f"F = {force:g}" if k == 0 else None
-            style = "-" if stable[r[-1]] == 1 else "--"
-            top.semilogy([frc["Omega"][i] for i in r], [frc["energy"][i] / e_g for i in r], style, linewidth=1,
-                         color=color, label=label)
-            bottom.plot([frc["Omega"][i] for i in r], [frc["tip_amplitude"][i] / GAP for i in r], style,
-                        linewidth=1, color=color, label=label)
-    if any(s == 0 for s in frc.get("stable") or []):
-        bottom.plot([], [], "--", linewidth=1, color="0.3", label="unstable (fold test)")
-    top.set_ylabel(f"energy / E_g (E_g of mode {mode}, grazing.csv)" if mode else "energy")
-    bottom.set_ylabel("max |u(L, t)| / g0")
-    bottom.axhline(1, color="0.6", linewidth=0.6, linestyle=":")
-    bottom.set_xlabel("Omega (rad/s)")
-    title = "Forced response: frequency-response curves over the backbone"
-    top.set_title((CAPTION + "\n" + title) if CAPTION else title, fontsize=10)
-    top.legend(fontsize=7, loc="best")
-    bottom.legend(fontsize=7, loc="best")
-    save(figure, os.path.join(directory, "frc.png"))
+    curve_plot(directory, figure, top, bottom, "frc", fixed="forcing", along="Omega", label="F",
+               xlabel="Omega (rad/s)", title="Forced response: frequency-response curves over the backbone")
 
 
 def stability_runs(rows, values, stable):
@@ -355,34 +331,43 @@ def stability_runs(rows, values, stable):
     return runs
 
 
-def force_response_plot(directory):
-    """force_response.png: each curve in F at its fixed W, energy over the
-    grazing energy (log) and the contact end's amplitude over g0, solid where
-    the fold test finds it stable and dashed where not."""
-    table = read(os.path.join(directory, "force_response.csv"))
+def curve_plot(directory, figure, top, bottom, name, fixed, along, label, xlabel, title):
+    """NAME.png from NAME.csv: one colour per value of the column `fixed`,
+    energy over the grazing energy (log) above and the contact end's amplitude
+    over g0 below, against the column `along`; a line through consecutive
+    points of one segment (a leap starts a new one), solid where the fold
+    test finds them stable and dashed where not."""
+    table = read(os.path.join(directory, name + ".csv"))
     mode, _, e_g = grazing_scale(directory)
-    stable = table.get("stable") or [1] * len(table["Omega"])
-    figure, (top, bottom) = plt.subplots(2, 1, figsize=(8, 8), sharex=True)
-    for n, omega in enumerate(sorted(set(table["Omega"]))):
-        rows = [i for i, w in enumerate(table["Omega"]) if w == omega]
+    stable = table.get("stable") or [1] * len(table[along])
+    for n, value in enumerate(sorted(set(table[fixed]))):
+        rows = [i for i, v in enumerate(table[fixed]) if v == value]
         for k, r in enumerate(stability_runs(rows, table, stable)):
-            label = f"Omega = {omega:g}" if k == 0 else None
+            legend = f"{label} = {value:g}" if k == 0 else None
             style = "-" if stable[r[-1]] == 1 else "--"
-            top.semilogy([table["forcing"][i] for i in r], [table["energy"][i] / e_g for i in r], style,
-                         linewidth=1, color=f"C{n % 10}", label=label)
-            bottom.plot([table["forcing"][i] for i in r], [table["tip_amplitude"][i] / GAP for i in r], style,
-                        linewidth=1, color=f"C{n % 10}", label=label)
+            top.semilogy([table[along][i] for i in r], [table["energy"][i] / e_g for i in r], style,
+                         linewidth=1, color=f"C{n % 10}", label=legend)
+            bottom.plot([table[along][i] for i in r], [table["tip_amplitude"][i] / GAP for i in r], style,
+                        linewidth=1, color=f"C{n % 10}", label=legend)
     if any(s == 0 for s in stable):
         bottom.plot([], [], "--", linewidth=1, color="0.3", label="unstable (fold test)")
     top.set_ylabel(f"energy / E_g (E_g of mode {mode}, grazing.csv)" if mode else "energy")
     bottom.set_ylabel("max |u(L, t)| / g0")
     bottom.axhline(1, color="0.6", linewidth=0.6, linestyle=":")
-    bottom.set_xlabel("F, the drive's amplitude")
-    title = "Forced response in F at fixed Omega: a sweep in force jumps at the folds"
+    bottom.set_xlabel(xlabel)
     top.set_title((CAPTION + "\n" + title) if CAPTION else title, fontsize=10)
     top.legend(fontsize=7, loc="best")
     bottom.legend(fontsize=7, loc="best")
-    save(figure, os.path.join(directory, "force_response.png"))
+    save(figure, os.path.join(directory, name + ".png"))
+
+
+def force_response_plot(directory):
+    """force_response.png: each curve in F at its fixed W, energy over the
+    grazing energy and the contact end's amplitude over g0 against F."""
+    figure, (top, bottom) = plt.subplots(2, 1, figsize=(8, 8), sharex=True)
+    curve_plot(directory, figure, top, bottom, "force_response", fixed="Omega", along="forcing", label="Omega",
+               xlabel="F, the drive's amplitude",
+               title="Forced response in F at fixed Omega: a sweep in force jumps at the folds")
 
 
 def orbit_error_plot(directory):

@@ -27,6 +27,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from failures import report  # noqa: E402
 from main_branch import main_branch, main_energy_at  # noqa: E402
 
 EXE, STUDY, FORCED = sys.argv[1], sys.argv[2], sys.argv[3]
@@ -81,10 +82,8 @@ def main():
         study = float(rows[ratio]["forced_peak_distance_max"])
         check(abs(study / single - 1) <= 1e-9, f"{ratio}: the study's largest distance {study}, a single run's {single}")
     check(os.path.exists(os.path.join(out, "study_forced.png")), "study_forced.png not drawn")
-    if failures:
-        sys.exit("\n".join(failures))
-    print("forced damping study: all checks pass")
+    return report(failures, "forced damping study")
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

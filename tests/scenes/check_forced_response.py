@@ -69,6 +69,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from failures import report  # noqa: E402
 from main_branch import main_branch, main_energy_at  # noqa: E402
 
 EXE, SCENE = sys.argv[1], sys.argv[2]
@@ -289,10 +290,8 @@ def main():
         check_continuity(light_rows)
         check_stability(light_rows)
     check(os.path.exists(os.path.join(OUT, "frc.png")), "frc.png not drawn")
-    if failures:
-        sys.exit("\n".join(failures))
-    print("forced response: all checks pass")
+    return report(failures, "forced response")
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

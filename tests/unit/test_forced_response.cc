@@ -108,17 +108,15 @@ TEST(ForcedResponse, LinearLimitMatchesClosedFormModalSum)
   // 1e-6 holds. Every mode is
   // summed with its damping (a band beyond the mesh's spectrum): the far
   // series' undamped modes are tested against their bound below.
-  nsm::Scene scene                     = testing_helpers::bar_scene("1", 10, 20);
+  Model       model("1", 10, 20, 1e4);
+  nsm::Scene &scene                    = model.scene;
   scene.contact.gap                    = 1e3;
   scene.harmonic_balance.harmonics     = 3;
   scene.continuation.max_step          = 0.05;
   const double                 omega_max = 5.5, zeta = 0.01, force = 1;
-  const nsm::BarModel          bar(scene.bar);
-  const nsm::Discretisation    discretisation(bar, scene.discretisation);
-  const nsm::Receptance        receptance(discretisation, {nsm::ReceptanceMethod::modal, 0}, 1e4);
   nsm::DampingParameters       damping;
   damping.modal_ratio = zeta;
-  const nsm::DampedReceptance  damped(receptance, damping);
+  const nsm::DampedReceptance  damped(model.receptance, damping);
   nsm::ForcedHarmonicBalance   hb(scene.harmonic_balance, scene.contact, damped);
   const nsm::ForcedCurve curve =
     nsm::trace_forced_curve(hb, scene.harmonic_balance, scene.continuation, 0.2, omega_max, force);
@@ -245,16 +243,14 @@ TEST(ForcedResponse, ForceCurveIsLinearWithoutTheWall)
   // |gamma_d|, phase lag -arg gamma_d, energy F^2 / 4 times the energy
   // factor, to the linear limit's 1e-6; it runs from the load's first step
   // to 1, every point stable.
-  nsm::Scene scene                 = testing_helpers::bar_scene("1", 10, 20);
+  Model       model("1", 10, 20, 1e4);
+  nsm::Scene &scene                = model.scene;
   scene.contact.gap                = 1e3;
   scene.harmonic_balance.harmonics = 3;
   const double                zeta = 0.01;
-  const nsm::BarModel         bar(scene.bar);
-  const nsm::Discretisation   discretisation(bar, scene.discretisation);
-  const nsm::Receptance       receptance(discretisation, {nsm::ReceptanceMethod::modal, 0}, 1e4);
   nsm::DampingParameters      damping;
   damping.modal_ratio = zeta;
-  const nsm::DampedReceptance damped(receptance, damping);
+  const nsm::DampedReceptance damped(model.receptance, damping);
   nsm::ForcedHarmonicBalance  hb(scene.harmonic_balance, scene.contact, damped);
   for (const double omega : {1.4, 4.0})
     {
