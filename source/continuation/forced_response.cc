@@ -240,6 +240,22 @@ namespace nsm
       return params;
     }
 
+    double two_norm(const std::vector<double> &v)
+    {
+      double sum = 0;
+      for (const double r : v)
+        sum += r * r;
+      return std::sqrt(sum);
+    }
+
+    /// The point x of hb at its current W and F, whose residual's 2-norm is
+    /// `residual`.
+    ForcedPoint point_of(const ForcedHarmonicBalance &hb, const unsigned int segment, const std::vector<double> &x,
+                         const double residual)
+    {
+      return {segment, hb.omega(), hb.forcing(), hb.measure(x), residual, hb.stable(x), x};
+    }
+
     /// Where a stepper run starts, and how.
     struct StepperStart
     {
@@ -292,15 +308,12 @@ namespace nsm
           sweep.set(hb, value);
           std::vector<double> residual;
           hb.evaluate(x, &residual, nullptr);
-          double norm = 0;
-          for (const double r : residual)
-            norm += r * r;
-          norm = std::sqrt(norm);
+          const double norm = two_norm(residual);
           if (norm > harmonic_balance.tolerance)
             ++rejected;
           else
             {
-              points.push_back({start.segment, hb.omega(), hb.forcing(), hb.measure(x), norm, hb.stable(x), x});
+              points.push_back(point_of(hb, start.segment, x, norm));
               last = {points.back().measures.contact_fraction, hb.displacement(x)};
             }
         };
@@ -471,16 +484,11 @@ namespace nsm
           {
             sweep_.set(hb_, value);
             hb_.evaluate(x, &residual, &jacobian);
-            double norm = 0;
-            for (const double r : residual)
-              norm += r * r;
+            const double norm = two_norm(residual);
             if (!std::isfinite(norm))
               return std::nullopt;
-            if (std::sqrt(norm) <= harmonic_balance_.tolerance)
-              {
-                const ForcedMeasures m = hb_.measure(x);
-                return ForcedPoint{from.segment, hb_.omega(), hb_.forcing(), m, std::sqrt(norm), hb_.stable(x), x};
-              }
+            if (norm <= harmonic_balance_.tolerance)
+              return point_of(hb_, from.segment, x, norm);
             // The mean's column gives way to dR/dv: unknowns (v, x_1, ...).
             const std::vector<double> dv = sweep_.derivative(hb_, x);
             std::copy(dv.begin(), dv.end(), jacobian.begin());

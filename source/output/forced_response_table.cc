@@ -225,47 +225,44 @@ namespace nsm
     return events;
   }
 
+  namespace
+  {
+    /// A Result line per curve: its name, then `describe(curve, peak)` with
+    /// its point of most energy, or why it has no point.
+    template <typename Describe>
+    std::vector<std::string> curve_lines(const std::vector<ForcedCurve> &curves, const Describe &describe)
+    {
+      std::vector<std::string> lines;
+      for (const ForcedCurve &curve : curves)
+        lines.push_back(curve_name(curve) + ": " +
+                        (curve.points.empty() ? std::string("no point (the start did not converge)") :
+                                                describe(curve, peak_point(curve))));
+      return lines;
+    }
+  } // namespace
+
   std::vector<std::string> force_response_summary(const std::vector<ForcedCurve> &curves)
   {
-    std::vector<std::string> lines;
-    for (const ForcedCurve &curve : curves)
-      {
-        std::string line = curve_name(curve) + ": ";
-        if (curve.points.empty())
-          {
-            lines.push_back(line + "no point (the start did not converge)");
-            continue;
-          }
-        const ForcedPoint &peak = peak_point(curve);
-        lines.push_back(line + extent(curve) + "; most energy at F " + significant(peak.forcing, 4) + ": energy " +
-                        significant(peak.measures.energy, 4) + ", phase lag " + significant(peak.measures.phase, 3) +
-                        ", contact fraction " + significant(peak.measures.contact_fraction, 2));
-      }
-    return lines;
+    return curve_lines(curves, [](const ForcedCurve &curve, const ForcedPoint &peak) {
+      return extent(curve) + "; most energy at F " + significant(peak.forcing, 4) + ": energy " +
+             significant(peak.measures.energy, 4) + ", phase lag " + significant(peak.measures.phase, 3) +
+             ", contact fraction " + significant(peak.measures.contact_fraction, 2);
+    });
   }
 
   std::vector<std::string> forced_response_summary(const std::vector<ForcedCurve> &curves,
                                                    const Backbone                 *backbone)
   {
-    std::vector<std::string> lines;
-    for (const ForcedCurve &curve : curves)
-      {
-        std::string line = curve_name(curve) + ": ";
-        if (curve.points.empty())
-          {
-            lines.push_back(line + "no point (the start did not converge)");
-            continue;
-          }
-        const ForcedPoint &peak = peak_point(curve);
-        line += extent(curve) + "; peak (most energy) at Omega " + significant(peak.omega, 6) + ": energy " +
-                significant(peak.measures.energy, 4) + ", phase lag " + significant(peak.measures.phase, 3) +
-                " (pi/2 at phase resonance), contact fraction " + significant(peak.measures.contact_fraction, 2) +
-                against_backbone(backbone, peak.omega, peak.measures.energy);
-        for (const auto &[omega, energy] : quadratures(curve))
-          line += "; phase lag pi/2 at Omega " + significant(omega, 6) + ", energy " + significant(energy, 4) +
-                  against_backbone(backbone, omega, energy);
-        lines.push_back(line);
-      }
-    return lines;
+    return curve_lines(curves, [backbone](const ForcedCurve &curve, const ForcedPoint &peak) {
+      std::string line = extent(curve) + "; peak (most energy) at Omega " + significant(peak.omega, 6) +
+                         ": energy " + significant(peak.measures.energy, 4) + ", phase lag " +
+                         significant(peak.measures.phase, 3) + " (pi/2 at phase resonance), contact fraction " +
+                         significant(peak.measures.contact_fraction, 2) +
+                         against_backbone(backbone, peak.omega, peak.measures.energy);
+      for (const auto &[omega, energy] : quadratures(curve))
+        line += "; phase lag pi/2 at Omega " + significant(omega, 6) + ", energy " + significant(energy, 4) +
+                against_backbone(backbone, omega, energy);
+      return line;
+    });
   }
 } // namespace nsm

@@ -11,6 +11,24 @@ namespace nsm
   namespace
   {
     using namespace scene_entries;
+
+    /// The comma list of Forcing/`entry`, one curve per value: each in
+    /// (0, 1e20], at most ForcingParameters::max_amplitudes of them.
+    std::vector<double> curve_values(ParameterHandler &prm, const std::string &entry)
+    {
+      const std::string   name = "Forcing/" + entry;
+      std::vector<double> values;
+      for (const std::string &item : list_items(prm.get(entry)))
+        {
+          const double v = parse_double(item, name);
+          require(v > 0 && v <= magnitude_limit, name, "numbers in (0, 1e20]", item);
+          values.push_back(v);
+          require(values.size() <= ForcingParameters::max_amplitudes, name,
+                  "at most " + std::to_string(ForcingParameters::max_amplitudes) + " numbers (one curve each)",
+                  "a longer list");
+        }
+      return values;
+    }
   } // namespace
 
   void ForcingParameters::declare(ParameterHandler &prm)
@@ -57,24 +75,8 @@ namespace nsm
     verify_every   = get_unsigned(prm, "Verify every");
     verify_periods = get_unsigned(prm, "Verify periods");
     amplitude_max  = prm.get_double("Amplitude max");
-    omegas.clear();
-    for (const std::string &item : list_items(prm.get("Omegas")))
-      {
-        const double w = parse_double(item, "Forcing/Omegas");
-        require(w > 0 && w <= magnitude_limit, "Forcing/Omegas", "numbers in (0, 1e20]", item);
-        omegas.push_back(w);
-        require(omegas.size() <= max_amplitudes, "Forcing/Omegas",
-                "at most " + std::to_string(max_amplitudes) + " numbers (one curve each)", "a longer list");
-      }
-    amplitudes.clear();
-    for (const std::string &item : list_items(prm.get("Amplitudes")))
-      {
-        const double f = parse_double(item, "Forcing/Amplitudes");
-        require(f > 0 && f <= magnitude_limit, "Forcing/Amplitudes", "numbers in (0, 1e20]", item);
-        amplitudes.push_back(f);
-        require(amplitudes.size() <= max_amplitudes, "Forcing/Amplitudes",
-                "at most " + std::to_string(max_amplitudes) + " numbers (one curve each)", "a longer list");
-      }
+    omegas         = curve_values(prm, "Omegas");
+    amplitudes     = curve_values(prm, "Amplitudes");
     prm.leave_subsection();
     require(omegas.empty() || force_range() > 0, "Forcing/Amplitude max",
             "> 0, or Forcing/Amplitudes set, when Forcing/Omegas is set (the force-response curves' range)", "0");

@@ -36,8 +36,8 @@ namespace nsm
     /// The F-curves' range's end: Amplitude max, or the largest amplitude.
     double force_range() const;
 
-    /// The longest list of amplitudes: each is a curve of up to Max steps
-    /// points, and a study of the damping needs a handful.
+    /// The longest list of Amplitudes, and of Omegas: each value is a curve
+    /// of up to Max steps points, and a study of the damping needs a handful.
     static constexpr unsigned int max_amplitudes = 100;
 
     static void declare(dealii::ParameterHandler &prm);
