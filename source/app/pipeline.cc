@@ -28,6 +28,7 @@
 #include <nsm/verification/stage_runner.h>
 #include <nsm/output/forced_response_table.h>
 #include <nsm/model/damped_receptance.h>
+#include <nsm/model/load_modes.h>
 #include <nsm/verification/time_verification.h>
 #include <nsm/verification/refinement_checkpoint.h>
 #include <nsm/verification/verification_checkpoint.h>
@@ -464,7 +465,9 @@ namespace nsm
       void forced_response()
       {
         timed("forced response", [&] {
-          const DampedReceptance  damped(stages_.receptance(), scene_.damping);
+          const std::unique_ptr<LoadModes> load =
+            drive_modes(stages_.receptance(), discretisation(), scene_.forcing.shape);
+          const DampedReceptance   damped(stages_.receptance(), scene_.damping, load.get());
           ForcedHarmonicBalance   forced(scene_.harmonic_balance, scene_.contact, damped);
           std::vector<ForcedCurve> curves;
           Progress                 progress("forced response", scene_.output.progress_every);
@@ -490,6 +493,9 @@ namespace nsm
             tables_.push_back(forced_response_table(curves, verifications));
           if (!verifications.empty())
             report_.result.push_back(forced_verification_summary(curves, verifications));
+          if (load)
+            report_.result.push_back("forced response: the drive F cos(W t) acts per unit length along the whole bar "
+                                     "(Forcing/Shape = uniform): each F below is a force per length");
           for (std::string &line : forced_response_summary(curves, traces_branch() ? &backbone() : nullptr))
             report_.result.push_back(std::move(line));
           std::vector<ForcedCurve> force_curves = force_response(forced);

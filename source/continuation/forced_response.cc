@@ -361,9 +361,8 @@ namespace nsm
         curve_.sweep    = sweep_.kind;
         curve_.forcing  = sweep_.kind == ForcedSweep::omega ? hb_.forcing() : sweep_.scale;
         curve_.omega    = sweep_.kind == ForcedSweep::omega ? 0.0 : hb_.omega();
-        curve_.finished = run({low_, std::vector<double>(hb_.n_unknowns(), 0.0), continuation_.initial_step,
-                               continuation_.max_steps, true, 0},
-                              curve_.points);
+        curve_.finished = run_on({low_, std::vector<double>(hb_.n_unknowns(), 0.0), continuation_.initial_step,
+                                  continuation_.max_steps, true, 0});
         while (!curve_.finished && curve_.restarts + curve_.leaps < continuation_constants::forced_restarts &&
                curve_.points.size() >= 2 && steps_left() > 0 && (restart_at_corner() || enter_contact() || leap()))
           {}
@@ -395,8 +394,48 @@ namespace nsm
         if (probe.empty() || !accept(probe.front()))
           return false;
         start.max_steps = steps_left();
-        curve_.finished = run(start, curve_.points);
+        curve_.finished = run_on(start);
         return true;
+      }
+
+      /// The stepper from `start`, its points appended to the curve up to
+      /// the first that lands back on the curve's linear response: off the
+      /// wall (contact fraction 0) at an Omega between two consecutive
+      /// points of a segment off the wall written before it. There the motion is the
+      /// linear response, unique at each Omega, so such a point and those
+      /// after it retrace the curve backwards (a contact branch that leaves
+      /// a fold back to grazing meets the linear response below it, and the
+      /// stepper follows it back to the range's start). Returns whether the
+      /// run reached an end of the range without doing so.
+      bool run_on(const StepperStart &start)
+      {
+        const std::size_t before   = curve_.points.size();
+        const bool        finished = run(start, curve_.points);
+        for (std::size_t i = before; i < curve_.points.size(); ++i)
+          if (on_linear_response(curve_.points[i], i))
+            {
+              curve_.points.resize(i);
+              return false;
+            }
+        return finished;
+      }
+
+      /// Whether `next` is off the wall at a parameter between two
+      /// consecutive points of a segment off the wall among the curve's
+      /// first `count`.
+      bool on_linear_response(const ForcedPoint &next, const std::size_t count) const
+      {
+        if (next.measures.contact_fraction != 0)
+          return false;
+        const double v = sweep_.value(next);
+        for (std::size_t i = 1; i < count; ++i)
+          {
+            const ForcedPoint &a = curve_.points[i - 1], &b = curve_.points[i];
+            if (a.segment == b.segment && a.measures.contact_fraction == 0 && b.measures.contact_fraction == 0 &&
+                std::min(sweep_.value(a), sweep_.value(b)) < v && v < std::max(sweep_.value(a), sweep_.value(b)))
+              return true;
+          }
+        return false;
       }
 
       /// Where every step fails, the curve may turn at a corner (a contact

@@ -45,6 +45,17 @@ namespace nsm
         gamma_[k]       = value.gamma;
         gamma_slope_[k] = double(k) * value.slope;
       }
+    const DampedReceptance::Value drive = receptance_.drive(omega);
+    drive_       = drive.gamma;
+    drive_slope_ = drive.slope;
+  }
+
+  void ForcedHarmonicBalance::add_drive(const std::complex<double> &h, const double f, std::vector<double> &u) const
+  {
+    if (harmonics_ == 0)
+      return;
+    u[2] += f * h.real();
+    u[1] -= f * h.imag();
   }
 
   std::vector<double> ForcedHarmonicBalance::apply(const std::vector<std::complex<double>> &values,
@@ -65,19 +76,19 @@ namespace nsm
     return u;
   }
 
-  std::vector<double> ForcedHarmonicBalance::tip_force(const std::vector<double> &x) const
+  std::vector<double> ForcedHarmonicBalance::wall_force(const std::vector<double> &x) const
   {
     std::vector<double> p(x.size());
     for (unsigned int i = 0; i < x.size(); ++i)
       p[i] = -law_.sign() * force_scale_ * x[i];
-    if (harmonics_ > 0)
-      p[2] += forcing_;
     return p;
   }
 
   std::vector<double> ForcedHarmonicBalance::displacement(const std::vector<double> &x) const
   {
-    return apply_receptance(tip_force(x));
+    std::vector<double> u = apply_receptance(wall_force(x));
+    add_drive(drive_, forcing_, u);
+    return u;
   }
 
   std::vector<double> ForcedHarmonicBalance::contact_coefficients(const std::vector<double> &x) const
@@ -137,8 +148,9 @@ namespace nsm
       }
     if (domega)
       {
-        // dv/dW = a (dGamma/dW) P / F_s at fixed x.
-        std::vector<double> dv = apply(gamma_slope_, tip_force(x));
+        // dv/dW = a (dGamma/dW P + F dH_d/dW e_cos1) / F_s at fixed x.
+        std::vector<double> dv = apply(gamma_slope_, wall_force(x));
+        add_drive(drive_slope_, forcing_, dv);
         for (double &d : dv)
           d *= law_.gap_weight() / force_scale_;
         gram.multiply(dv, *domega);
@@ -149,10 +161,8 @@ namespace nsm
 
   std::vector<double> ForcedHarmonicBalance::dforcing(const std::vector<double> &x) const
   {
-    std::vector<double> drive(n_unknowns(), 0.0), result;
-    if (harmonics_ > 0)
-      drive[2] = 1;
-    std::vector<double> dv = apply_receptance(drive);
+    std::vector<double> dv(n_unknowns(), 0.0), result;
+    add_drive(drive_, 1.0, dv);
     for (double &d : dv)
       d *= law_.gap_weight() / force_scale_;
     active_set_.gram(contact_coefficients(x)).multiply(dv, result);
@@ -216,10 +226,11 @@ namespace nsm
   ForcedMeasures ForcedHarmonicBalance::measure(const std::vector<double> &x) const
   {
     ForcedMeasures            m;
-    const std::vector<double> p = tip_force(x);
-    const std::vector<double> u = apply_receptance(p);
+    const std::vector<double> p = wall_force(x);
+    const std::vector<double> u = displacement(x);
     // Parseval per harmonic: a static P_0 stores gamma(0) P_0^2 / 2; a
-    // harmonic |P_k|^2 / 4 times the damped receptance's energy factor.
+    // harmonic |P_k|^2 / 4 times the damped receptance's energy factor, and
+    // the first the drive's cross and self terms besides.
     m.energy           = 0.5 * gamma0_ * p[0] * p[0];
     m.dissipated_power = 0;
     for (unsigned int k = 1; k <= harmonics_; ++k)
@@ -228,12 +239,25 @@ namespace nsm
         m.energy += 0.25 * size * receptance_.energy_factor(k * omega_);
         m.dissipated_power += 0.5 * size * receptance_.dissipation_factor(k * omega_);
       }
+    if (harmonics_ > 0)
+      {
+        const DampedReceptance::DriveFactors energy = receptance_.drive_energy_factors(omega_);
+        const DampedReceptance::DriveFactors power  = receptance_.drive_dissipation_factors(omega_);
+        const double                         f = forcing_, cross = 2 * f * p[2];
+        m.energy += 0.25 * (cross * energy.cross + f * f * energy.self);
+        m.dissipated_power += 0.5 * (cross * power.cross + f * f * power.self);
+      }
     m.energy += compliant_wall_energy(u);
     m.tip_amplitude = largest_magnitude(u);
     if (harmonics_ > 0)
       {
+        // The drive's power, F W / 2 times the sine coefficient of f^T u:
+        // H_d applied to the wall's first harmonic (as Gamma's block), and
+        // the drive's own share.
+        const double load_sine = drive_.real() * p[1] - drive_.imag() * p[2] -
+                                 forcing_ * receptance_.drive_self(omega_).imag();
         m.phase       = std::atan2(u[1], u[2]);
-        m.input_power = 0.5 * forcing_ * omega_ * u[1];
+        m.input_power = 0.5 * forcing_ * omega_ * load_sine;
       }
     m.contact_fraction = contact_fraction(x);
     std::vector<double> force(x.size()), samples;

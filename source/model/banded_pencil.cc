@@ -47,4 +47,18 @@ namespace nsm
       return 0.0;
     return entry(ab, i, j);
   }
+
+  std::vector<double> BandedPencil::mass_times(const std::vector<double> &x) const
+  {
+    std::vector<double> y(n, 0.0);
+    for (int j = 0; j < n; ++j)
+      for (int i = std::max(0, j - bandwidth); i <= j; ++i)
+        {
+          const double value = entry(m, i, j);
+          y[i] += value * x[j];
+          if (i != j)
+            y[j] += value * x[i];
+        }
+    return y;
+  }
 } // namespace nsm

@@ -1,11 +1,17 @@
 #include <nsm/model/damped_receptance.h>
 
+#include <nsm/base/errors.h>
+
 #include <algorithm>
+#include <string>
 
 namespace nsm
 {
-  DampedReceptance::DampedReceptance(const Receptance &receptance, const DampingParameters &damping)
+  DampedReceptance::DampedReceptance(const Receptance        &receptance,
+                                     const DampingParameters &damping,
+                                     const LoadModes         *load)
     : receptance_(receptance)
+    , load_(load)
   {
     for (const double l : receptance.modes().eigenvalues)
       coefficients_.push_back(damping.coefficient(l));
@@ -72,12 +78,86 @@ namespace nsm
 
   double DampedReceptance::dissipation_factor(const double omega) const
   {
+    return dissipation_sum(receptance_.modes().contact_residues, omega);
+  }
+
+  double DampedReceptance::dissipation_sum(const std::vector<double> &weights, const double omega) const
+  {
     const double      sigma = omega * omega;
     const ModalData  &modes = receptance_.modes();
     double            sum   = 0;
     for (unsigned int j = 0; j < modes.eigenvalues.size(); ++j)
-      sum += modes.contact_residues[j] * coefficients_[j] * sigma /
+      sum += weights[j] * coefficients_[j] * sigma /
              std::norm(std::complex<double>(modes.eigenvalues[j] - sigma, coefficients_[j] * omega));
     return sum;
+  }
+
+  DampedReceptance::Value DampedReceptance::modal_sum(const std::vector<double>   &weights,
+                                                      const std::array<double, 2> &far,
+                                                      const double                 omega) const
+  {
+    if (!receptance_.is_modal_sum(omega))
+      throw NumericalError("the distributed drive at W = " + std::to_string(omega) +
+                           " lies beyond the receptance's modal band");
+    const double         sigma = omega * omega;
+    const ModalData     &modes = receptance_.modes();
+    std::complex<double> gamma = far[0] + far[1] * sigma, slope = 2 * omega * far[1];
+    for (unsigned int j = 0; j < modes.eigenvalues.size(); ++j)
+      {
+        const std::complex<double> d(modes.eigenvalues[j] - sigma, coefficients_[j] * omega);
+        gamma += weights[j] / d;
+        slope += weights[j] * std::complex<double>(2 * omega, -coefficients_[j]) / (d * d);
+      }
+    return {gamma, slope};
+  }
+
+  double DampedReceptance::energy_sum(const std::vector<double>   &weights,
+                                      const std::array<double, 2> &far,
+                                      const double                 omega) const
+  {
+    // far + 2 w^2 far' of far(w^2) = c_0 + c_1 w^2, as energy_factor's.
+    const double     sigma = omega * omega;
+    const ModalData &modes = receptance_.modes();
+    double           sum   = far[0] + 3 * far[1] * sigma;
+    for (unsigned int j = 0; j < modes.eigenvalues.size(); ++j)
+      sum += weights[j] * (modes.eigenvalues[j] + sigma) /
+             std::norm(std::complex<double>(modes.eigenvalues[j] - sigma, coefficients_[j] * omega));
+    return sum;
+  }
+
+  DampedReceptance::Value DampedReceptance::drive(const double omega) const
+  {
+    return load_ ? modal_sum(load_->cross, load_->cross_far, omega) : value(omega);
+  }
+
+  DampedReceptance::DriveFactors DampedReceptance::drive_energy_factors(const double omega) const
+  {
+    if (!load_)
+      return {energy_factor(omega), energy_factor(omega)};
+    return {energy_sum(load_->cross, load_->cross_far, omega), energy_sum(load_->self, load_->self_far, omega)};
+  }
+
+  DampedReceptance::DriveFactors DampedReceptance::drive_dissipation_factors(const double omega) const
+  {
+    if (!load_)
+      return {dissipation_factor(omega), dissipation_factor(omega)};
+    return {dissipation_sum(load_->cross, omega), dissipation_sum(load_->self, omega)};
+  }
+
+  std::complex<double> DampedReceptance::drive_self(const double omega) const
+  {
+    return load_ ? modal_sum(load_->self, load_->self_far, omega).gamma : value(omega).gamma;
+  }
+
+  const std::vector<double> &DampedReceptance::drive_weights() const
+  {
+    return load_ ? load_->cross : receptance_.modes().contact_residues;
+  }
+
+  DampedReceptance::DriveFactors DampedReceptance::drive_far_static() const
+  {
+    if (!load_)
+      return {receptance_.remainder(0).gamma, receptance_.remainder(0).gamma};
+    return {load_->cross_far[0], load_->self_far[0]};
   }
 } // namespace nsm

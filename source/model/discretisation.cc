@@ -152,6 +152,24 @@ namespace nsm
       redistribute_contact_mass(mass_, contact_dof_);
   }
 
+  dealii::Vector<double> Discretisation::unit_load() const
+  {
+    const dealii::QGauss<1>  quadrature(quadrature_points_);
+    dealii::FEValues<1>      fe_values(fe_, quadrature, dealii::update_values | dealii::update_JxW_values);
+    std::vector<dealii::types::global_dof_index> indices(fe_.n_dofs_per_cell());
+    dealii::Vector<double>   load(n_dofs());
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      {
+        fe_values.reinit(cell);
+        cell->get_dof_indices(indices);
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+          for (unsigned int i = 0; i < indices.size(); ++i)
+            load[indices[i]] += fe_values.shape_value(i, q) * fe_values.JxW(q);
+      }
+    load[clamped_dof_] = 0;
+    return load;
+  }
+
   void Discretisation::refine(const dealii::Vector<float> &indicators,
                               const double                 fraction)
   {

@@ -16,43 +16,35 @@ namespace nsm
   {
     constexpr double eps = std::numeric_limits<double>::epsilon();
 
-    std::vector<double> mass_times(const BandedPencil &p, const std::vector<double> &x)
-    {
-      std::vector<double> y(p.n, 0.0);
-      const int           b = p.bandwidth;
-      for (int j = 0; j < p.n; ++j)
-        for (int i = std::max(0, j - b); i <= j; ++i)
-          {
-            const double m = p.entry(p.m, i, j);
-            y[i] += m * x[j];
-            if (i != j)
-              y[j] += m * x[i];
-          }
-      return y;
-    }
-
     double mass_norm_squared(const BandedPencil &p, const std::vector<double> &x)
     {
-      const std::vector<double> mx = mass_times(p, x);
+      const std::vector<double> mx = p.mass_times(x);
       return std::inner_product(x.begin(), x.end(), mx.begin(), 0.0);
     }
 
-    /// phi_j(L)^2 of the mass-normalised mode, by two steps of inverse
-    /// iteration with the factor at a shift near lambda_j, from a start vector
-    /// with no special direction: each step divides another mode's share by
-    /// |lambda_k - shift| / |lambda_j - shift| (at least 1e6), which tells
-    /// apart nearly equal eigenvalues (a mode confined to a small cell) that
-    /// 1/gamma cannot.
-    double residue(const BandedPencil &p, const ShiftedFactor<double> &factor)
+    /// The mode of the eigenvalue nearest the factor's shift, unnormalised:
+    /// two steps of inverse iteration from a start vector with no special
+    /// direction, each dividing another mode's share by |lambda_k - shift| /
+    /// |lambda_j - shift| (at least 1e6 at the shifts `eigenvalue` leaves),
+    /// which tells apart nearly equal eigenvalues (a mode confined to a small
+    /// cell) that 1/gamma cannot.
+    std::vector<double> inverse_iteration(const BandedPencil &p, const ShiftedFactor<double> &factor)
     {
       std::vector<double> x(p.n);
       for (int i = 0; i < p.n; ++i)
         x[i] = 1 + 0.5 * std::sin(1.7 * i + 0.3);
       for (int step = 0; step < 2; ++step)
         {
-          x = mass_times(p, x);
+          x = p.mass_times(x);
           factor.solve(x);
         }
+      return x;
+    }
+
+    /// phi_j(L)^2 of the mass-normalised mode.
+    double residue(const BandedPencil &p, const ShiftedFactor<double> &factor)
+    {
+      const std::vector<double> x = inverse_iteration(p, factor);
       return x[p.contact_row] * x[p.contact_row] / mass_norm_squared(p, x);
     }
 
@@ -134,6 +126,17 @@ namespace nsm
         near.contact_residues.push_back(residue(p, factor));
       }
     return near;
+  }
+
+  std::vector<double> mode_shape(const BandedPencil &p, const double lambda)
+  {
+    ShiftedFactor<double> factor(p);
+    factor.factor(lambda);
+    std::vector<double> x     = inverse_iteration(p, factor);
+    const double        scale = 1 / std::sqrt(mass_norm_squared(p, x));
+    for (double &v : x)
+      v *= scale;
+    return x;
   }
 
   std::vector<double> lowest_eigenvalues(const BandedPencil &p, const int count)

@@ -12,6 +12,8 @@ namespace nsm
   {
     using namespace scene_entries;
 
+    const Options<ForcingShape> shapes = {{"tip", ForcingShape::tip}, {"uniform", ForcingShape::uniform}};
+
     /// The comma list of Forcing/`entry`, one curve per value: each in
     /// (0, 1e20], at most ForcingParameters::max_amplitudes of them.
     std::vector<double> curve_values(ParameterHandler &prm, const std::string &entry)
@@ -37,8 +39,8 @@ namespace nsm
     prm.declare_entry("Amplitudes",
                       "",
                       Patterns::Anything(),
-                      "Force levels F of the drive F cos(W t) at the contact end (x = L, along +x, towards "
-                      "the wall), comma-separated, at most 100, each in (0, 1e20]: one frequency-response curve each, "
+                      "Force levels F of the drive F cos(W t) (at the contact end or per unit length: Shape; "
+                      "along +x, towards the wall), comma-separated, at most 100, each in (0, 1e20]: one frequency-response curve each, "
                       "written to frc.csv over Continuation's Omega range; needs damping (Damping). Empty: "
                       "no frequency-response curve.");
     prm.declare_entry("Omegas",
@@ -49,6 +51,12 @@ namespace nsm
                       "in force) with Continuation's steps as shares of its Omega range, written to "
                       "force_response.csv; needs damping. Empty: none.");
     const ForcingParameters d;
+    prm.declare_entry("Shape",
+                      name_of(d.shape, shapes),
+                      selection(shapes),
+                      "Where the drive acts: tip, F cos(W t) at the contact end (a force); uniform, F cos(W t) per "
+                      "unit length along the whole bar (a force per length, whatever the section), which drives "
+                      "mode j by F times its integral over the bar.");
     prm.declare_entry("Amplitude max",
                       text(d.amplitude_max),
                       Patterns::Double(0, magnitude_limit),
@@ -72,6 +80,7 @@ namespace nsm
   void ForcingParameters::parse(ParameterHandler &prm)
   {
     prm.enter_subsection("Forcing");
+    shape          = selected(prm.get("Shape"), shapes);
     verify_every   = get_unsigned(prm, "Verify every");
     verify_periods = get_unsigned(prm, "Verify periods");
     amplitude_max  = prm.get_double("Amplitude max");

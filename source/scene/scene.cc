@@ -205,6 +205,9 @@ namespace nsm
     // A field is a point of the backbone: the run traces it for fields alone too.
     if (output.backbone || output.fields() || forcing.enabled())
       w = std::max(w, harmonic_balance.harmonics * continuation.omega_max);
+    // A curve in F at a fixed W asks the receptance for its harmonics too.
+    for (const double omega : forcing.omegas)
+      w = std::max(w, harmonic_balance.harmonics * omega);
     return w;
   }
 

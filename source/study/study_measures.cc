@@ -1,6 +1,7 @@
 #include <nsm/continuation/forced_response.h>
 #include <nsm/model/bar_model.h>
 #include <nsm/model/damped_receptance.h>
+#include <nsm/model/load_modes.h>
 #include <nsm/output/forced_response_table.h>
 #include <nsm/model/discretisation.h>
 #include <nsm/harmonic_balance/harmonic_balance.h>
@@ -111,9 +112,11 @@ namespace nsm
     /// The row's forced-response curves, one per Forcing/Amplitudes, and
     /// their peaks against its main branch: the largest |E / E_main - 1| and
     /// the phase lags' extremes.
-    void forced_peaks(const Receptance &receptance, const Scene &scene, const Backbone &backbone, RowMeasures &m)
+    void forced_peaks(const Receptance &receptance, const Discretisation &discretisation, const Scene &scene,
+                      const Backbone &backbone, RowMeasures &m)
     {
-      const DampedReceptance damped(receptance, scene.damping);
+      const std::unique_ptr<LoadModes> load = drive_modes(receptance, discretisation, scene.forcing.shape);
+      const DampedReceptance           damped(receptance, scene.damping, load.get());
       ForcedHarmonicBalance  forced(scene.harmonic_balance, scene.contact, damped);
       for (const double amplitude : scene.forcing.amplitudes)
         {
@@ -259,7 +262,7 @@ namespace nsm
     if (study.verify_in_time)
       stages.timed("verification in time", [&] { time_defects(hb, d, scene, m); });
     if (study.forced_peaks)
-      stages.timed("forced response", [&] { forced_peaks(stages.receptance(), scene, backbone, m); });
+      stages.timed("forced response", [&] { forced_peaks(stages.receptance(), d, scene, backbone, m); });
     return m;
   }
 } // namespace nsm

@@ -57,6 +57,10 @@ damping 0.002, F = 1e-5, 2e-5, 4e-5) with its backbone, and checks (exit 0):
   plus 1e-6 relative; measured 1.5e-6 to 2.5e-3 of E, at most 0.55 of the
   bound) and with the same verdicts; the curves in F start stable at the load Initial step and reach
   1.5e-4;
+- the same bar under a uniform load (Forcing/Shape = uniform, F = 1e-5 and
+  4e-5 per unit length; check_uniform_load): curves over the range, ends,
+  balance, peaks within 5 % (measured -1.1 and -2.2 %), continuity, and the
+  verdicts against the integration;
 - frc.png is drawn.
 A planted error in the damping's sign, the drive's phase or the damped
 receptance moves the ends' lags or the balance (and ForcedResponse.* fails).
@@ -183,7 +187,7 @@ def turns_back(omegas):
     return any(w < max(omegas[:i + 1]) - 1e-3 for i, w in enumerate(omegas))
 
 
-def check_stability(rows):
+def check_stability(rows, forward_pairs=True):
     """The fold test's verdicts: stable linear ends, unstable points only on
     curves that fold, and stable exactly where Omega moves forward (on a
     segment after a leap, which may run backwards, exactly where it moves
@@ -197,19 +201,19 @@ def check_stability(rows):
         unstable = sum(r["stable"] == "0" for r in curve)
         check((unstable > 0) == folds, f"F = {force}: {unstable} unstable points on a curve that "
                                        f"{'folds' if folds else 'does not fold'}")
-        for segment in sorted({r["segment"] for r in curve}):
+        for segment in sorted({r["segment"] for r in curve}) if forward_pairs else []:
             points = [r for r in curve if r["segment"] == segment]
             same = [(float(b["Omega"]) > float(a["Omega"])) == (b["stable"] == "1")
                     for a, b in zip(points, points[1:]) if a["stable"] == b["stable"]]
             pairs += len(same)
             agreeing += sum(same) if segment == "0" else max(sum(same), len(same) - sum(same))
-    check(pairs > 0 and agreeing >= 0.95 * pairs,
+    check(not forward_pairs or pairs > 0 and agreeing >= 0.95 * pairs,
           f"stable where Omega moves forward on {agreeing} of {pairs} pairs of points (at least 95 %)")
 
 
-def check_verdicts_in_time(rows):
+def check_verdicts_in_time(rows, least_unstable=5, least_settled=10, within=0.01):
     """The integration leaves the unstable points and keeps the stable ones
-    whose integration ends periodic."""
+    whose integration ends periodic, by more and within `within`."""
     unstable, settled, unsettled = [], [], 0
     for r in rows:
         if not r["verified_tip_amplitude"]:
@@ -221,14 +225,74 @@ def check_verdicts_in_time(rows):
             settled.append((change, r["Omega"]))
         else:
             unsettled += 1
-    check(len(unstable) >= 5 and len(settled) >= 10,
+    check(len(unstable) >= least_unstable and len(settled) >= least_settled,
           f"{len(unstable)} unstable and {len(settled)} settled stable points verified")
     for change, omega in unstable:
-        check(change > 0.01, f"the integration stays on the unstable point at W = {omega} ({change:.2g})")
+        check(change > within, f"the integration stays on the unstable point at W = {omega} ({change:.2g})")
     for change, omega in settled:
-        check(change <= 0.01, f"the integration leaves the stable point at W = {omega} ({change:.2g})")
+        check(change <= within, f"the integration leaves the stable point at W = {omega} ({change:.2g})")
     print(f"fold test against the integration: {len(unstable)} unstable points left, {len(settled)} stable "
           f"points kept, {unsettled} stable points whose integration does not end periodic")
+
+
+def check_curve(force, curve, main):
+    """One curve over the whole range within the tolerance, its linear ends
+    on the right side of pi/2, the power balance at every point, and its
+    peak within 5 % of the main branch; returns the peak's energy."""
+    omegas = [float(r["Omega"]) for r in curve]
+    check(min(omegas) == 1.5 and abs(max(omegas) - 2.2) < 1e-9, f"F = {force}: Omega from {min(omegas)} to {max(omegas)}")
+    check(all(float(r["residual"]) <= TOLERANCE for r in curve), f"F = {force}: a point above the tolerance")
+    for end, below in ((min(curve, key=lambda r: float(r["Omega"])), True),
+                       (max(curve, key=lambda r: float(r["Omega"])), False)):
+        phase = float(end["phase"])
+        check(float(end["contact_fraction"]) == 0, f"F = {force}: contact at W = {end['Omega']}")
+        check(0 < phase < math.pi / 2 if below else math.pi / 2 < phase < math.pi,
+              f"F = {force}: phase lag {phase} at W = {end['Omega']}")
+    for r in curve:
+        balance = float(r["input_power"]) / float(r["dissipated_power"]) - 1
+        check(abs(balance) <= 1e-6, f"F = {force}: drive's power / damping's - 1 = {balance} at W = {r['Omega']}")
+    peak = max(curve, key=lambda r: float(r["energy"]))
+    reference = main_energy_at(main, float(peak["Omega"]))
+    distance = float(peak["energy"]) / reference - 1 if reference else None
+    check(distance is not None and abs(distance) <= 0.05,
+          f"F = {force}: peak at W = {peak['Omega']}, energy / main - 1 = {distance}")
+    print(f"F = {force:g}: {len(curve)} points, peak at {float(peak['Omega']):.5f}, "
+          f"energy / main - 1 = {distance if distance is None else round(distance, 4)}")
+    return float(peak["energy"])
+
+
+def check_uniform_load():
+    """The same bar driven by F cos(W t) per unit length (Forcing/Shape =
+    uniform), F = 1e-5 and 4e-5: each curve over the whole range (F = 4e-5
+    turns back from its folds at 2.008 along a second stable family to
+    grazing, where the stepper would follow the linear response back to
+    1.5), its ends, balance and peak as check_curve's (measured -1.1 and
+    -2.2 %), continuous, stable at its linear ends and unstable somewhere
+    where it folds. The relation "stable where Omega moves forward" is not
+    checked: that second family, stable (the integration keeps its points
+    within 1 %), runs backwards from a corner. The integration leaves every
+    unstable point verified and keeps every stable one that ends periodic
+    within 2 %: the M = 40 truncation, which the run's 2M check puts at a
+    median 4.3 % in energy on this bar, so about 2 % in amplitude (measured
+    up to 1.07 %, on the climb at 1.9925 beside that second family)."""
+    out = os.path.abspath("forced-uniform")
+    shutil.rmtree(out, ignore_errors=True)
+    run = subprocess.run([EXE, SCENE, "--output", out, "--set", "Forcing/Shape=uniform",
+                          "--set", "Forcing/Amplitudes=1e-5, 4e-5", "--set", "Forcing/Omegas=",
+                          "--set", "Output/Plots=false"], capture_output=True, text=True)
+    check(run.returncode == 0, f"the uniform load's run exited {run.returncode}: {run.stderr.strip()}")
+    if run.returncode != 0:
+        return
+    with open(os.path.join(out, "frc.csv")) as f:
+        rows = list(csv.DictReader(f))
+    main = main_branch(out)
+    forces = sorted({float(r["forcing"]) for r in rows})
+    check(forces == [1e-5, 4e-5], f"uniform load: curves {forces}, expected 1e-5, 4e-5")
+    peaks = [check_curve(force, [r for r in rows if float(r["forcing"]) == force], main) for force in forces]
+    check(peaks == sorted(peaks), f"uniform load: peaks {peaks} do not rise with F")
+    check_continuity(rows)
+    check_stability(rows, forward_pairs=False)
+    check_verdicts_in_time(rows, least_unstable=3, least_settled=10, within=0.02)
 
 
 def main():
@@ -241,29 +305,7 @@ def main():
     main = main_branch(OUT)
     forces = sorted({float(r["forcing"]) for r in rows})
     check(forces == [1e-5, 2e-5, 4e-5], f"curves {forces}, expected 1e-5, 2e-5, 4e-5")
-    peaks = []
-    for force in forces:
-        curve = [r for r in rows if float(r["forcing"]) == force]
-        omegas = [float(r["Omega"]) for r in curve]
-        check(min(omegas) == 1.5 and abs(max(omegas) - 2.2) < 1e-9, f"F = {force}: Omega from {min(omegas)} to {max(omegas)}")
-        check(all(float(r["residual"]) <= TOLERANCE for r in curve), f"F = {force}: a point above the tolerance")
-        for end, below in ((min(curve, key=lambda r: float(r["Omega"])), True),
-                           (max(curve, key=lambda r: float(r["Omega"])), False)):
-            phase = float(end["phase"])
-            check(float(end["contact_fraction"]) == 0, f"F = {force}: contact at W = {end['Omega']}")
-            check(0 < phase < math.pi / 2 if below else math.pi / 2 < phase < math.pi,
-                  f"F = {force}: phase lag {phase} at W = {end['Omega']}")
-        for r in curve:
-            balance = float(r["input_power"]) / float(r["dissipated_power"]) - 1
-            check(abs(balance) <= 1e-6, f"F = {force}: drive's power / damping's - 1 = {balance} at W = {r['Omega']}")
-        peak = max(curve, key=lambda r: float(r["energy"]))
-        reference = main_energy_at(main, float(peak["Omega"]))
-        distance = float(peak["energy"]) / reference - 1 if reference else None
-        check(distance is not None and abs(distance) <= 0.05,
-              f"F = {force}: peak at W = {peak['Omega']}, energy / main - 1 = {distance}")
-        peaks.append(float(peak["energy"]))
-        print(f"F = {force:g}: {len(curve)} points, peak at {float(peak['Omega']):.5f}, "
-              f"energy / main - 1 = {distance if distance is None else round(distance, 4)}")
+    peaks = [check_curve(force, [r for r in rows if float(r["forcing"]) == force], main) for force in forces]
     check(peaks == sorted(peaks), f"peaks {peaks} do not rise with F")
     check_continuity(rows)
     check_verification(rows)
@@ -289,6 +331,7 @@ def main():
               f"F = 5e-6 at damping 0.001: Omega from {min(omegas)} to {max(omegas)}")
         check_continuity(light_rows)
         check_stability(light_rows)
+    check_uniform_load()
     check(os.path.exists(os.path.join(OUT, "frc.png")), "frc.png not drawn")
     return report(failures, "forced response")
 

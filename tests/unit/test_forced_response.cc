@@ -1,10 +1,12 @@
 // The forced response: the damped receptance against a complex direct solve,
 // and the frequency-response curve of a drive no motion brings to the wall
-// against the closed-form modal sum of the uniform bar.
+// against the closed-form modal sum of the uniform bar, for the drive at the
+// contact end and for the uniform load along the bar.
 #include <nsm/continuation/forced_response.h>
 #include <nsm/model/bar_model.h>
 #include <nsm/model/damped_receptance.h>
 #include <nsm/model/discretisation.h>
+#include <nsm/model/load_modes.h>
 #include <nsm/model/shifted_factor.h>
 #include <nsm/verification/forced_time_verification.h>
 
@@ -52,6 +54,36 @@ namespace
     return g + 2 * w * w * dg_dw2 + share;
   }
 
+  /// The uniform bar under a unit load per unit length: phi_j = sqrt(2)
+  /// sin(w_j x), so b_j = int phi_j = sqrt(2) / w_j, s_j = phi_j(L) b_j = 2
+  /// (-1)^(j+1) / w_j and b_j^2 = 2 / w_j^2. The tip's response H_d = sum_j
+  /// s_j / d_j: undamped in closed form, (1 / cos W - 1) / W^2 (u'' + W^2 u
+  /// = -1, u(0) = u'(1) = 0), the damping's share term by term (its terms
+  /// fall like j^-4: 2e5 leave less than 1e-15).
+  complex uniform_load_response(const double w, const double zeta)
+  {
+    complex damped_share = 0;
+    for (int j = 200000; j >= 1; --j)
+      {
+        const double wj = (2 * j - 1) * M_PI / 2, d = wj * wj - w * w, s = (j % 2 ? 2.0 : -2.0) / wj;
+        damped_share += s / complex(d, 2 * zeta * wj * w) - s / d;
+      }
+    return (1 / std::cos(w) - 1) / (w * w) + damped_share;
+  }
+
+  /// sum_j b_j^2 (w_j^2 + W^2) / |d_j|^2, b_j^2 = 2 / w_j^2, term by term
+  /// (its terms fall like j^-4).
+  double uniform_load_energy_factor(const double w, const double zeta)
+  {
+    double sum = 0;
+    for (int j = 200000; j >= 1; --j)
+      {
+        const double wj = (2 * j - 1) * M_PI / 2;
+        sum += 2 / (wj * wj) * (wj * wj + w * w) / std::norm(complex(wj * wj - w * w, 2 * zeta * wj * w));
+      }
+    return sum;
+  }
+
   struct Model
   {
     Model(const std::string &section, unsigned int degree, unsigned int cells, double band)
@@ -65,6 +97,49 @@ namespace
     nsm::Discretisation discretisation;
     nsm::Receptance     receptance;
   };
+
+  /// Every point of a curve that the drive keeps off the wall against the
+  /// closed forms: tip amplitude F |h(W)|, phase lag -arg h(W), energy F^2 /
+  /// 4 e(W) to 1e-6; no contact, stable, and the drive's power equal to the
+  /// damping's to 1e-9.
+  template <typename Response, typename EnergyFactor>
+  void expect_linear_response(const nsm::ForcedCurve &curve, const Response &h, const EnergyFactor &e)
+  {
+    for (const nsm::ForcedPoint &p : curve.points)
+      {
+        const complex response = h(p.omega);
+        const std::string where = "W = " + std::to_string(p.omega) + ", F = " + std::to_string(p.forcing);
+        EXPECT_NEAR(p.measures.tip_amplitude / (p.forcing * std::abs(response)), 1.0, 1e-6) << where;
+        EXPECT_NEAR(p.measures.phase, -std::arg(response), 1e-6) << where;
+        EXPECT_NEAR(p.measures.energy / (p.forcing * p.forcing / 4 * e(p.omega)), 1.0, 1e-6) << where;
+        EXPECT_EQ(p.measures.contact_fraction, 0) << where;
+        EXPECT_TRUE(p.stable) << where;
+        EXPECT_NEAR(p.measures.input_power / p.measures.dissipated_power, 1.0, 1e-9) << where;
+      }
+  }
+  /// The uniform bar's frequency-response curve, W from 0.2 to 5.5 across
+  /// its first two resonances, of a unit drive (at the contact end, or the
+  /// load's) that a gap of 1e3 keeps off the wall, modal damping zeta; M = 3.
+  nsm::ForcedCurve linear_curve(const nsm::ForcingShape shape, const double zeta)
+  {
+    Model       model("1", 10, 20, 1e4);
+    nsm::Scene &scene                = model.scene;
+    scene.contact.gap                = 1e3;
+    scene.harmonic_balance.harmonics = 3;
+    scene.continuation.max_step      = 0.05;
+    const double           omega_max = 5.5;
+    nsm::DampingParameters damping;
+    damping.modal_ratio = zeta;
+    const std::unique_ptr<nsm::LoadModes> load = nsm::drive_modes(model.receptance, model.discretisation, shape);
+    const nsm::DampedReceptance           damped(model.receptance, damping, load.get());
+    nsm::ForcedHarmonicBalance  hb(scene.harmonic_balance, scene.contact, damped);
+    nsm::ForcedCurve curve = nsm::trace_forced_curve(hb, scene.harmonic_balance, scene.continuation, 0.2, omega_max, 1.0);
+    EXPECT_TRUE(curve.finished);
+    EXPECT_GE(curve.points.size(), 20u);
+    EXPECT_EQ(curve.points.front().omega, 0.2);
+    EXPECT_NEAR(curve.points.back().omega, omega_max, 1e-12);
+    return curve;
+  }
 } // namespace
 
 TEST(ForcedResponse, DampedReceptanceMatchesComplexDirectSolve)
@@ -97,9 +172,9 @@ TEST(ForcedResponse, DampedReceptanceMatchesComplexDirectSolve)
 
 TEST(ForcedResponse, LinearLimitMatchesClosedFormModalSum)
 {
-  // A gap of 1e3 that the drive (F = 1, zeta = 0.01: at most 1 / (2 zeta
-  // w1^2) = 20 at w1) never closes: the curve is the linear response F
-  // gamma_d(W), traced by the continuation across the first two resonances.
+  // A gap of 1e3 that the drive at the contact end (F = 1, zeta = 0.01: at
+  // most 1 / (2 zeta w1^2) = 20 at w1) never closes: the curve is the
+  // linear response F gamma_d(W), traced across the first two resonances.
   // FE_Q(10) x 20 has w1, w2 and their residues exact to ~1e-12; the modes
   // it does not resolve respond quasi-statically, with the same static sum,
   // and their damping shares differ by less than 2 zeta W sum 2 / w_j^3 over
@@ -108,33 +183,14 @@ TEST(ForcedResponse, LinearLimitMatchesClosedFormModalSum)
   // 1e-6 holds. Every mode is
   // summed with its damping (a band beyond the mesh's spectrum): the far
   // series' undamped modes are tested against their bound below.
-  Model       model("1", 10, 20, 1e4);
-  nsm::Scene &scene                    = model.scene;
-  scene.contact.gap                    = 1e3;
-  scene.harmonic_balance.harmonics     = 3;
-  scene.continuation.max_step          = 0.05;
-  const double                 omega_max = 5.5, zeta = 0.01, force = 1;
-  nsm::DampingParameters       damping;
-  damping.modal_ratio = zeta;
-  const nsm::DampedReceptance  damped(model.receptance, damping);
-  nsm::ForcedHarmonicBalance   hb(scene.harmonic_balance, scene.contact, damped);
-  const nsm::ForcedCurve curve =
-    nsm::trace_forced_curve(hb, scene.harmonic_balance, scene.continuation, 0.2, omega_max, force);
-  EXPECT_TRUE(curve.finished);
-  ASSERT_GE(curve.points.size(), 20u);
-  EXPECT_EQ(curve.points.front().omega, 0.2);
-  EXPECT_NEAR(curve.points.back().omega, omega_max, 1e-12);
+  const double           zeta  = 0.01;
+  const nsm::ForcedCurve curve = linear_curve(nsm::ForcingShape::tip, zeta);
+  expect_linear_response(
+    curve, [&](double w) { return uniform_damped_receptance(w, zeta); },
+    [&](double w) { return uniform_energy_factor(w, zeta); });
   unsigned int near_first = 0, near_second = 0;
   for (const nsm::ForcedPoint &p : curve.points)
     {
-      const complex gamma = uniform_damped_receptance(p.omega, zeta);
-      EXPECT_NEAR(p.measures.tip_amplitude / (force * std::abs(gamma)), 1.0, 1e-6) << "W = " << p.omega;
-      EXPECT_NEAR(p.measures.phase, -std::arg(gamma), 1e-6) << "W = " << p.omega;
-      EXPECT_NEAR(p.measures.energy / (force * force / 4 * uniform_energy_factor(p.omega, zeta)), 1.0, 1e-6)
-        << "W = " << p.omega;
-      EXPECT_EQ(p.measures.contact_fraction, 0) << "W = " << p.omega;
-      // No wall: the drive's power is what the damping takes.
-      EXPECT_NEAR(p.measures.input_power / p.measures.dissipated_power, 1.0, 1e-9) << "W = " << p.omega;
       near_first += std::abs(p.omega - M_PI / 2) < 0.05;
       near_second += std::abs(p.omega - 3 * M_PI / 2) < 0.05;
     }
@@ -165,6 +221,76 @@ TEST(ForcedResponse, FarModesUndampedWithinTheirBound)
   EXPECT_GT(largest, 0.1 * 0.54 * damping.modal_ratio * share);
 }
 
+namespace
+{
+  /// The Jacobian test's body for one drive shape.
+  void check_derivatives(const nsm::ForcingShape shape)
+  {
+    SCOPED_TRACE(shape == nsm::ForcingShape::tip ? "tip" : "uniform");
+    const Model                  model("1.5 - x", 10, 10, 8 * 2.2);
+    nsm::DampingParameters       damping;
+    damping.modal_ratio = 0.002;
+    const std::unique_ptr<nsm::LoadModes> load = nsm::drive_modes(model.receptance, model.discretisation, shape);
+    const nsm::DampedReceptance  damped(model.receptance, damping, load.get());
+    nsm::HarmonicBalanceParameters params;
+    params.harmonics = 8;
+    nsm::ForcedHarmonicBalance   hb(params, nsm::ContactParameters(), damped);
+    nsm::ContinuationParameters  continuation;
+    const nsm::ForcedCurve curve = nsm::trace_forced_curve(hb, params, continuation, 1.9, 2.0, 4e-5);
+    const auto in_contact = std::find_if(curve.points.begin(), curve.points.end(), [](const nsm::ForcedPoint &p) {
+      return p.measures.contact_fraction > 0.1;
+    });
+    ASSERT_NE(in_contact, curve.points.end());
+    const std::vector<double> &x = in_contact->x;
+    const double               w = in_contact->omega;
+    const unsigned int         n = hb.n_unknowns();
+    std::vector<double>        jacobian, slope, plus, minus;
+    hb.set_omega(w);
+    hb.evaluate(x, nullptr, &jacobian, &slope);
+    double largest = 0;
+    for (const double j : jacobian)
+      largest = std::max(largest, std::abs(j));
+    for (unsigned int c = 0; c < n; ++c)
+      {
+        std::vector<double> xp = x, xm = x;
+        const double        h  = 1e-7 * std::max(1.0, std::abs(x[c]));
+        xp[c] += h;
+        xm[c] -= h;
+        hb.evaluate(xp, &plus, nullptr);
+        hb.evaluate(xm, &minus, nullptr);
+        for (unsigned int r = 0; r < n; ++r)
+          EXPECT_NEAR(jacobian[r + std::size_t(c) * n], (plus[r] - minus[r]) / (2 * h), 1e-6 * largest)
+            << "row " << r << ", column " << c;
+      }
+    const double h = 1e-7 * w;
+    hb.set_omega(w + h);
+    hb.evaluate(x, &plus, nullptr);
+    hb.set_omega(w - h);
+    hb.evaluate(x, &minus, nullptr);
+    double slope_size = 0;
+    for (const double s : slope)
+      slope_size = std::max(slope_size, std::abs(s));
+    ASSERT_GT(slope_size, 0);
+    for (unsigned int r = 0; r < n; ++r)
+      EXPECT_NEAR(slope[r], (plus[r] - minus[r]) / (2 * h), 1e-6 * slope_size) << "row " << r;
+    // dR/dF the same way (R is affine in F for a fixed active set).
+    hb.set_omega(w);
+    const std::vector<double> dforcing = hb.dforcing(x);
+    const double              f = hb.forcing(), hf = 1e-7 * f;
+    hb.set_forcing(f + hf);
+    hb.evaluate(x, &plus, nullptr);
+    hb.set_forcing(f - hf);
+    hb.evaluate(x, &minus, nullptr);
+    hb.set_forcing(f);
+    double dforcing_size = 0;
+    for (const double d : dforcing)
+      dforcing_size = std::max(dforcing_size, std::abs(d));
+    ASSERT_GT(dforcing_size, 0);
+    for (unsigned int r = 0; r < n; ++r)
+      EXPECT_NEAR(dforcing[r], (plus[r] - minus[r]) / (2 * hf), 1e-6 * dforcing_size) << "row " << r;
+  }
+} // namespace
+
 TEST(ForcedResponse, JacobianAndOmegaSlopeMatchCentralDifferences)
 {
   // At a point in contact of the seed bar's curve (F = 4e-5, zeta = 0.002,
@@ -173,66 +299,9 @@ TEST(ForcedResponse, JacobianAndOmegaSlopeMatchCentralDifferences)
   // ~1e-16 / 1e-7 of the entries, so agreement to 1e-6 of the largest entry
   // unless the active set's roots move discontinuously (they do not at a
   // converged point away from grazing).
-  const Model                  model("1.5 - x", 10, 10, 8 * 2.2);
-  nsm::DampingParameters       damping;
-  damping.modal_ratio = 0.002;
-  const nsm::DampedReceptance  damped(model.receptance, damping);
-  nsm::HarmonicBalanceParameters params;
-  params.harmonics = 8;
-  nsm::ForcedHarmonicBalance   hb(params, nsm::ContactParameters(), damped);
-  nsm::ContinuationParameters  continuation;
-  const nsm::ForcedCurve curve = nsm::trace_forced_curve(hb, params, continuation, 1.9, 2.0, 4e-5);
-  const auto in_contact = std::find_if(curve.points.begin(), curve.points.end(), [](const nsm::ForcedPoint &p) {
-    return p.measures.contact_fraction > 0.1;
-  });
-  ASSERT_NE(in_contact, curve.points.end());
-  const std::vector<double> &x = in_contact->x;
-  const double               w = in_contact->omega;
-  const unsigned int         n = hb.n_unknowns();
-  std::vector<double>        jacobian, slope, plus, minus;
-  hb.set_omega(w);
-  hb.evaluate(x, nullptr, &jacobian, &slope);
-  double largest = 0;
-  for (const double j : jacobian)
-    largest = std::max(largest, std::abs(j));
-  for (unsigned int c = 0; c < n; ++c)
-    {
-      std::vector<double> xp = x, xm = x;
-      const double        h  = 1e-7 * std::max(1.0, std::abs(x[c]));
-      xp[c] += h;
-      xm[c] -= h;
-      hb.evaluate(xp, &plus, nullptr);
-      hb.evaluate(xm, &minus, nullptr);
-      for (unsigned int r = 0; r < n; ++r)
-        EXPECT_NEAR(jacobian[r + std::size_t(c) * n], (plus[r] - minus[r]) / (2 * h), 1e-6 * largest)
-          << "row " << r << ", column " << c;
-    }
-  const double h = 1e-7 * w;
-  hb.set_omega(w + h);
-  hb.evaluate(x, &plus, nullptr);
-  hb.set_omega(w - h);
-  hb.evaluate(x, &minus, nullptr);
-  double slope_size = 0;
-  for (const double s : slope)
-    slope_size = std::max(slope_size, std::abs(s));
-  ASSERT_GT(slope_size, 0);
-  for (unsigned int r = 0; r < n; ++r)
-    EXPECT_NEAR(slope[r], (plus[r] - minus[r]) / (2 * h), 1e-6 * slope_size) << "row " << r;
-  // dR/dF the same way (R is affine in F for a fixed active set).
-  hb.set_omega(w);
-  const std::vector<double> dforcing = hb.dforcing(x);
-  const double              f = hb.forcing(), hf = 1e-7 * f;
-  hb.set_forcing(f + hf);
-  hb.evaluate(x, &plus, nullptr);
-  hb.set_forcing(f - hf);
-  hb.evaluate(x, &minus, nullptr);
-  hb.set_forcing(f);
-  double dforcing_size = 0;
-  for (const double d : dforcing)
-    dforcing_size = std::max(dforcing_size, std::abs(d));
-  ASSERT_GT(dforcing_size, 0);
-  for (unsigned int r = 0; r < n; ++r)
-    EXPECT_NEAR(dforcing[r], (plus[r] - minus[r]) / (2 * hf), 1e-6 * dforcing_size) << "row " << r;
+  // The same with the uniform load (F = 4e-5 per unit length).
+  for (const nsm::ForcingShape shape : {nsm::ForcingShape::tip, nsm::ForcingShape::uniform})
+    check_derivatives(shape);
 }
 
 TEST(ForcedResponse, ForceCurveIsLinearWithoutTheWall)
@@ -263,16 +332,11 @@ TEST(ForcedResponse, ForceCurveIsLinearWithoutTheWall)
       const double range = scene.continuation.omega_max - scene.continuation.omega_min;
       EXPECT_NEAR(curve.points.front().forcing, scene.continuation.initial_step / (range > 0 ? range : 1.0), 1e-15);
       EXPECT_NEAR(curve.points.back().forcing, 1.0, 1e-12);
-      const complex gamma = uniform_damped_receptance(omega, zeta);
       for (const nsm::ForcedPoint &p : curve.points)
-        {
-          EXPECT_EQ(p.omega, omega);
-          EXPECT_NEAR(p.measures.tip_amplitude / (p.forcing * std::abs(gamma)), 1.0, 1e-6) << "F = " << p.forcing;
-          EXPECT_NEAR(p.measures.phase, -std::arg(gamma), 1e-6) << "F = " << p.forcing;
-          EXPECT_NEAR(p.measures.energy / (p.forcing * p.forcing / 4 * uniform_energy_factor(omega, zeta)), 1.0, 1e-6)
-            << "F = " << p.forcing;
-          EXPECT_TRUE(p.stable) << "F = " << p.forcing;
-        }
+        EXPECT_EQ(p.omega, omega);
+      expect_linear_response(
+        curve, [&](double w) { return uniform_damped_receptance(w, zeta); },
+        [&](double w) { return uniform_energy_factor(w, zeta); });
     }
 }
 
@@ -285,24 +349,107 @@ TEST(ForcedResponse, TimeIntegrationKeepsTheLinearResponse)
   // the amplitude after 5 periods stays within 1e-4 of F |gamma_d(W)|, and
   // the motion repeats within 1e-4 of g0 (a sign error in the damping or the
   // drive makes it grow or fall off at once).
-  const Model                  model("1", 10, 20, 1e4);
-  nsm::DampingParameters       damping;
-  damping.modal_ratio = 0.01;
-  const nsm::DampedReceptance  damped(model.receptance, damping);
-  nsm::HarmonicBalanceParameters params;
-  params.harmonics = 3;
-  nsm::ContactParameters contact;
-  contact.gap = 1e3;
-  nsm::ForcedHarmonicBalance hb(params, contact, damped);
-  hb.set_forcing(1.0);
-  const std::vector<double> x(hb.n_unknowns(), 0.0);
-  for (const double w : {1.0, 1.57, 2.5, 4.71}) // beside w1 and w2: tan W / W is exact there
+  // The uniform load's likewise, against its closed form H_d.
+  const Model model("1", 10, 20, 1e4);
+  for (const nsm::ForcingShape shape : {nsm::ForcingShape::tip, nsm::ForcingShape::uniform})
     {
-      hb.set_omega(w);
-      const nsm::ForcedVerification v = nsm::verify_forced_point(hb, x, 2000, 5);
-      const double                  exact = std::abs(uniform_damped_receptance(w, damping.modal_ratio));
-      EXPECT_NEAR(v.tip_amplitude / exact, 1.0, 1e-4) << "W = " << w;
-      EXPECT_NEAR(v.energy / hb.measure(x).energy, 1.0, 1e-4) << "W = " << w;
-      EXPECT_LT(v.drift * contact.gap, 1e-4 * exact) << "W = " << w;
+      const bool                            tip  = shape == nsm::ForcingShape::tip;
+      const std::unique_ptr<nsm::LoadModes> load = nsm::drive_modes(model.receptance, model.discretisation, shape);
+      nsm::DampingParameters                damping;
+      damping.modal_ratio = 0.01;
+      const nsm::DampedReceptance    damped(model.receptance, damping, load.get());
+      nsm::HarmonicBalanceParameters params;
+      params.harmonics = 3;
+      nsm::ContactParameters contact;
+      contact.gap = 1e3;
+      nsm::ForcedHarmonicBalance hb(params, contact, damped);
+      hb.set_forcing(1.0);
+      const std::vector<double> x(hb.n_unknowns(), 0.0);
+      for (const double w : {1.0, 1.57, 2.5, 4.71}) // beside w1 and w2: the closed forms are exact there
+        {
+          hb.set_omega(w);
+          const nsm::ForcedVerification v = nsm::verify_forced_point(hb, x, 2000, 5);
+          const double exact = std::abs(tip ? uniform_damped_receptance(w, damping.modal_ratio) :
+                                              uniform_load_response(w, damping.modal_ratio));
+          const std::string where = std::string(tip ? "tip" : "uniform") + ", W = " + std::to_string(w);
+          EXPECT_NEAR(v.tip_amplitude / exact, 1.0, 1e-4) << where;
+          EXPECT_NEAR(v.energy / hb.measure(x).energy, 1.0, 1e-4) << where;
+          EXPECT_LT(v.drift * contact.gap, 1e-4 * exact) << where;
+        }
     }
+}
+
+TEST(UniformDrive, LoadModesAreTheUniformBarsModes)
+{
+  // The uniform bar's first modes, which FE_Q(10) x 20 resolves to ~1e-12,
+  // take s_j = 2 (-1)^(j+1) / w_j and b_j^2 = 2 / w_j^2 of a unit load per
+  // unit length; every mode has s_j^2 = r_j b_j^2. The static responses,
+  // y = x - x^2 / 2 to the load and z = x to a unit force at the end, are
+  // quadratic, which FE_Q(10) holds exactly: the modes' sums with the far
+  // shares are y(L) = 1/2 = sum s_j / w_j^2, int z y = 5/24 = sum s_j /
+  // w_j^4, int y = 1/3 = sum b_j^2 / w_j^2 and int y^2 = 2/15 = sum b_j^2 /
+  // w_j^4, to round-off. The band (M = 3 to 2.2) leaves a far series.
+  const Model           model("1", 10, 20, 3 * 2.2);
+  const nsm::LoadModes  load  = nsm::load_modes(model.receptance, model.discretisation.unit_load());
+  const nsm::ModalData &modes = model.receptance.modes();
+  ASSERT_EQ(load.cross.size(), modes.eigenvalues.size());
+  ASSERT_EQ(load.self.size(), modes.eigenvalues.size());
+  ASSERT_GE(modes.eigenvalues.size(), 6u);
+  for (unsigned int j = 0; j < 6; ++j)
+    {
+      const double wj = (2 * j + 1) * M_PI / 2;
+      EXPECT_NEAR(load.cross[j], (j % 2 == 0 ? 2.0 : -2.0) / wj, 1e-9) << "mode " << j + 1;
+      EXPECT_NEAR(load.self[j], 2 / (wj * wj), 1e-9) << "mode " << j + 1;
+    }
+  std::array<double, 2> cross = load.cross_far, self = load.self_far;
+  for (unsigned int j = 0; j < modes.eigenvalues.size(); ++j)
+    {
+      const double l = modes.eigenvalues[j];
+      EXPECT_NEAR(load.cross[j] * load.cross[j], modes.contact_residues[j] * load.self[j], 1e-10 * load.self[j])
+        << "mode " << j + 1;
+      cross[0] += load.cross[j] / l;
+      cross[1] += load.cross[j] / (l * l);
+      self[0] += load.self[j] / l;
+      self[1] += load.self[j] / (l * l);
+    }
+  EXPECT_GT(std::abs(load.cross_far[0]), 1e-6); // the far modes' share is there
+  EXPECT_NEAR(cross[0], 0.5, 1e-12);
+  EXPECT_NEAR(cross[1], 5.0 / 24, 1e-12);
+  EXPECT_NEAR(self[0], 1.0 / 3, 1e-12);
+  EXPECT_NEAR(self[1], 2.0 / 15, 1e-12);
+}
+
+TEST(UniformDrive, FarModesKeepTheirStaticAndFirstOrderShares)
+{
+  // A band of 2.2 (M = 1) sums w1 to w3 and leaves the modes beyond 4 x 2.2
+  // to the far shares c_0 + c_1 W^2: H_d(W) against its closed form within
+  // what they leave out, the next order (W^2 / w_far^2)^2 and the far modes'
+  // damping (0.54 zeta) of their static share (zeta = 0.001). Leaving out
+  // c_1 W^2 (6e-5 of H_d at W = 2) exceeds that.
+  const Model                 model("1", 10, 20, 2.2);
+  const nsm::LoadModes        load = nsm::load_modes(model.receptance, model.discretisation.unit_load());
+  nsm::DampingParameters      damping;
+  damping.modal_ratio = 0.001;
+  const nsm::DampedReceptance damped(model.receptance, damping, &load);
+  const double                share = std::abs(load.cross_far[0]), far = 16 * 2.2 * 2.2;
+  ASSERT_GT(share, 1e-4);
+  for (const double w : {0.5, 1.0, 2.0})
+    {
+      const complex exact = uniform_load_response(w, damping.modal_ratio);
+      const double  bound = share * (std::pow(w * w / far, 2) + 0.54 * damping.modal_ratio) + 1e-12;
+      EXPECT_LE(std::abs(damped.drive(w).gamma - exact), bound) << "W = " << w;
+    }
+}
+
+TEST(UniformDrive, LinearLimitMatchesClosedForm)
+{
+  // The linear limit's curve with a unit load per unit length in place of
+  // the force at the end: the tip's response is the closed form H_d(W),
+  // (1 / cos W - 1) / W^2 undamped, the energy's factor sum_j b_j^2 (w_j^2
+  // + W^2) / |d_j|^2, to the tip drive's 1e-6 (s_j, b_j^2 fall faster than
+  // r_j: the unresolved modes' damping shares are smaller).
+  const double zeta = 0.01;
+  expect_linear_response(
+    linear_curve(nsm::ForcingShape::uniform, zeta), [&](double w) { return uniform_load_response(w, zeta); },
+    [&](double w) { return uniform_load_energy_factor(w, zeta); });
 }

@@ -1,7 +1,8 @@
-// Harmonic balance of the driven, damped bar at the contact DoF: the force
-// F cos(W t) at the contact end, the contact law of the backbone (ContactLaw:
-// rigid or compliant wall, either force sign), and the damped receptance
-// gamma_d (model/damped_receptance.h) on the full basis (1, sin k tau,
+// Harmonic balance of the driven, damped bar at the contact DoF: the drive
+// F cos(W t), at the contact end or as a load along the bar (Forcing/Shape;
+// the damped receptance's drive(), model/damped_receptance.h), the contact
+// law of the backbone (ContactLaw: rigid or compliant wall, either force
+// sign), and the damped receptance gamma_d on the full basis (1, sin k tau,
 // cos k tau; tau = W t), with no phase condition: the drive fixes the phase.
 //
 // Per harmonic k the receptance maps the tip force's coefficients (a, b) of
@@ -9,9 +10,10 @@
 //     (g_r a + g_i b, g_r b - g_i a),   g_r + i g_i = gamma_d(k W),
 // a 2 x 2 block Gamma_k. The unknowns are the contact force's coefficients
 // scaled as the backbone's, x = lambda / F_s with F_s = g0 / gamma(0). With
-// u = u_F - s Gamma lambda (u_F = Gamma F e_cos1, the drive's response; s the
-// force sign) and the law's weights (beta, a), the indicator
-// q = beta lambda - a (g0 - u) has the scaled coefficients
+// u = u_F - s Gamma lambda (u_F = F H_d e_cos1, the drive's response, H_d =
+// gamma_d(W) at the contact end; s the force sign) and the law's weights
+// (beta, a), the indicator q = beta lambda - a (g0 - u) has the scaled
+// coefficients
 //     v = (beta I - a s Gamma) x + a u_F / F_s - a gamma(0) e_0,
 // and the Signorini law's projection gives
 //     R = x - G v,   J = I - G (beta I - a s Gamma),
@@ -57,7 +59,8 @@ namespace nsm
     /// 2 M + 1: the mean, then sin k tau and cos k tau for k = 1..M.
     unsigned int n_unknowns() const { return functions_.size(); }
 
-    /// The drive's amplitude F (force, along +x).
+    /// The drive's amplitude F (force, along +x; per unit length for a
+    /// distributed drive).
     void   set_forcing(double amplitude);
     double forcing() const { return forcing_; }
 
@@ -70,8 +73,8 @@ namespace nsm
     void evaluate(const std::vector<double> &x, std::vector<double> *residual,
                   std::vector<double> *jacobian, std::vector<double> *domega = nullptr) const;
 
-    /// dR/dF at x: -G a Gamma e_cos1 / F_s (the drive's response, u_F =
-    /// F Gamma e_cos1, is the only term F enters; the active set's edges add
+    /// dR/dF at x: -G a H_d e_cos1 / F_s (the drive's response, u_F =
+    /// F H_d e_cos1, is the only term F enters; the active set's edges add
     /// nothing, as for dR/dW).
     std::vector<double> dforcing(const std::vector<double> &x) const;
 
@@ -93,9 +96,9 @@ namespace nsm
 
     /// Coefficients of the tip displacement u(L, t) on the basis.
     std::vector<double> displacement(const std::vector<double> &x) const;
-    /// Coefficients of the tip force on the basis: the drive less s times
-    /// the contact force.
-    std::vector<double> tip_force(const std::vector<double> &x) const;
+    /// Coefficients on the basis of the wall's force on the contact end,
+    /// -s times the contact force (the drive's response comes on top).
+    std::vector<double> wall_force(const std::vector<double> &x) const;
 
     const DampedReceptance &receptance() const { return receptance_; }
 
@@ -105,6 +108,8 @@ namespace nsm
   private:
     /// Gamma y for coefficients y on the basis (block k per harmonic).
     std::vector<double> apply_receptance(const std::vector<double> &y) const { return apply(gamma_, y); }
+    /// u += F h e_cos1 on the basis: (h_r, -h_i) F on (cos 1, sin 1).
+    void add_drive(const std::complex<double> &h, double f, std::vector<double> &u) const;
     /// The blocks of `values` (one complex number per harmonic) applied to y.
     std::vector<double> apply(const std::vector<std::complex<double>> &values, const std::vector<double> &y) const;
     /// The indicator's scaled coefficients v.
@@ -125,5 +130,6 @@ namespace nsm
     double                            omega_   = -1;
     std::vector<std::complex<double>> gamma_; ///< gamma_d(k W), k = 0..M
     std::vector<std::complex<double>> gamma_slope_; ///< d gamma_d(k W) / dW = k gamma_d'(k W)
+    std::complex<double>              drive_, drive_slope_; ///< H_d(W) and dH_d / dW
   };
 } // namespace nsm

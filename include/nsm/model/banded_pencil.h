@@ -41,5 +41,7 @@ namespace nsm
     std::size_t index(int i, int j) const { return (bandwidth + i - j) + std::size_t(j) * (bandwidth + 1); }
     /// Entry (i, j), any order; 0 outside the band.
     double at(const std::vector<double> &ab, int i, int j) const;
+    /// M x on the pencil's rows.
+    std::vector<double> mass_times(const std::vector<double> &x) const;
   };
 } // namespace nsm

@@ -52,6 +52,9 @@ namespace nsm
 
     /// Positions of the DoFs' support points.
     std::vector<double> support_points() const;
+    /// The nodal loads of a unit force per unit length along the whole bar,
+    /// f_i = int_0^L N_i dx (0 on the clamped DoF): a uniform drive's shape.
+    dealii::Vector<double> unit_load() const;
 
   private:
     void make_mesh(const DiscretisationParameters &params);

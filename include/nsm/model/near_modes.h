@@ -27,6 +27,11 @@ namespace nsm
   /// confined to a small cell) where 1/gamma cannot.
   ModalData modes_below(const BandedPencil &clamped_free, double upper);
 
+  /// The mass-normalised mode of the eigenvalue `lambda` (to working
+  /// precision) of the pencil, on its rows (its sign arbitrary): inverse
+  /// iteration at lambda, as `modes_below` finds the residues.
+  std::vector<double> mode_shape(const BandedPencil &pencil, double lambda);
+
   /// The lowest `count` eigenvalues of any pencil, as in modes_below with the
   /// last row for the contact row (a bar's modes do not vanish next to its
   /// end; where one does, the Sturm counts find it), without residues. About

@@ -48,6 +48,8 @@ namespace nsm
     /// What the modes not in modes() add at w^2 = sigma (a power series in
     /// sigma), with its slope in sigma.
     ReceptanceValue remainder(double sigma) const;
+    /// K and M on the free DoFs, as the receptance reads them.
+    const BandedPencil &pencil() const { return pencil_; }
 
 
   private:

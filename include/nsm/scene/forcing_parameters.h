@@ -1,6 +1,6 @@
 // The Forcing subsection: the harmonic force that drives the bar for its
-// forced response, F cos(W t) at the contact end, one frequency-response
-// curve per amplitude F (continuation/forced_response.h reads it). It
+// forced response, F cos(W t) at the contact end or per unit length along
+// the bar, one frequency-response curve per amplitude F (continuation/forced_response.h reads it). It
 // declares and parses its own entries; Scene (scene.h) composes the
 // subsections.
 #pragma once
@@ -14,8 +14,16 @@ namespace dealii
 
 namespace nsm
 {
+  /// Where the drive acts.
+  enum class ForcingShape
+  {
+    tip,    ///< a force F cos(W t) at the contact end
+    uniform ///< a force F cos(W t) per unit length along the whole bar
+  };
+
   struct ForcingParameters
   {
+    ForcingShape shape = ForcingShape::tip;
     /// Force levels F, one curve each; empty: no frequency-response curve.
     std::vector<double> amplitudes;
     /// Drive frequencies W, one curve in F each over [0, amplitude_max];

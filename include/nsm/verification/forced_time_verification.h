@@ -3,12 +3,14 @@
 //
 // The model is the forced harmonic balance's own, written at the contact
 // DoF in the receptance's modal coordinates q_j = phi_j(L) eta_j:
-//     q_j'' + c_j q_j' + w_j^2 q_j = r_j P(t),   u(L, t) = sum_j q_j + g_far P(t),
-// r_j = phi_j(L)^2, c_j each mode's damping, g_far the static share of the
-// modes beyond the sum (the receptance's remainder at 0), and P the tip force:
-// the drive F cos(W t) plus the wall's. Newmark's average acceleration per
-// mode makes u(L, t_{n+1}) linear in P(t_{n+1}); the wall's force then follows
-// in closed form (ContactLaw::step_force): on the rigid wall's face, or where
+//     q_j'' + c_j q_j' + w_j^2 q_j = r_j P(t) + s_j F cos(W t),
+//     u(L, t) = sum_j q_j + g_far P(t) + h_far F cos(W t),
+// r_j = phi_j(L)^2, s_j the drive's weights (DampedReceptance::
+// drive_weights: r_j for the drive at the contact end), c_j each mode's
+// damping, g_far and h_far the static shares of the modes beyond the sum,
+// and P the wall's force. Newmark's average acceleration per mode makes
+// u(L, t_{n+1}) linear in P(t_{n+1}); the wall's force then follows in
+// closed form (ContactLaw::step_force): on the rigid wall's face, or where
 // the compliant wall's spring balances it. The start is the point's own
 // harmonics (q_j and q_j' at t = 0 from the damped modal sum).
 #pragma once
