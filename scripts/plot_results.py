@@ -300,6 +300,26 @@ def backbone_plot(directory):
     save(figure, os.path.join(directory, "backbone.png"))
 
 
+def drive_per_length(directory):
+    """Whether the run's drive acts per unit length (Forcing/Shape = uniform
+    in its parameters.prm); at the contact end where the file or the entry is
+    missing."""
+    section = None
+    try:
+        with open(os.path.join(directory, "parameters.prm")) as f:
+            for line in f:
+                words = line.split()
+                if words[:1] == ["subsection"]:
+                    section = " ".join(words[1:])
+                elif words[:1] == ["end"]:
+                    section = None
+                elif section == "Forcing" and words[:4] == ["set", "Shape", "=", "uniform"]:
+                    return True
+    except (OSError, UnicodeDecodeError):
+        pass
+    return False
+
+
 def frc_plot(directory):
     """frc.png: the forced curves over the backbone's main branch (energy over
     the grazing energy against Omega), and the contact end's amplitude over g0."""
@@ -311,8 +331,11 @@ def frc_plot(directory):
         main = [(w, e / e_g) for w, e, b in zip(points["Omega"], points["energy"], points["branch"]) if b == "main"]
         top.semilogy([w for w, _ in main], [e for _, e in main], ".", markersize=3, color="0.3",
                      label="backbone, main branch", zorder=3)
-    curve_plot(directory, figure, top, bottom, "frc", fixed="forcing", along="Omega", label="F",
-               xlabel="Omega (rad/s)", title="Forced response: frequency-response curves over the backbone")
+    per_length = drive_per_length(directory)
+    curve_plot(directory, figure, top, bottom, "frc", fixed="forcing", along="Omega",
+               label="F per length" if per_length else "F", xlabel="Omega (rad/s)",
+               title="Forced response: frequency-response curves over the backbone" +
+               (" (drive per unit length along the bar)" if per_length else ""))
 
 
 def stability_runs(rows, values, stable):
@@ -366,7 +389,7 @@ def force_response_plot(directory):
     grazing energy and the contact end's amplitude over g0 against F."""
     figure, (top, bottom) = plt.subplots(2, 1, figsize=(8, 8), sharex=True)
     curve_plot(directory, figure, top, bottom, "force_response", fixed="Omega", along="forcing", label="Omega",
-               xlabel="F, the drive's amplitude",
+               xlabel="F, the drive's amplitude" + (" per unit length" if drive_per_length(directory) else ""),
                title="Forced response in F at fixed Omega: a sweep in force jumps at the folds")
 
 
