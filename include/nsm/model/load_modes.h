@@ -7,9 +7,9 @@
 // respond quasi-statically: e_N^T (K - w^2 M)^{-1} f less the summed modes'
 // share is c_0 + c_1 w^2 up to a term (w^2 / w_far^2)^2 of it, with c_0 and
 // c_1 from one static solve (as the receptance's truncated basis keeps its
-// own remainder). The drive acts at the first harmonic only, w = W, where the
-// receptance's band puts the far modes at w_far >= 4 M W: that term is below
-// 1e-4 / M^4 of the far modes' share.
+// own remainder, to the same order). The drive acts at the first harmonic
+// only, w = W, where a full basis's band puts the far modes at w_far >= 4 M W:
+// that term is below (1 / (16 M^2))^2 = 4e-3 / M^4 of the far modes' share.
 #pragma once
 
 #include <nsm/model/receptance.h>
