@@ -29,6 +29,7 @@
 #include <nsm/output/forced_response_table.h>
 #include <nsm/model/damped_receptance.h>
 #include <nsm/model/load_modes.h>
+#include <nsm/output/floquet_report.h>
 #include <nsm/verification/time_verification.h>
 #include <nsm/verification/refinement_checkpoint.h>
 #include <nsm/verification/verification_checkpoint.h>
@@ -493,6 +494,10 @@ namespace nsm
             tables_.push_back(forced_response_table(curves, verifications));
           if (!verifications.empty())
             report_.result.push_back(forced_verification_summary(curves, verifications));
+          if (const std::string line = floquet_summary(curves, verifications); !line.empty())
+            report_.result.push_back(line);
+          for (std::string &event : floquet_events(curves, verifications))
+            report_.events.push_back(std::move(event));
           if (load)
             report_.result.push_back("forced response: the drive F cos(W t) acts per unit length along the whole bar "
                                      "(Forcing/Shape = uniform): each F below is a force per length");
@@ -565,6 +570,9 @@ namespace nsm
                     steady_state_periods(forced.receptance(), curve.points[i].omega, ForcingParameters::max_verify_periods);
                 verifications.back()[i] =
                   verify_forced_point(forced, curve.points[i].x, scene_.output.verify_steps, periods);
+                if (scene_.forcing.floquet)
+                  verifications.back()[i]->floquet =
+                    floquet_multipliers(forced, curve.points[i].x, scene_.output.verify_steps);
                 ++verified;
                 progress.update([&] {
                   return std::to_string(verified) + " points verified (F = " + significant(curve.forcing, 4) + ", Omega " +

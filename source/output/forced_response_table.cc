@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <limits>
 #include <optional>
 
@@ -31,13 +32,6 @@ namespace nsm
       const auto &[w0, e0] = *(after - 1);
       const auto &[w1, e1] = *after;
       return MainEnergy{w1 == w0 ? e0 : e0 + (e1 - e0) * (omega - w0) / (w1 - w0), w1 - w0};
-    }
-
-    /// "forced response F = ..." or "force response at Omega = ...".
-    std::string curve_name(const ForcedCurve &curve)
-    {
-      return curve.sweep == ForcedSweep::omega ? "forced response F = " + significant(curve.forcing, 4) :
-                                                 "force response at Omega " + significant(curve.omega, 6);
     }
 
     /// The point of most energy of a curve with points.
@@ -128,6 +122,12 @@ namespace nsm
     }
   } // namespace
 
+  std::string curve_name(const ForcedCurve &curve)
+  {
+    return curve.sweep == ForcedSweep::omega ? "forced response F = " + significant(curve.forcing, 4) :
+                                               "force response at Omega " + significant(curve.omega, 6);
+  }
+
   CsvTable forced_response_table(const std::vector<ForcedCurve> &curves, const ForcedVerifications &verifications,
                                  const std::string &name)
   {
@@ -137,6 +137,12 @@ namespace nsm
                    {}};
     if (!verifications.empty())
       for (const char *column : {"verified_tip_amplitude", "verified_energy", "verified_drift"})
+        table.columns.push_back(column);
+    const bool floquet = std::any_of(verifications.begin(), verifications.end(), [](const auto &curve) {
+      return std::any_of(curve.begin(), curve.end(), [](const auto &v) { return v && v->floquet; });
+    });
+    if (floquet)
+      for (const char *column : {"floquet_largest", "floquet_real", "floquet_imag", "floquet_beyond_one"})
         table.columns.push_back(column);
     for (std::size_t c = 0; c < curves.size(); ++c)
       for (std::size_t i = 0; i < curves[c].points.size(); ++i)
@@ -151,6 +157,14 @@ namespace nsm
           const std::optional<ForcedVerification> &v = verifications[c][i];
           for (const double value : {v ? v->tip_amplitude : 0.0, v ? v->energy : 0.0, v ? v->drift : 0.0})
             table.rows.back().push_back(v ? CsvCell(value) : CsvCell(std::string()));
+          if (!floquet)
+            continue;
+          // The largest multiplier, where the shooting converged.
+          const bool known = v && v->floquet && v->floquet->converged();
+          const std::complex<double> largest = known ? v->floquet->values.front() : 0.0;
+          for (const double value : {std::abs(largest), largest.real(), largest.imag(),
+                                     known ? double(v->floquet->beyond_plus_one()) : 0.0})
+            table.rows.back().push_back(known ? CsvCell(value) : CsvCell(std::string()));
         }
     return table;
   }

@@ -74,6 +74,13 @@ namespace nsm
                       "Periods integrated from each verified point; the last one is compared with the point. 0: "
                       "to steady state, the periods in which the slowest mode's free motion decays to 1e-3 of its "
                       "start (ln(1000) / (min_j c_j / 2) / T; about 550 with Modal ratio 0.002), at most 100000.");
+    prm.declare_entry("Floquet",
+                      text(d.floquet),
+                      Patterns::Bool(),
+                      "At every point verified in time (Verify every), also the Floquet multipliers: the stepped "
+                      "model's periodic orbit found by shooting from the point, and its monodromy's eigenvalues "
+                      "(frc.csv's floquet_ columns; folds, period doublings and Neimark-Sacker pairs as events). Needs "
+                      "Contact/Wall = compliant and Verify every > 0.");
     prm.leave_subsection();
   }
 
@@ -83,6 +90,7 @@ namespace nsm
     shape          = selected(prm.get("Shape"), shapes);
     verify_every   = get_unsigned(prm, "Verify every");
     verify_periods = get_unsigned(prm, "Verify periods");
+    floquet        = prm.get_bool("Floquet");
     amplitude_max  = prm.get_double("Amplitude max");
     omegas         = curve_values(prm, "Omegas");
     amplitudes     = curve_values(prm, "Amplitudes");

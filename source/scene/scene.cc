@@ -122,6 +122,12 @@ namespace nsm
     require(forcing.verify_every == 0 || contact.sign == ForceSign::physical, "Forcing/Verify every",
             "0 when Contact/Force sign = seed-eq5 (the time integration has the physical wall)",
             std::to_string(forcing.verify_every));
+    require(!forcing.floquet || contact.wall == Wall::compliant, "Forcing/Floquet",
+            "false unless Contact/Wall = compliant (the rigid wall's impacts are not continuous in the state, and "
+            "the time steps' derivatives miss their saltation)",
+            "true");
+    require(!forcing.floquet || forcing.verify_every > 0, "Forcing/Floquet",
+            "false when Forcing/Verify every = 0 (the multipliers are computed at the points verified)", "true");
   }
 
   Scene Scene::from_file(const std::string &path)

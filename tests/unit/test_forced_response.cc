@@ -16,7 +16,7 @@
 #include <cmath>
 #include <complex>
 
-#include "scene_helpers.h"
+#include "forced_helpers.h"
 
 namespace
 {
@@ -84,19 +84,7 @@ namespace
     return sum;
   }
 
-  struct Model
-  {
-    Model(const std::string &section, unsigned int degree, unsigned int cells, double band)
-      : scene(testing_helpers::bar_scene(section, degree, cells))
-      , bar(scene.bar)
-      , discretisation(bar, scene.discretisation)
-      , receptance(discretisation, {nsm::ReceptanceMethod::modal, 0}, band)
-    {}
-    nsm::Scene          scene;
-    nsm::BarModel       bar;
-    nsm::Discretisation discretisation;
-    nsm::Receptance     receptance;
-  };
+  using Model = testing_helpers::ForcedModel;
 
   /// Every point of a curve that the drive keeps off the wall against the
   /// closed forms: tip amplitude F |h(W)|, phase lag -arg h(W), energy F^2 /

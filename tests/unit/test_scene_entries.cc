@@ -119,6 +119,7 @@ namespace
       {"Forcing/Omegas", "1.9, 2", {"Damping/Modal ratio=0.01", "Forcing/Amplitude max=1e-5"}, NSM_MEMBER(forcing.omegas)},
       {"Forcing/Amplitude max", "3e-5", {}, NSM_MEMBER(forcing.amplitude_max)},
       {"Forcing/Shape", "uniform", {}, NSM_MEMBER(forcing.shape)},
+      {"Forcing/Floquet", "true", {"Contact/Wall=compliant", "Forcing/Verify every=5", "Damping/Modal ratio=0.01", "Forcing/Amplitudes=1e-5"}, NSM_MEMBER(forcing.floquet)},
       {"Output/Directory", "elsewhere", {}, NSM_MEMBER(output.directory)},
       {"Output/Spectrum modes", "4", {}, NSM_MEMBER(output.spectrum_modes)},
       {"Output/Receptance frequencies", "0.5, 1", {}, NSM_MEMBER(output.receptance_frequencies)},

@@ -72,6 +72,12 @@ namespace nsm
       return penetrates(u) ? gap_at(u) / (response + compliance_) : 0.0;
     }
 
+    /// d step_force / du: the wall's force's change with the free motion.
+    double step_force_slope(const double u, const double response) const
+    {
+      return penetrates(u) ? -1 / (response + compliance_) : 0.0;
+    }
+
     /// The energy the wall stores at displacement u: k max(u - g0, 0)^2 / 2
     /// (0 for the rigid wall).
     double stored_energy(const double u) const

@@ -36,6 +36,10 @@ namespace nsm
   CsvTable forced_response_table(const std::vector<ForcedCurve> &curves, const ForcedVerifications &verifications,
                                  const std::string &name = "frc.csv");
 
+  /// "forced response F = ..." or "force response at Omega ...": how the
+  /// Result lines and events name a curve.
+  std::string curve_name(const ForcedCurve &curve);
+
   /// The verification's Result line: points and periods; of the points
   /// stable by the fold test, the medians and largest of |A_t / A - 1| (tip
   /// amplitude), |E_t / E - 1| (energy) and the last period's drift, and how

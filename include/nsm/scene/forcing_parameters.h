@@ -36,6 +36,9 @@ namespace nsm
     /// Periods integrated from each such point; 0: to steady state
     /// (verification/forced_time_verification.h, steady_state_periods).
     unsigned int verify_periods = 0;
+    /// Floquet multipliers at every point verified (compliant wall only;
+    /// verification/forced_floquet.h).
+    bool floquet = false;
     /// The most periods a verification integrates, given or to steady state.
     static constexpr unsigned int max_verify_periods = 100000;
 

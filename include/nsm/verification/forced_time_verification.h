@@ -16,6 +16,9 @@
 #pragma once
 
 #include <nsm/harmonic_balance/forced_harmonic_balance.h>
+#include <nsm/verification/forced_floquet.h>
+
+#include <optional>
 
 #include <vector>
 
@@ -46,6 +49,8 @@ namespace nsm
     double energy;        ///< period mean over the last period (the HB's definition)
     double drift;         ///< max |u(L, t) - u(L, t - T)| / g0 over the last period
     unsigned int periods; ///< integrated
+    /// The point's Floquet multipliers, where asked (Forcing/Floquet).
+    std::optional<FloquetMultipliers> floquet = std::nullopt;
   };
 
   /// Integrates the point x of `hb` (at its current Omega and forcing) over

@@ -1,0 +1,138 @@
+#include <nsm/base/errors.h>
+#include <nsm/base/dense_lu.h>
+#include <nsm/verification/forced_floquet.h>
+#include <nsm/verification/forced_modal_steps.h>
+
+#include <deal.II/lac/lapack_full_matrix.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace nsm
+{
+  namespace
+  {
+    double norm(const std::vector<double> &z)
+    {
+      double sum = 0;
+      for (const double v : z)
+        sum += v * v;
+      return std::sqrt(sum);
+    }
+
+    /// One period from the model's state: P(z), and its Jacobian (column-
+    /// major, 2N x 2N, on the modes' q and v).
+    std::vector<double> period(ForcedModalSteps &model, const unsigned int steps, std::vector<double> &jacobian)
+    {
+      const unsigned int                     n = model.modes();
+      std::vector<ForcedModalSteps::Tangent> tangents;
+      for (const bool velocity : {false, true})
+        for (unsigned int j = 0; j < n; ++j)
+          tangents.push_back(model.start_tangent(j, velocity));
+      for (unsigned int s = 0; s < steps; ++s)
+        model.step(&tangents);
+      jacobian.assign(std::size_t(4) * n * n, 0.0);
+      for (unsigned int c = 0; c < 2 * n; ++c)
+        for (unsigned int j = 0; j < n; ++j)
+          {
+            jacobian[std::size_t(c) * 2 * n + j]     = tangents[c].q[j];
+            jacobian[std::size_t(c) * 2 * n + n + j] = tangents[c].v[j];
+          }
+      return model.state();
+    }
+  } // namespace
+
+  unsigned int FloquetMultipliers::beyond_plus_one() const
+  {
+    return std::count_if(values.begin(), values.end(),
+                         [](const std::complex<double> &m) { return m.imag() == 0 && m.real() > 1; });
+  }
+
+  std::string FloquetMultipliers::instability() const
+  {
+    if (values.empty() || std::abs(values.front()) <= 1)
+      return "";
+    const std::complex<double> m = values.front();
+    if (m.imag() != 0)
+      return "Neimark-Sacker";
+    return m.real() > 0 ? "fold" : "period doubling";
+  }
+
+  FloquetMultipliers floquet_multipliers(const ForcedHarmonicBalance &hb, const std::vector<double> &x,
+                                         const unsigned int steps)
+  {
+    if (hb.law().rigid())
+      throw InputError("Floquet multipliers need the compliant wall (Contact/Wall = compliant): the rigid wall's "
+                       "impacts are not continuous in the state");
+    ForcedModalSteps    model(hb, x, steps);
+    const int           n = 2 * model.modes();
+    std::vector<double> z = model.state(), jacobian;
+    // |P(z) - z| / |z| from one period without tangents.
+    const auto defect = [&](const std::vector<double> &start) {
+      model.restart(start);
+      for (unsigned int s = 0; s < steps; ++s)
+        model.step();
+      const std::vector<double> image = model.state();
+      double                    sum   = 0;
+      for (int i = 0; i < n; ++i)
+        sum += (image[i] - start[i]) * (image[i] - start[i]);
+      return std::sqrt(sum) / std::max(norm(start), 1e-300);
+    };
+    model.restart(z);
+    FloquetMultipliers result;
+    for (unsigned int k = 0;; ++k)
+      {
+        const std::vector<double> image = period(model, steps, jacobian);
+        std::vector<double>       r(n);
+        for (int i = 0; i < n; ++i)
+          r[i] = image[i] - z[i];
+        result.residual = norm(r) / std::max(norm(z), 1e-300);
+        if (result.residual <= floquet_constants::orbit_tolerance)
+          {
+            result.newton_steps = k;
+            break;
+          }
+        if (k == floquet_constants::newton_steps)
+          return {};
+        // (I - Phi) dz = P(z) - z, the step halved until the defect falls
+        // (the harmonic balance's start is a few per cent from the orbit in
+        // the high modes, and a full first step overshoots).
+        std::vector<double> a = jacobian;
+        for (int i = 0; i < n; ++i)
+          {
+            for (int j = 0; j < n; ++j)
+              a[std::size_t(j) * n + i] = -a[std::size_t(j) * n + i];
+            a[std::size_t(i) * n + i] += 1;
+          }
+        std::vector<int> pivots(n);
+        if (!lu_factor(n, a.data(), pivots.data()))
+          return {};
+        lu_solve(n, a.data(), pivots.data(), r.data());
+        bool accepted = false;
+        for (double share = 1; share >= floquet_constants::least_share && !accepted; share /= 2)
+          {
+            std::vector<double> trial = z;
+            for (int i = 0; i < n; ++i)
+              trial[i] += share * r[i];
+            if (defect(trial) < result.residual)
+              {
+                z        = trial;
+                accepted = true;
+              }
+          }
+        if (!accepted)
+          return {};
+        model.restart(z);
+      }
+    dealii::LAPACKFullMatrix<double> monodromy(n, n);
+    for (int c = 0; c < n; ++c)
+      for (int i = 0; i < n; ++i)
+        monodromy(i, c) = jacobian[std::size_t(c) * n + i];
+    monodromy.compute_eigenvalues();
+    for (int i = 0; i < n; ++i)
+      result.values.push_back(monodromy.eigenvalue(i));
+    std::sort(result.values.begin(), result.values.end(),
+              [](const std::complex<double> &a, const std::complex<double> &b) { return std::abs(a) > std::abs(b); });
+    return result;
+  }
+} // namespace nsm

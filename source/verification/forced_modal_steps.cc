@@ -1,0 +1,177 @@
+#include <nsm/harmonic_balance/trigonometric.h>
+#include <nsm/verification/forced_modal_steps.h>
+
+#include <cmath>
+#include <complex>
+
+namespace nsm
+{
+  namespace
+  {
+    /// The wall's force's series at tau = 0.
+    double value_at_zero(const std::vector<double> &p)
+    {
+      double sum = p[0];
+      for (std::size_t i = 2; i < p.size(); i += 2)
+        sum += p[i];
+      return sum;
+    }
+  } // namespace
+
+  ForcedModalSteps::ForcedModalSteps(const ForcedHarmonicBalance &hb, const std::vector<double> &x,
+                                     const unsigned int steps)
+    : law_(hb.law())
+    , omega_(hb.omega())
+    , forcing_(hb.forcing())
+    , far_(hb.receptance().undamped().remainder(0).gamma)
+    , dt_(two_pi / hb.omega() / steps)
+    , drive_far_(hb.receptance().drive_far_static())
+  {
+    // The modes at t = 0 from the wall's force's harmonics p and the drive
+    // F at W: q_j = Re (sum_k r_j P_k / d_jk + s_j F / d_j1), and the
+    // accelerations that the equation of motion gives with P(0).
+    const DampedReceptance   &receptance = hb.receptance();
+    const ModalData          &modes      = receptance.undamped().modes();
+    const std::vector<double> p          = hb.wall_force(x);
+    const unsigned int        harmonics  = (p.size() - 1) / 2;
+    force_                               = value_at_zero(p);
+    drive_                               = forcing_;
+    u_                                   = far_ * force_ + drive_far_.cross * drive_;
+    for (unsigned int j = 0; j < modes.eigenvalues.size(); ++j)
+      {
+        const double r = modes.contact_residues[j], s = receptance.drive_weights()[j];
+        const double l = modes.eigenvalues[j], c = receptance.coefficients()[j];
+        Mode         m{r, s, l, c, r * p[0] / l, 0, 0};
+        for (unsigned int k = 1; k <= harmonics; ++k)
+          {
+            const double         w = k * omega_;
+            std::complex<double> force(r * p[2 * k], -r * p[2 * k - 1]);
+            if (k == 1)
+              force += s * forcing_;
+            const std::complex<double> response = force / std::complex<double>(l - w * w, c * w);
+            m.q += response.real();
+            m.v += (std::complex<double>(0, w) * response).real();
+          }
+        m.a = r * force_ + s * forcing_ - c * m.v - l * m.q;
+        u_ += m.q;
+        modes_.push_back(m);
+      }
+    constant_.resize(modes_.size());
+    slope_.resize(modes_.size());
+  }
+
+  std::vector<double> ForcedModalSteps::state() const
+  {
+    std::vector<double> z(2 * modes_.size());
+    for (std::size_t j = 0; j < modes_.size(); ++j)
+      {
+        z[j]                 = modes_[j].q;
+        z[modes_.size() + j] = modes_[j].v;
+      }
+    return z;
+  }
+
+  void ForcedModalSteps::restart(const std::vector<double> &z)
+  {
+    // u(L, 0) = sum_j q_j + far P + h F, and the wall's force is the one
+    // that balances it: the step's closed form with the static response.
+    step_        = 0;
+    drive_       = forcing_;
+    double u_free = drive_far_.cross * drive_;
+    for (std::size_t j = 0; j < modes_.size(); ++j)
+      {
+        modes_[j].q = z[j];
+        modes_[j].v = z[modes_.size() + j];
+        u_free += modes_[j].q;
+      }
+    force_ = law_.step_force(u_free, far_);
+    u_     = u_free + far_ * force_;
+    for (Mode &m : modes_)
+      m.a = m.residue * force_ + m.drive * drive_ - m.damping * m.v - m.eigenvalue * m.q;
+  }
+
+  ForcedModalSteps::Tangent ForcedModalSteps::start_tangent(const unsigned int j, const bool velocity) const
+  {
+    const std::size_t n = modes_.size();
+    Tangent           d{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
+    (velocity ? d.v : d.q)[j] = 1;
+    // u(L, 0) = sum_k q_k + far P + h F: the wall's force moves with the
+    // free motion sum_k q_k as a step's does with the static response.
+    const double dforce = velocity ? 0.0 : law_.step_force_slope(u_ - far_ * force_, far_);
+    for (std::size_t k = 0; k < n; ++k)
+      d.a[k] = modes_[k].residue * dforce - modes_[k].damping * d.v[k] - modes_[k].eigenvalue * d.q[k];
+    return d;
+  }
+
+  double ForcedModalSteps::step(std::vector<Tangent> *tangents)
+  {
+    // Per mode, q_{n+1} = A_j + B_j P_{n+1} (Newmark, average
+    // acceleration), the drive's term in A_j.
+    const double dt = dt_, h = dt * dt / 4;
+    ++step_;
+    drive_          = forcing_ * std::cos(omega_ * double(step_) * dt);
+    double u_free   = drive_far_.cross * drive_, response = far_;
+    for (std::size_t j = 0; j < modes_.size(); ++j)
+      {
+        const Mode  &m         = modes_[j];
+        const double predicted = m.q + dt * m.v + h * m.a;
+        const double rest      = m.damping * (m.v + dt / 2 * m.a) + m.eigenvalue * predicted;
+        const double scale     = 1 + m.damping * dt / 2 + m.eigenvalue * h;
+        constant_[j]           = predicted - h * (rest - m.drive * drive_) / scale;
+        slope_[j]              = h * m.residue / scale;
+        u_free += constant_[j];
+        response += slope_[j];
+      }
+    force_ = law_.step_force(u_free, response);
+    u_     = u_free + response * force_;
+    if (law_.rigid() && force_ != 0)
+      u_ = law_.gap(); // on the wall's face, not one rounding beyond it
+    if (tangents)
+      {
+        const double        dforce = law_.step_force_slope(u_free, response);
+        std::vector<double> dconstant(modes_.size());
+        for (Tangent &d : *tangents)
+          {
+            double du_free = 0;
+            for (std::size_t j = 0; j < modes_.size(); ++j)
+              {
+                const Mode  &m         = modes_[j];
+                const double predicted = d.q[j] + dt * d.v[j] + h * d.a[j];
+                const double rest      = m.damping * (d.v[j] + dt / 2 * d.a[j]) + m.eigenvalue * predicted;
+                dconstant[j]           = predicted - h * rest / (1 + m.damping * dt / 2 + m.eigenvalue * h);
+                du_free += dconstant[j];
+              }
+            const double df = dforce * du_free;
+            for (std::size_t j = 0; j < modes_.size(); ++j)
+              {
+                const double q = dconstant[j] + slope_[j] * df;
+                const double a = 4 / (dt * dt) * (q - d.q[j] - dt * d.v[j]) - d.a[j];
+                d.v[j] += dt / 2 * (d.a[j] + a);
+                d.q[j] = q;
+                d.a[j] = a;
+              }
+          }
+      }
+    for (std::size_t j = 0; j < modes_.size(); ++j)
+      {
+        Mode        &m = modes_[j];
+        const double q = constant_[j] + slope_[j] * force_;
+        const double a = 4 / (dt * dt) * (q - m.q - dt * m.v) - m.a;
+        m.v += dt / 2 * (m.a + a);
+        m.q = q;
+        m.a = a;
+      }
+    return u_;
+  }
+
+  double ForcedModalSteps::energy() const
+  {
+    double e = 0.5 * (far_ * force_ * force_ + 2 * drive_far_.cross * force_ * drive_ +
+                      drive_far_.self * drive_ * drive_) +
+               law_.stored_energy(u_);
+    for (const Mode &m : modes_)
+      if (m.residue > 0)
+        e += 0.5 * (m.v * m.v + m.eigenvalue * m.q * m.q) / m.residue;
+    return e;
+  }
+} // namespace nsm
