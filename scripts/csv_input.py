@@ -137,7 +137,9 @@ FRC = {"forcing": Column(required=True, positive=True), "segment": Column(requir
        "Omega": Column(required=True), "energy": Column(required=True, positive=True),
        "tip_amplitude": Column(required=True), "phase": Column(required=True), "stable": Column(whole=True),
        **{name: Column() for name in ("contact_fraction", "max_contact_force", "input_power", "dissipated_power",
-                                      "residual")}}
+                                      "residual")},
+       # Filled at the points verified whose shooting converged (Forcing/Floquet).
+       **{name: Column(empty=True) for name in ("floquet_largest", "floquet_real", "floquet_imag")}}
 
 # backbone.csv's columns (doc/output.md): segment, Omega, energy and branch
 # required, the others checked where present, empty only where a run leaves

@@ -374,6 +374,7 @@ def curve_plot(directory, figure, top, bottom, name, fixed, along, label, xlabel
                         linewidth=1, color=f"C{n % 10}", label=legend)
     if any(s == 0 for s in stable):
         bottom.plot([], [], "--", linewidth=1, color="0.3", label="unstable (fold test)")
+    floquet_markers(table, along, bottom)
     top.set_ylabel(f"energy / E_g (E_g of mode {mode}, grazing.csv)" if mode else "energy")
     bottom.set_ylabel("max |u(L, t)| / g0")
     bottom.axhline(1, color="0.6", linewidth=0.6, linestyle=":")
@@ -382,6 +383,22 @@ def curve_plot(directory, figure, top, bottom, name, fixed, along, label, xlabel
     top.legend(fontsize=7, loc="best")
     bottom.legend(fontsize=7, loc="best")
     save(figure, os.path.join(directory, name + ".png"))
+
+
+def floquet_markers(table, along, axes):
+    """Marks the points whose largest Floquet multiplier (Forcing/Floquet)
+    lies outside the unit circle by a complex pair (Neimark-Sacker) or beyond
+    -1 (a period doubling): the instabilities the fold test cannot see."""
+    largest = table.get("floquet_largest")
+    if not largest:
+        return
+    for marker, label, chosen in (("x", "Neimark-Sacker (Floquet)", lambda i: table["floquet_imag"][i] != 0),
+                                  ("+", "period doubling (Floquet)", lambda i: table["floquet_imag"][i] == 0 and
+                                   table["floquet_real"][i] < -1)):
+        rows = [i for i, m in enumerate(largest) if m == m and m > 1 and chosen(i)]
+        if rows:
+            axes.plot([table[along][i] for i in rows], [table["tip_amplitude"][i] / GAP for i in rows], marker,
+                      color="black", markersize=6, label=label, zorder=4)
 
 
 def force_response_plot(directory):
