@@ -2,10 +2,10 @@
 """Floquet multipliers of the forced response (doc/method.md, "The forced response").
 
 usage: check_forced_floquet.py NSM_BAR SCENE
-Runs prm/forced.prm (the seed bar, FE_Q(10) x 20, M = 40, zeta = 0.002) on a
-compliant wall (Contact/Wall = compliant, k = 100) with Forcing/Floquet: at
-every 20th point of each curve the stepped model's orbit by shooting and its
-multipliers (frc.csv's floquet_ columns), and checks (exit 0):
+Runs prm/forced-floquet.prm (the seed bar, FE_Q(10) x 20, M = 40, zeta =
+0.002, on a compliant wall of k = 100, Forcing/Floquet): at every 20th point
+of each curve the stepped model's orbit by shooting and its multipliers
+(frc.csv's floquet_ columns), and checks (exit 0):
 - off the wall the largest multiplier is the first mode's free decay over a
   period, exp(-zeta w1 T) (w1 from grazing.csv), to 1e-3: the trapezoidal
   rule keeps a mode's decay to (w1 dt)^2 relative;
@@ -51,9 +51,7 @@ def check(ok, message):
 
 def main():
     shutil.rmtree(OUT, ignore_errors=True)
-    run = subprocess.run([EXE, SCENE, "--output", OUT, "--set", "Contact/Wall=compliant",
-                          "--set", "Forcing/Floquet=true", "--set", "Forcing/Omegas=",
-                          "--set", "Output/Plots=false"], capture_output=True, text=True)
+    run = subprocess.run([EXE, SCENE, "--output", OUT, "--set", "Output/Plots=false"], capture_output=True, text=True)
     if run.returncode != 0:
         sys.exit(f"nsm-bar {SCENE} exited {run.returncode}: {run.stderr.strip()}")
     with open(os.path.join(OUT, "frc.csv")) as f:
