@@ -45,7 +45,10 @@ namespace nsm
         gamma_[k]       = value.gamma;
         gamma_slope_[k] = double(k) * value.slope;
       }
-    const DampedReceptance::Value drive = receptance_.drive(omega);
+    // At the contact end the drive's response is gamma_d(W), evaluated above.
+    const DampedReceptance::Value drive =
+      receptance_.distributed_drive() || harmonics_ == 0 ? receptance_.drive(omega) :
+                                                          DampedReceptance::Value{gamma_[1], gamma_slope_[1]};
     drive_       = drive.gamma;
     drive_slope_ = drive.slope;
   }

@@ -133,14 +133,20 @@ namespace nsm
   DampedReceptance::DriveFactors DampedReceptance::drive_energy_factors(const double omega) const
   {
     if (!load_)
-      return {energy_factor(omega), energy_factor(omega)};
+      {
+        const double factor = energy_factor(omega);
+        return {factor, factor};
+      }
     return {energy_sum(load_->cross, load_->cross_far, omega), energy_sum(load_->self, load_->self_far, omega)};
   }
 
   DampedReceptance::DriveFactors DampedReceptance::drive_dissipation_factors(const double omega) const
   {
     if (!load_)
-      return {dissipation_factor(omega), dissipation_factor(omega)};
+      {
+        const double factor = dissipation_factor(omega);
+        return {factor, factor};
+      }
     return {dissipation_sum(load_->cross, omega), dissipation_sum(load_->self, omega)};
   }
 
@@ -157,7 +163,10 @@ namespace nsm
   DampedReceptance::DriveFactors DampedReceptance::drive_far_static() const
   {
     if (!load_)
-      return {receptance_.remainder(0).gamma, receptance_.remainder(0).gamma};
+      {
+        const double share = receptance_.remainder(0).gamma;
+        return {share, share};
+      }
     return {load_->cross_far[0], load_->self_far[0]};
   }
 } // namespace nsm

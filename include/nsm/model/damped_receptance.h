@@ -62,6 +62,9 @@ namespace nsm
     /// The drive's response at the contact DoF per unit F at W, and its slope
     /// in W: gamma_d for the drive at the contact DoF.
     Value drive(double omega) const;
+    /// Whether the drive is a load along the bar (not at the contact DoF,
+    /// where drive() is value()).
+    bool distributed_drive() const { return load_ != nullptr; }
 
     /// The drive's terms in a first harmonic's energy and dissipation: with
     /// the contact force's P = p_cos - i p_sin at W, the period-mean energy
