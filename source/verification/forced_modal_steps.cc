@@ -56,8 +56,18 @@ namespace nsm
         u_ += m.q;
         modes_.push_back(m);
       }
+    // Newmark's scale 1 + c dt / 2 + w^2 dt^2 / 4 per mode, the response
+    // B_j = dt^2 / 4 r_j / scale of q_{n+1} to P_{n+1}, and u(L)'s, far +
+    // sum_j B_j: the same at every step.
+    const double h = dt_ * dt_ / 4;
+    response_      = far_;
+    for (const Mode &m : modes_)
+      {
+        scale_.push_back(1 + m.damping * dt_ / 2 + m.eigenvalue * h);
+        slope_.push_back(h * m.residue / scale_.back());
+        response_ += slope_.back();
+      }
     constant_.resize(modes_.size());
-    slope_.resize(modes_.size());
   }
 
   std::vector<double> ForcedModalSteps::state() const
@@ -110,17 +120,15 @@ namespace nsm
     const double dt = dt_, h = dt * dt / 4;
     ++step_;
     drive_          = forcing_ * std::cos(omega_ * double(step_) * dt);
-    double u_free   = drive_far_.cross * drive_, response = far_;
+    const double response = response_;
+    double       u_free   = drive_far_.cross * drive_;
     for (std::size_t j = 0; j < modes_.size(); ++j)
       {
         const Mode  &m         = modes_[j];
         const double predicted = m.q + dt * m.v + h * m.a;
         const double rest      = m.damping * (m.v + dt / 2 * m.a) + m.eigenvalue * predicted;
-        const double scale     = 1 + m.damping * dt / 2 + m.eigenvalue * h;
-        constant_[j]           = predicted - h * (rest - m.drive * drive_) / scale;
-        slope_[j]              = h * m.residue / scale;
+        constant_[j]           = predicted - h * (rest - m.drive * drive_) / scale_[j];
         u_free += constant_[j];
-        response += slope_[j];
       }
     force_ = law_.step_force(u_free, response);
     u_     = u_free + response * force_;
@@ -138,7 +146,7 @@ namespace nsm
                 const Mode  &m         = modes_[j];
                 const double predicted = d.q[j] + dt * d.v[j] + h * d.a[j];
                 const double rest      = m.damping * (d.v[j] + dt / 2 * d.a[j]) + m.eigenvalue * predicted;
-                dconstant[j]           = predicted - h * rest / (1 + m.damping * dt / 2 + m.eigenvalue * h);
+                dconstant[j]           = predicted - h * rest / scale_[j];
                 du_free += dconstant[j];
               }
             const double df = dforce * du_free;

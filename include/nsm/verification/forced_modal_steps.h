@@ -61,6 +61,11 @@ namespace nsm
     std::vector<Mode>   modes_;
     unsigned long long  step_ = 0;
     double              force_ = 0, u_ = 0, drive_ = 0;
-    std::vector<double> constant_, slope_;
+    /// Per mode, Newmark's scale and q_{n+1}'s response B_j to the wall's
+    /// force (fixed by dt); u(L)'s response far + sum_j B_j.
+    std::vector<double> scale_, slope_;
+    double              response_ = 0;
+    /// Per mode, the step's A_j (q_{n+1} = A_j + B_j P_{n+1}).
+    std::vector<double> constant_;
   };
 } // namespace nsm
