@@ -250,32 +250,27 @@ namespace
           EXPECT_NEAR(jacobian[r + std::size_t(c) * n], (plus[r] - minus[r]) / (2 * h), 1e-6 * largest)
             << "row " << r << ", column " << c;
       }
-    const double h = 1e-7 * w;
-    hb.set_omega(w + h);
-    hb.evaluate(x, &plus, nullptr);
-    hb.set_omega(w - h);
-    hb.evaluate(x, &minus, nullptr);
-    double slope_size = 0;
-    for (const double s : slope)
-      slope_size = std::max(slope_size, std::abs(s));
-    ASSERT_GT(slope_size, 0);
-    for (unsigned int r = 0; r < n; ++r)
-      EXPECT_NEAR(slope[r], (plus[r] - minus[r]) / (2 * h), 1e-6 * slope_size) << "row " << r;
+    // An analytic derivative against the residual's central difference
+    // under `perturb(+h)` and `perturb(-h)`, to 1e-6 of its largest entry.
+    const auto expect_differences = [&](const std::vector<double> &analytic, const double h, const auto &perturb,
+                                        const char *name) {
+      perturb(h);
+      hb.evaluate(x, &plus, nullptr);
+      perturb(-h);
+      hb.evaluate(x, &minus, nullptr);
+      perturb(0.0);
+      double size = 0;
+      for (const double d : analytic)
+        size = std::max(size, std::abs(d));
+      ASSERT_GT(size, 0) << name;
+      for (unsigned int r = 0; r < n; ++r)
+        EXPECT_NEAR(analytic[r], (plus[r] - minus[r]) / (2 * h), 1e-6 * size) << name << ", row " << r;
+    };
+    expect_differences(slope, 1e-7 * w, [&](double h) { hb.set_omega(w + h); }, "dR/dW");
     // dR/dF the same way (R is affine in F for a fixed active set).
-    hb.set_omega(w);
     const std::vector<double> dforcing = hb.dforcing(x);
-    const double              f = hb.forcing(), hf = 1e-7 * f;
-    hb.set_forcing(f + hf);
-    hb.evaluate(x, &plus, nullptr);
-    hb.set_forcing(f - hf);
-    hb.evaluate(x, &minus, nullptr);
-    hb.set_forcing(f);
-    double dforcing_size = 0;
-    for (const double d : dforcing)
-      dforcing_size = std::max(dforcing_size, std::abs(d));
-    ASSERT_GT(dforcing_size, 0);
-    for (unsigned int r = 0; r < n; ++r)
-      EXPECT_NEAR(dforcing[r], (plus[r] - minus[r]) / (2 * hf), 1e-6 * dforcing_size) << "row " << r;
+    const double              f        = hb.forcing();
+    expect_differences(dforcing, 1e-7 * f, [&](double h) { hb.set_forcing(f + h); }, "dR/dF");
   }
 } // namespace
 
