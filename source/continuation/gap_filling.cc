@@ -7,8 +7,9 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <map>
 #include <optional>
-#include <set>
+#include <tuple>
 #include <utility>
 
 namespace nsm
@@ -17,6 +18,37 @@ namespace nsm
   {
     /// From `first` to `second` in the direction of continuation.
     using Gap = std::pair<double, double>;
+
+    /// A Newton start: its Omega and the Omegas of the two points its guess
+    /// is drawn between (the M / 2 branch's point three times for its own).
+    using Start = std::tuple<double, double, double>;
+
+    /// What each Newton start of the search gave, kept for the searches of
+    /// the gaps left after it: a landing shortens a gap and its far side
+    /// is searched again, from the same guesses. Newton from one guess at
+    /// one Omega is deterministic, so a start is solved once; a solution
+    /// kept is labelled again against the labels of its new search.
+    class SearchMemory
+    {
+    public:
+      /// The solution from `guess` at `omega`, solved on first asking (empty
+      /// if Newton failed).
+      const std::optional<BackbonePoint> &solve(BranchContext &context, const double omega, const Start &start,
+                                                const std::vector<double> &guess)
+      {
+        const auto known = solutions_.find(start);
+        if (known != solutions_.end())
+          return known->second;
+        BackbonePoint                point;
+        std::optional<BackbonePoint> solution;
+        if (context.solve(omega, guess, 0, point, BranchContext::Newton::both))
+          solution = std::move(point);
+        return solutions_.emplace(start, std::move(solution)).first->second;
+      }
+
+    private:
+      std::map<Start, std::optional<BackbonePoint>> solutions_;
+    };
 
     /// The points in the range, labelled as they would be written.
     std::vector<BackbonePoint> labelled_in_range(BranchContext &context, const Backbone &backbone)
@@ -86,35 +118,47 @@ namespace nsm
       return t;
     }
 
-    /// The guesses at omega: the secant along the trend, the straight line
-    /// to the far side's main point, and the start's own unknowns.
-    std::vector<std::vector<double>> predicted_guesses(const Trend &t, const double omega)
+    /// The guesses at omega, each drawn between two main points: the
+    /// straight line to the far side's main point; the secant along the
+    /// trend and the start's own unknowns where they predict (`near`: within
+    /// the trend's own span, trend_base x Omega, beyond the gap's start, or
+    /// anywhere in a gap up to the range's end, which has no far side).
+    std::vector<std::pair<const BackbonePoint *, const BackbonePoint *>> predicted_guesses(const Trend &t,
+                                                                                           const bool near)
     {
-      std::vector<std::vector<double>> guesses;
-      if (t.base)
-        guesses.push_back(interpolated_guess(*t.base, *t.start, omega));
+      std::vector<std::pair<const BackbonePoint *, const BackbonePoint *>> guesses;
+      if (t.base && near)
+        guesses.emplace_back(t.base, t.start);
       if (t.far)
-        guesses.push_back(interpolated_guess(*t.start, *t.far, omega));
-      guesses.push_back(t.start->x);
+        guesses.emplace_back(t.start, t.far);
+      if (near)
+        guesses.emplace_back(t.start, t.start);
       return guesses;
     }
 
     /// Newton from the mode predicted along its trend (predicted_guesses) at
     /// Omegas spaced a gap_starts_per_width-th of Fill gaps wider than across
-    /// the gap, nearest its start first; the first solution the labels put
-    /// on the main branch; what the others were is counted in `search`.
+    /// the gap, nearest its start first, each start solved once in the run
+    /// (`memory`); the first solution the labels put on the main branch;
+    /// what the others were is counted in `search`.
     bool predicted_landing(BranchContext &context, const std::vector<BackbonePoint> &labelled, const Gap &gap,
-                           const Trend &trend, const unsigned int segment, BackbonePoint &point, GapSearch &search)
+                           const Trend &trend, const unsigned int segment, BackbonePoint &point, GapSearch &search,
+                           SearchMemory &memory)
     {
       const double spacing =
         context.params.continuation.fill_gaps_wider_than / continuation_constants::gap_starts_per_width;
+      const double reach = gap.first + context.direction * continuation_constants::trend_base * gap.first;
       for (double omega = gap.first + context.direction * spacing; context.beyond(gap.second, omega);
            omega += context.direction * spacing)
-        for (const std::vector<double> &guess : predicted_guesses(trend, omega))
+        for (const auto &[a, b] : predicted_guesses(trend, !trend.far || !context.beyond(omega, reach)))
           {
             ++search.starts;
-            if (!context.solve(omega, guess, segment, point, BranchContext::Newton::both))
+            const std::optional<BackbonePoint> &solution =
+              memory.solve(context, omega, {omega, a->omega, b->omega}, interpolated_guess(*a, *b, omega));
+            if (!solution)
               continue;
+            point = *solution;
+            point.segment = segment;
             if (!(point.measures.energy <= context.params.continuation.energy_max))
               {
                 ++search.above_energy_max;
@@ -140,19 +184,53 @@ namespace nsm
     /// The first solution inside the gap that the labels put on the main
     /// branch, from the guesses of the branch with half the harmonics in turn.
     bool landing_from_fewer_harmonics(BranchContext &context, const std::vector<BackbonePoint> &labelled,
-                                      const Gap &gap, const unsigned int segment, BackbonePoint &point)
+                                      const Gap &gap, const unsigned int segment, BackbonePoint &point,
+                                      SearchMemory &memory)
     {
       for (const BackbonePoint *q : guesses_in(context, gap))
         {
-          if (!context.solve(q->omega, context.guess_from_fewer_harmonics(*q), segment, point,
-                             BranchContext::Newton::both) ||
-              !(point.measures.energy <= context.params.continuation.energy_max))
+          const std::optional<BackbonePoint> &solution =
+            memory.solve(context, q->omega, {q->omega, q->omega, q->omega}, context.guess_from_fewer_harmonics(*q));
+          if (!solution || !(solution->measures.energy <= context.params.continuation.energy_max))
             continue;
+          point         = *solution;
+          point.segment = segment;
           label_point(context.hb, context.params, labelled, point);
           if (point.branch == Branch::main)
             return true;
         }
       return false;
+    }
+
+    enum class Landing
+    {
+      none,
+      predicted,
+      fewer_harmonics
+    };
+
+    /// Which guesses a search tries first.
+    enum class Prediction
+    {
+      trend_first,          ///< the predicted mode, then the branch with half the harmonics
+      fewer_harmonics_first ///< the other way round
+    };
+
+    /// A main solution in the gap from the mode predicted along its trend and
+    /// from the branch with half the harmonics, in the order `from` gives.
+    Landing land(BranchContext &context, const std::vector<BackbonePoint> &labelled, const Gap &gap,
+                 const Trend &trend, const unsigned int segment, BackbonePoint &point, GapSearch &search,
+                 SearchMemory &memory, const Prediction from)
+    {
+      const auto from_trend = [&] {
+        return trend.start && predicted_landing(context, labelled, gap, trend, segment, point, search, memory);
+      };
+      const auto from_fewer = [&] {
+        return landing_from_fewer_harmonics(context, labelled, gap, segment, point, memory);
+      };
+      if (from == Prediction::fewer_harmonics_first)
+        return from_fewer() ? Landing::fewer_harmonics : from_trend() ? Landing::predicted : Landing::none;
+      return from_trend() ? Landing::predicted : from_fewer() ? Landing::fewer_harmonics : Landing::none;
     }
 
     /// Sequential steps from the far side's main point back towards the
@@ -199,7 +277,8 @@ namespace nsm
     /// folds, climbs above the tongue threshold or reaches the gap's far
     /// side; without one, the branch is traced back from the far side. A gap
     /// left is recorded with its search.
-    bool fill(BranchContext &context, Backbone &backbone, const std::vector<BackbonePoint> &labelled, const Gap &gap)
+    bool fill(BranchContext &context, Backbone &backbone, const std::vector<BackbonePoint> &labelled, const Gap &gap,
+              SearchMemory &memory, const Prediction from)
     {
       unsigned int segment = 0;
       for (const BackbonePoint &p : backbone.points)
@@ -215,11 +294,11 @@ namespace nsm
         most_contact_before(labelled, gap.second, context.direction, context.params.continuation.tongue_share,
                             accumulation_passed(context.params));
       BackbonePoint     point;
-      const std::size_t before = backbone.points.size();
-      const bool predicted = trend.start && predicted_landing(context, labelled, gap, trend, segment, point, search);
-      if (predicted || landing_from_fewer_harmonics(context, labelled, gap, segment, point))
+      const std::size_t before  = backbone.points.size();
+      const Landing     landing = land(context, labelled, gap, trend, segment, point, search, memory, from);
+      if (landing != Landing::none)
         {
-          backbone.events.push_back(event_message(predicted ?
+          backbone.events.push_back(event_message(landing == Landing::predicted ?
                                                     "traced into a gap of the main branch from the predicted mode" :
                                                     "traced into a gap of the main branch from the branch with half the harmonics",
                                                   point.omega));
@@ -240,7 +319,19 @@ namespace nsm
     if (width <= 0)
       return;
     const PointStopsDeferred            whole;
-    std::set<Gap>                       tried; // gaps searched
+    std::vector<Gap>                    tried; // gaps searched
+    // A gap whose far side lies within a start's spacing of a gap searched
+    // before (a segment traced into that gap shortened it from its start):
+    // the branch with half the harmonics gives the same guesses there, whose
+    // solutions are kept from the last search and cost no Newton solve to
+    // label again, while the predicted mode's starts, drawn from the new
+    // start, are all new.
+    const double spacing = width / continuation_constants::gap_starts_per_width;
+    const auto   same_far_side = [&](const Gap &gap) {
+      return std::any_of(tried.begin(), tried.end(),
+                         [&](const Gap &t) { return std::abs(t.second - gap.second) < spacing; });
+    };
+    SearchMemory                        memory;
     for (bool filled = true; filled;)
       {
         if (context.full(backbone))
@@ -254,11 +345,17 @@ namespace nsm
         const std::optional<double> end =
           backbone.end == BackboneEnd::range ? std::optional<double>(context.far_end) : std::nullopt;
         for (const Gap &gap : main_gaps_wider_than(labelled, context.direction, width, end))
-          if (tried.insert(gap).second && fill(context, backbone, labelled, gap))
-            {
-              filled = true;
-              break;
-            }
+          {
+            if (std::find(tried.begin(), tried.end(), gap) != tried.end())
+              continue;
+            const Prediction from = same_far_side(gap) ? Prediction::fewer_harmonics_first : Prediction::trend_first;
+            tried.push_back(gap);
+            if (fill(context, backbone, labelled, gap, memory, from))
+              {
+                filled = true;
+                break;
+              }
+          }
       }
   }
 } // namespace nsm

@@ -129,12 +129,13 @@ namespace nsm
                       Patterns::Double(0, 1),
                       "Once the continuation ends (at the range's end or where the branch is "
                       "lost), every gap between main points wider than this (in Omega) is "
-                      "searched: Newton from the mode predicted along its trend at Omegas an "
-                      "eighth of this apart, then from the points inside it of the branch traced "
-                      "with half the harmonics; a main solution found starts a segment of "
-                      "sequential steps up to the gap's far side. Without one, the branch is "
-                      "traced back from the far side. The Result block names every gap left, "
-                      "with what the search found there. 0: no search.");
+                      "searched once: Newton from the mode predicted along its trend at Omegas "
+                      "an eighth of this apart, then from the points inside it of the branch traced "
+                      "with half the harmonics, each start solved once in the run; a main solution "
+                      "found starts a segment of sequential steps up to the gap's far side. Without "
+                      "one, the branch is traced back from the far side. The Result block names "
+                      "every gap left, with what the search found there and its Newton solves. 0: "
+                      "no search.");
     prm.leave_subsection();
   }
 

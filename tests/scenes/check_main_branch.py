@@ -29,7 +29,9 @@ trigonometric section, on the paper's bar's mode 2 and at M = 80 (exit 0 each):
   contact of the mode's family (main and tongue points) before it, or a contact
   end led by a harmonic k > 1; on the seed's mode 2 the
   field asked for at 5.2745, where a leap lands on a higher mode's motion, is
-  other, and the summary names the harmonic that leads it; the polynomial bar
+  other, and the summary names the harmonic that leads it; at M = 20 the gap
+  search beyond its end counts landings led by a harmonic k > 1 apart; the
+  polynomial bar
   (w_1 = 1.344, below pi / 2) crosses the accumulation point, which the Result
   block names;
 - on 1 + 0.2 x and 1 + 0.3 x^3 (Omega max 2.05, Energy max 1e-3) main points
@@ -177,6 +179,14 @@ for name, sets in BARS.items():
     if name == "stepped":
         check(any(m[0] > 2.2 and m[1] > 0.3 for m in main),
               "stepped: no main point beyond 2.2 with the mode's contact (> 0.3)")
+
+# The seed's mode 2 at M = 20: beyond the mode's end (5.217) the gap search
+# lands on other families, 7 of them led by a harmonic k > 1 (measured), which
+# the Result block counts apart from those of less contact.
+stdout, _ = run("seed_mode_2_m20", ["Continuation/Mode=2", "Harmonic balance/Harmonics=20"])
+named = [l for l in stdout.splitlines() if l.startswith("  no main point from Omega = ")]
+check(named and "led by a harmonic k > 1)" in named[-1],
+      f"seed_mode_2_m20: the last gap does not count a landing led by a harmonic k > 1: {named[-1:]}")
 
 # Bars thicker towards the wall (w_1 below pi / 2), Omega max 2.05, Energy max
 # 1e-3: the Result block names the accumulation point, main points beyond
