@@ -2,14 +2,13 @@
 #include <nsm/continuation/constants.h>
 #include <nsm/continuation/gap_filling.h>
 #include <nsm/continuation/main_branch.h>
+#include <nsm/continuation/search_memory.h>
 #include <nsm/continuation/sequential_steps.h>
 
 #include <algorithm>
 #include <cmath>
 #include <iterator>
-#include <map>
 #include <optional>
-#include <tuple>
 #include <utility>
 
 namespace nsm
@@ -18,37 +17,6 @@ namespace nsm
   {
     /// From `first` to `second` in the direction of continuation.
     using Gap = std::pair<double, double>;
-
-    /// A Newton start: its Omega and the Omegas of the two points its guess
-    /// is drawn between (the M / 2 branch's point three times for its own).
-    using Start = std::tuple<double, double, double>;
-
-    /// What each Newton start of the search gave, kept for the searches of
-    /// the gaps left after it: a landing shortens a gap and its far side
-    /// is searched again, from the same guesses. Newton from one guess at
-    /// one Omega is deterministic, so a start is solved once; a solution
-    /// kept is labelled again against the labels of its new search.
-    class SearchMemory
-    {
-    public:
-      /// The solution from `guess` at `omega`, solved on first asking (empty
-      /// if Newton failed).
-      const std::optional<BackbonePoint> &solve(BranchContext &context, const double omega, const Start &start,
-                                                const std::vector<double> &guess)
-      {
-        const auto known = solutions_.find(start);
-        if (known != solutions_.end())
-          return known->second;
-        BackbonePoint                point;
-        std::optional<BackbonePoint> solution;
-        if (context.solve(omega, guess, 0, point, BranchContext::Newton::both))
-          solution = std::move(point);
-        return solutions_.emplace(start, std::move(solution)).first->second;
-      }
-
-    private:
-      std::map<Start, std::optional<BackbonePoint>> solutions_;
-    };
 
     /// The points in the range, labelled as they would be written.
     std::vector<BackbonePoint> labelled_in_range(BranchContext &context, const Backbone &backbone)

@@ -198,6 +198,8 @@ MUTATIONS = [
     ("gap search without the predicted mode", "source/continuation/gap_filling.cc",
      "return trend.start && predicted_landing(",
      "return false && predicted_landing("),
+    ("the gap search solves a start again", "source/continuation/search_memory.cc",
+     "if (known != solutions_.end())", "if (false)"),
     ("gap search that keeps landings above Energy max", "source/continuation/gap_filling.cc",
      "if (!(point.measures.energy <= context.params.continuation.energy_max))", "if (false)"),
     ("labels by the energy envelope alone (every point of the mode's family)", "source/continuation/main_branch.cc",

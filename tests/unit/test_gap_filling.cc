@@ -7,6 +7,7 @@
 #include <nsm/continuation/branch_context.h>
 #include <nsm/continuation/checkpoint.h>
 #include <nsm/continuation/main_branch.h>
+#include <nsm/continuation/search_memory.h>
 
 #include <gtest/gtest.h>
 
@@ -185,4 +186,35 @@ TEST(GapFilling, TheResultBlockCountsTheLandingsLedByAHigherHarmonicApart)
   EXPECT_EQ(gap_line(5, 2), found + "5 converged on other families (3 of contact fraction at most 0.12, the "
                                     "mode's 0.3 before the gap; 2 led by a harmonic k > 1), 1 on tongues, 4 did "
                                     "not converge");
+}
+
+// The search's memory solves a start once: asked again, it returns the same
+// solution without a Newton solve; another start at the same Omega (another
+// guess) is solved on its own. The solution is the one BranchContext::solve
+// gives from that guess, converged or not.
+TEST(GapFilling, TheSearchSolvesEachStartOnce)
+{
+  testing_helpers::HbModel model(seed_with_fill(20, 0));
+  const nsm::Backbone      backbone = model.backbone();
+  nsm::BranchContext       run(model.hb, model.branch, model.resonances, nullptr);
+  const auto               solves = [&] {
+    const nsm::NewtonCost c = run.newton_cost();
+    return c.converged_solves + c.failed_solves;
+  };
+  // A main point's own unknowns at its own Omega converge; all zeros (no
+  // contact) do not give a point.
+  const nsm::BackbonePoint &p = backbone.points[backbone.points.size() / 2];
+  nsm::SearchMemory         memory;
+  const auto                before = solves();
+  const auto               &first  = memory.solve(run, p.omega, {p.omega, 1, 1}, p.x);
+  const auto                once   = solves();
+  ASSERT_TRUE(first.has_value());
+  EXPECT_GT(once, before);
+  EXPECT_NEAR(first->measures.energy, p.measures.energy, 1e-9 * p.measures.energy);
+  const auto &again = memory.solve(run, p.omega, {p.omega, 1, 1}, std::vector<double>(p.x.size(), 0.0));
+  EXPECT_EQ(&again, &first);
+  EXPECT_EQ(solves(), once);
+  const auto &other = memory.solve(run, p.omega, {p.omega, 1, 2}, std::vector<double>(p.x.size(), 0.0));
+  EXPECT_GT(solves(), once);
+  EXPECT_FALSE(other.has_value());
 }
