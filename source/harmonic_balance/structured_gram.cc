@@ -10,10 +10,14 @@ namespace nsm
     const unsigned int top = 2 * (basis_.order.empty() ? 0 : basis_.order.back()) + 1;
     cos_integrals_.assign(top, 0.0);
     sin_integrals_.assign(top, 0.0);
+    const unsigned int harmonics = basis_.order.empty() ? 0 : basis_.order.back() + 1;
+    cosine_index_.assign(harmonics, -1);
+    sine_index_.assign(harmonics, -1);
     for (unsigned int i = 0; i < basis_.size(); ++i)
       {
         norm_.push_back((basis_.order[i] == 0 ? 1.0 : 2.0) / two_pi);
         cosines_only_ = cosines_only_ && !basis_.sine[i] && basis_.order[i] == i;
+        (basis_.sine[i] ? sine_index_ : cosine_index_)[basis_.order[i]] = int(i);
       }
   }
 
@@ -79,33 +83,31 @@ namespace nsm
     dense_valid_ = false;
   }
 
-  double StructuredGram::entry(const unsigned int i, const unsigned int j) const
-  {
-    const int    k = basis_.order[i], l = basis_.order[j];
-    const int    d = k >= l ? k - l : l - k, sum = k + l;
-    const double sgn = k >= l ? 1.0 : -1.0;
-    const bool   sine_k = basis_.sine[i], sine_l = basis_.sine[j];
-    double       g;
-    if (!sine_k && !sine_l)
-      g = cos_integrals_[d] + cos_integrals_[sum];
-    else if (sine_k && sine_l)
-      g = cos_integrals_[d] - cos_integrals_[sum];
-    else if (sine_k)
-      g = sin_integrals_[sum] + sgn * sin_integrals_[d];
-    else
-      g = sin_integrals_[sum] - sgn * sin_integrals_[d];
-    return 0.5 * norm_[i] * g;
-  }
-
   void StructuredGram::fill(std::vector<double> &dense) const
   {
     const unsigned int n = basis_.size();
     dense.resize(std::size_t(n) * n);
     if (!cosines_only_)
       {
-        for (unsigned int i = 0; i < n; ++i)
-          for (unsigned int j = 0; j < n; ++j)
-            dense[std::size_t(i) * n + j] = entry(i, j);
+        // Per pair of orders (k, l) the four products' integrals at once,
+        // each written where both functions are in the basis.
+        const double *c = cos_integrals_.data(), *s = sin_integrals_.data();
+        const int     harmonics = int(cosine_index_.size());
+        for (int k = 0; k < harmonics; ++k)
+          for (int l = 0; l < harmonics; ++l)
+            {
+              const int    d = k >= l ? k - l : l - k, sum = k + l;
+              const double sgn = k >= l ? 1.0 : -1.0;
+              const int    ck = cosine_index_[k], sk = sine_index_[k], cl = cosine_index_[l], sl = sine_index_[l];
+              const auto   put = [&](const int i, const int j, const double g) {
+                if (i >= 0 && j >= 0)
+                  dense[std::size_t(i) * n + j] = 0.5 * norm_[i] * g;
+              };
+              put(ck, cl, c[d] + c[sum]);
+              put(sk, sl, c[d] - c[sum]);
+              put(sk, cl, s[sum] + sgn * s[d]);
+              put(ck, sl, s[sum] - sgn * s[d]);
+            }
         return;
       }
     const double *c = cos_integrals_.data();

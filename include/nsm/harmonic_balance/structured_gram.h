@@ -42,11 +42,10 @@ namespace nsm
     void fill(std::vector<double> &dense) const;
 
   private:
-    /// G_ij from C and S, any basis.
-    double entry(unsigned int i, unsigned int j) const;
-
     TrigonometricBasis  basis_;
     bool                cosines_only_; ///< the cosine basis: order[i] == i
+    /// Per order k, the index of cos k tau and of sin k tau in the basis (-1: absent).
+    std::vector<int>    cosine_index_, sine_index_;
     std::vector<double> norm_;         ///< the projection's norm per basis function
     std::vector<double> cos_integrals_, sin_integrals_;
     double              share_ = 0;
