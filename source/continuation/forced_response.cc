@@ -1,4 +1,5 @@
 #include <nsm/base/dense_lu.h>
+#include <nsm/base/vector_norm.h>
 #include <nsm/continuation/constants.h>
 #include <nsm/continuation/dense_lu_group.h>
 #include <nsm/continuation/forced_response.h>
@@ -238,14 +239,6 @@ namespace nsm
       params->sublist("NOX").sublist("Printing").set("Error Stream",
                                                       Teuchos::RCP<std::ostream>(new Teuchos::oblackholestream));
       return params;
-    }
-
-    double two_norm(const std::vector<double> &v)
-    {
-      double sum = 0;
-      for (const double r : v)
-        sum += r * r;
-      return std::sqrt(sum);
     }
 
     /// The point x of hb at its current W and F, whose residual's 2-norm is

@@ -1,5 +1,6 @@
 #include <nsm/base/errors.h>
 #include <nsm/base/dense_lu.h>
+#include <nsm/base/vector_norm.h>
 #include <nsm/verification/forced_floquet.h>
 #include <nsm/verification/forced_modal_steps.h>
 
@@ -12,12 +13,13 @@ namespace nsm
 {
   namespace
   {
-    double norm(const std::vector<double> &z)
+    /// |P(z) - z| / |z|.
+    double relative_defect(const std::vector<double> &image, const std::vector<double> &z)
     {
-      double sum = 0;
-      for (const double v : z)
-        sum += v * v;
-      return std::sqrt(sum);
+      std::vector<double> r(z.size());
+      for (std::size_t i = 0; i < z.size(); ++i)
+        r[i] = image[i] - z[i];
+      return two_norm(r) / std::max(two_norm(z), 1e-300);
     }
 
     /// One period from the model's state: P(z), and its Jacobian (column-
@@ -72,21 +74,14 @@ namespace nsm
       model.restart(start);
       for (unsigned int s = 0; s < steps; ++s)
         model.step();
-      const std::vector<double> image = model.state();
-      double                    sum   = 0;
-      for (int i = 0; i < n; ++i)
-        sum += (image[i] - start[i]) * (image[i] - start[i]);
-      return std::sqrt(sum) / std::max(norm(start), 1e-300);
+      return relative_defect(model.state(), start);
     };
     model.restart(z);
     FloquetMultipliers result;
     for (unsigned int k = 0;; ++k)
       {
         const std::vector<double> image = period(model, steps, jacobian);
-        std::vector<double>       r(n);
-        for (int i = 0; i < n; ++i)
-          r[i] = image[i] - z[i];
-        result.residual = norm(r) / std::max(norm(z), 1e-300);
+        result.residual                 = relative_defect(image, z);
         if (result.residual <= floquet_constants::orbit_tolerance)
           {
             result.newton_steps = k;
@@ -104,6 +99,9 @@ namespace nsm
               a[std::size_t(j) * n + i] = -a[std::size_t(j) * n + i];
             a[std::size_t(i) * n + i] += 1;
           }
+        std::vector<double> r(n);
+        for (int i = 0; i < n; ++i)
+          r[i] = image[i] - z[i];
         std::vector<int> pivots(n);
         if (!lu_factor(n, a.data(), pivots.data()))
           return {};
