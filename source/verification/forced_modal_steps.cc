@@ -8,6 +8,28 @@ namespace nsm
 {
   namespace
   {
+    /// Newmark's average acceleration over one step of dt for a mode of
+    /// damping c and eigenvalue l (scale = 1 + c dt / 2 + l dt^2 / 4):
+    /// q_{n+1} without the wall's force's share, the force `load` (the
+    /// drive's, or 0 for a tangent) in it.
+    double step_constant(const double q, const double v, const double a, const double damping,
+                         const double eigenvalue, const double load, const double dt, const double scale)
+    {
+      const double h         = dt * dt / 4;
+      const double predicted = q + dt * v + h * a;
+      const double rest      = damping * (v + dt / 2 * a) + eigenvalue * predicted;
+      return predicted - h * (rest - load) / scale;
+    }
+
+    /// The step's end from q_{n+1}: a_{n+1} and v_{n+1} by Newmark.
+    void advance(double &q, double &v, double &a, const double q_next, const double dt)
+    {
+      const double a_next = 4 / (dt * dt) * (q_next - q - dt * v) - a;
+      v += dt / 2 * (a + a_next);
+      q = q_next;
+      a = a_next;
+    }
+
     /// The wall's force's series at tau = 0.
     double value_at_zero(const std::vector<double> &p)
     {
@@ -117,17 +139,15 @@ namespace nsm
   {
     // Per mode, q_{n+1} = A_j + B_j P_{n+1} (Newmark, average
     // acceleration), the drive's term in A_j.
-    const double dt = dt_, h = dt * dt / 4;
+    const double dt = dt_;
     ++step_;
     drive_          = forcing_ * std::cos(omega_ * double(step_) * dt);
     const double response = response_;
     double       u_free   = drive_far_.cross * drive_;
     for (std::size_t j = 0; j < modes_.size(); ++j)
       {
-        const Mode  &m         = modes_[j];
-        const double predicted = m.q + dt * m.v + h * m.a;
-        const double rest      = m.damping * (m.v + dt / 2 * m.a) + m.eigenvalue * predicted;
-        constant_[j]           = predicted - h * (rest - m.drive * drive_) / scale_[j];
+        const Mode &m = modes_[j];
+        constant_[j]  = step_constant(m.q, m.v, m.a, m.damping, m.eigenvalue, m.drive * drive_, dt, scale_[j]);
         u_free += constant_[j];
       }
     force_ = law_.step_force(u_free, response);
@@ -143,31 +163,19 @@ namespace nsm
             double du_free = 0;
             for (std::size_t j = 0; j < modes_.size(); ++j)
               {
-                const Mode  &m         = modes_[j];
-                const double predicted = d.q[j] + dt * d.v[j] + h * d.a[j];
-                const double rest      = m.damping * (d.v[j] + dt / 2 * d.a[j]) + m.eigenvalue * predicted;
-                dconstant[j]           = predicted - h * rest / scale_[j];
+                const Mode &m = modes_[j];
+                dconstant[j]  = step_constant(d.q[j], d.v[j], d.a[j], m.damping, m.eigenvalue, 0.0, dt, scale_[j]);
                 du_free += dconstant[j];
               }
             const double df = dforce * du_free;
             for (std::size_t j = 0; j < modes_.size(); ++j)
-              {
-                const double q = dconstant[j] + slope_[j] * df;
-                const double a = 4 / (dt * dt) * (q - d.q[j] - dt * d.v[j]) - d.a[j];
-                d.v[j] += dt / 2 * (d.a[j] + a);
-                d.q[j] = q;
-                d.a[j] = a;
-              }
+              advance(d.q[j], d.v[j], d.a[j], dconstant[j] + slope_[j] * df, dt);
           }
       }
     for (std::size_t j = 0; j < modes_.size(); ++j)
       {
-        Mode        &m = modes_[j];
-        const double q = constant_[j] + slope_[j] * force_;
-        const double a = 4 / (dt * dt) * (q - m.q - dt * m.v) - m.a;
-        m.v += dt / 2 * (m.a + a);
-        m.q = q;
-        m.a = a;
+        Mode &m = modes_[j];
+        advance(m.q, m.v, m.a, constant_[j] + slope_[j] * force_, dt);
       }
     return u_;
   }
