@@ -3,8 +3,9 @@
 main branch, the largest contact drop between consecutive main points (on one
 side of the accumulation point) and the whole run's time, for the labels of
 the energy envelope alone (Main contact drop = 1, Fill gaps wider than = 0) and
-for the defaults. Coverage and drop are measured as tests/scenes/check_main_branch.py
-measures them; the times are medians of 3 alternating runs of the whole process.
+for the defaults. Coverage and drop are tests/common/branch_measures.py's, as
+scene.main_branch measures them; the times are medians of 3 alternating runs
+of the whole process.
 
 usage: main_branch_table.py NSM_BAR [--repeats N]
 Not part of CTest (about 2 minutes).
@@ -18,6 +19,9 @@ import sys
 import tempfile
 import time
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from branch_measures import measures  # noqa: E402
+
 BARS = [
     ("seed `1.5 - x`", []),
     ("`exp(-x)`", ["Bar/Cross section=exp(-x)"]),
@@ -30,7 +34,6 @@ BARS = [
                                           "Continuation/Omega max=2"]),
 ]
 ENVELOPE = ["Continuation/Main contact drop=1", "Continuation/Fill gaps wider than=0"]
-ZONE = 4 / 40 ** 2  # as check_main_branch.py: the accumulation point's reach at M = 40
 
 
 def run(exe, sets, directory):
@@ -47,13 +50,6 @@ def run(exe, sets, directory):
     return wall, rows
 
 
-def measures(rows, accumulation):
-    main = sorted((float(r["Omega"]), float(r["contact_fraction"])) for r in rows if r["branch"] == "main")
-    omegas = [float(r["Omega"]) for r in rows]
-    start, end = min(omegas), max(omegas)
-    drop = max([a[1] - b[1] for a, b in zip(main, main[1:]) if not a[0] <= accumulation * (1 + ZONE) < b[0]] + [0.0])
-    covered = sum(b[0] - a[0] for a, b in zip(main, main[1:]) if b[0] - a[0] <= 0.01 * start)
-    return covered / (end - start), drop
 
 
 def main():
@@ -73,7 +69,8 @@ def main():
                     directory = tempfile.mkdtemp(dir=scratch)
                     wall, rows = run(exe, case, directory)
                     times[key].append(wall)
-                    found[key] = measures(rows, (2 * mode - 1) * math.pi / 2)
+                    _, drop, coverage, _, _ = measures(rows, (2 * mode - 1) * math.pi / 2)
+                    found[key] = coverage, drop
             e, n = found["envelope"], found["now"]
             print(f"| {name} | {e[0]:.2f}, {n[0]:.2f} | {e[1]:.3f}, {n[1]:.3f} | "
                   f"{statistics.median(times['envelope']):.2f}, {statistics.median(times['now']):.2f} |", flush=True)

@@ -55,6 +55,9 @@ import os
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from branch_measures import measures  # noqa: E402
+
 EXE = sys.argv[1]
 BARS = {
     "stepped": ["Bar/Cross section=x < 0.5 ? 2 : 1"],
@@ -65,10 +68,6 @@ BARS = {
     "seed_m80": ["Harmonic balance/Harmonics=80"],
 }
 DROP, FILL, SHARE = 0.1, 0.02, 0.5
-# The accumulation point counts as passed at W_acc (1 + 4 / M^2) (M = 40:
-# continuation_constants::accumulation_reach); consecutive main points across
-# that are on two sides.
-ZONE = 4 / 40 ** 2
 failures = []
 
 
@@ -107,17 +106,6 @@ def fundamental_shares(path, count):
     return [(p[1] / sum(p.values()), max(sorted(p), key=lambda k: p[k])) for p in squares]
 
 
-def measures(rows, accumulation=math.pi / 2):
-    """Main points along Omega; the largest fall of the contact fraction between
-    consecutive ones on one side of the accumulation point; the coverage; the
-    range's start and end."""
-    main = sorted((float(r["Omega"]), float(r["contact_fraction"])) for r in rows if r["branch"] == "main")
-    omegas = [float(r["Omega"]) for r in rows]
-    start, end = min(omegas), max(omegas)
-    drop = max([a[1] - b[1] for a, b in zip(main, main[1:])
-                if not a[0] <= accumulation * (1 + ZONE) < b[0]] + [0.0])
-    covered = sum(b[0] - a[0] for a, b in zip(main, main[1:]) if b[0] - a[0] <= 0.01 * start)
-    return main, drop, covered / (end - start), start, end
 
 
 for name, sets in BARS.items():
