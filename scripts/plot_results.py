@@ -53,7 +53,8 @@ GRAZING = {**required("mode", whole=True, positive=True), **required("omega", "e
            "accumulation_omega": Column(positive=True)}
 TONGUES = {**required("mode", "harmonic", whole=True), **required("omega_resonance", "foot_omega_begin",
                                                                   "foot_omega_end"),
-           **required("max_energy", positive=True), "points": Column(whole=True)}
+           **required("max_energy", positive=True), "points": Column(whole=True),
+           "kind": Column(words=("internal", "unnamed", "accumulation"))}
 RESONANCES = {**required("omega"), **required("mode", "harmonic", whole=True)}
 FIELDS = {**required("index", whole=True), **required("Omega"), **required("energy", positive=True),
           "branch": Column(words=BRANCHES),
@@ -272,11 +273,14 @@ def backbone_plot(directory):
     # Tongue labels w_j/k at each tongue's highest point, the highest tongues
     # first, none overlapping; the axis is raised so that the top ones fit.
     tops = {i: tongue_top(points, t, i) for i in named}
+    # The climb's truncated top into the accumulation point: a tongue of W_acc.
+    climb = [i for i, kind in enumerate(t.get("kind", [])) if kind == "accumulation"]
+    tops.update({i: tongue_top(points, t, i) for i in climb})
     if tops:
         low_e, high_e = axes.get_ylim()
         axes.set_ylim(low_e, max(high_e, 3 * max(e for _, e in tops.values()) / e_g))
     order = sorted(tops, key=lambda i: -tops[i][1])
-    place_labels(axes, [(tops[i][0], tops[i][1] / e_g,
+    place_labels(axes, [(tops[i][0], tops[i][1] / e_g, "tongue of $W_{acc}$" if i in climb else
                          f"$\\omega_{{{int(t['mode'][i])}}}/{int(t['harmonic'][i])}$") for i in order])
     label_between_decades(axes)
     main = points["branch"].count("main")

@@ -1,6 +1,7 @@
 #include <nsm/model/automatic_range.h>
 #include <nsm/model/band_cells.h>
 #include <nsm/model/bar_model.h>
+#include <nsm/continuation/accumulation_tongue.h>
 #include <nsm/continuation/checkpoint.h>
 #include <nsm/continuation/continuation.h>
 #include <nsm/continuation/main_branch.h>
@@ -327,6 +328,10 @@ namespace nsm
           Progress progress("error estimate", scene_.output.progress_every);
           std::vector<bool> elsewhere;
           estimates_ = estimate_energy_errors(hb(), branch(), backbone(), progress, &elsewhere);
+          // The estimates show where the truncation sets the climb into the
+          // accumulation point: the Result block's lines follow its labels.
+          if (name_accumulation_tongue(backbone(), estimates_, branch()) > 0)
+            relabelled();
           summary    = summarise_estimates(backbone(), estimates_, elsewhere);
           report_.result.push_back(estimate_summary(summary, scene_.harmonic_balance.harmonics));
           note_stop("estimates");
@@ -737,6 +742,16 @@ namespace nsm
             << orbit.floquet_max << (orbit.stable ? " (stable)" : " (unstable)") << ", isolation "
             << orbit.isolation;
         return s.str();
+      }
+
+      /// After the labels changed (the climb's truncated top named): the
+      /// backbone's note and the Result block's lines follow them.
+      void relabelled()
+      {
+        for (std::string &note : report_.notes)
+          if (note.rfind("backbone: ", 0) == 0)
+            note = backbone_note();
+        report_.result = backbone_result(backbone(), *bar_, scene_.contact, scene_.continuation);
       }
 
       std::string backbone_note() const

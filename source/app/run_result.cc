@@ -4,6 +4,7 @@
 #include <nsm/model/exact_references.h>
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -206,6 +207,26 @@ namespace nsm
       return {s.str()};
     }
 
+    /// "; the climb's top ... is a tongue of the accumulation point" where
+    /// name_accumulation_tongue named one; empty otherwise.
+    std::string climb_top(const Backbone &backbone)
+    {
+      double      lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      std::size_t count = 0;
+      for (const BackbonePoint &p : backbone.points)
+        if (p.branch == Branch::tongue && at_accumulation_point(p.resonance))
+          lo = std::min(lo, p.omega), hi = std::max(hi, p.omega), ++count;
+      if (count == 0)
+        return "";
+      std::ostringstream s;
+      s.precision(6);
+      s << "; the climb's top from Omega = " << lo << " to " << hi << " (" << count
+        << " points) is a tongue of the accumulation point: the truncation sets its energy there (a quarter as deep "
+           "below W_acc as where halving the harmonics moves the energy by more than Continuation/Tongue share: the "
+           "zone narrows like M^-2)";
+      return s.str();
+    }
+
     /// Where the branch crosses the accumulation point of its internal
     /// resonances: for a bar of one material, w_j / (2j - 1) -> pi / (2 tau)
     /// (WKB; tau = L sqrt(rho / E), the wave's travel time), and for mode n
@@ -226,7 +247,8 @@ namespace nsm
         << (continuation.mode > 1 ? "(2n - 1) " : "") << "pi / (2 tau), tau = L sqrt(rho / E)): it starts below it, at "
         << start << ", the tongues crowd towards it, and the branch's climb into it is set by the truncation M; "
         << "beyond it the labels judge the branch on its own (the uniform bar's mode continued): " << beyond
-        << " of the " << main.size() << " main points lie beyond it (doc/method.md, \"The accumulation point\")";
+        << " of the " << main.size() << " main points lie beyond it";
+      s << climb_top(backbone) << " (doc/method.md, \"The accumulation point\")";
       return {s.str()};
     }
   } // namespace

@@ -404,7 +404,8 @@ namespace nsm
         const BackbonePoint *before = i > 0 ? &points[i - 1] : nullptr;
         const bool continues = before && before->branch == Branch::tongue &&
                                before->resonance.mode == p.resonance.mode &&
-                               before->resonance.harmonic == p.resonance.harmonic;
+                               before->resonance.harmonic == p.resonance.harmonic &&
+                               before->resonance.omega == p.resonance.omega;
         if (!continues)
           {
             const double foot = before ? before->omega : p.omega;

@@ -124,12 +124,12 @@ namespace nsm
   {
     CsvTable table{"tongues.csv",
                    {"mode", "harmonic", "omega_resonance", "foot_omega_begin",
-                    "foot_omega_end", "max_energy", "points"},
+                    "foot_omega_end", "max_energy", "points", "kind"},
                    {}};
     for (const Tongue &t : backbone.tongues)
       table.rows.push_back({double(t.resonance.mode), double(t.resonance.harmonic),
                             t.resonance.omega, t.foot_begin, t.foot_end, t.max_energy,
-                            double(t.points)});
+                            double(t.points), resonance_kind(t.resonance)});
     return table;
   }
 

@@ -99,7 +99,8 @@ def run_folder():
     return {"out/backbone.csv": backbone(),
             "out/grazing.csv": "mode,omega,energy\n1,1.9191370000000001,0.25\n",
             "out/tongues.csv": table("mode,harmonic,omega_resonance,foot_omega_begin,foot_omega_end,max_energy,"
-                                     "points".split(","), [[2, 3, 1.972, repr(omega(9)), repr(omega(12)), 1.03, 2]]),
+                                     "points,kind".split(","),
+                                     [[2, 3, 1.972, repr(omega(9)), repr(omega(12)), 1.03, 2, "internal"]]),
             "out/resonances.csv": table(["omega", "mode", "harmonic"], [[1.919137, 1, 1], [5.76, 2, 1]]),
             "out/fields.csv": table("index,Omega,segment,energy,branch,resonance_mode,resonance_harmonic".split(","),
                                     [[0, 2.0, 0, 1.064, "main", 0, 0]]),

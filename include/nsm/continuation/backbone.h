@@ -29,12 +29,33 @@ namespace nsm
     return b == Branch::main ? "main" : b == Branch::tongue ? "tongue" : "other";
   }
 
+  /// A tongue's resonance: w_j / k, or unnamed {0, 0, 0} (no w_j / k near
+  /// it), or the accumulation point {W_acc, 0, 0} of the w_j / (2j - 1),
+  /// their limit (accumulation_tongue.h).
   struct InternalResonance
   {
     double       omega; ///< w_j / k
     unsigned int mode;  ///< j
     unsigned int harmonic; ///< k
   };
+
+  /// The accumulation point W_acc as a tongue's resonance.
+  inline InternalResonance accumulation_resonance(const double w_acc)
+  {
+    return {w_acc, 0, 0};
+  }
+
+  /// Whether r is the accumulation point (accumulation_resonance).
+  inline bool at_accumulation_point(const InternalResonance &r)
+  {
+    return r.mode == 0 && r.harmonic == 0 && r.omega > 0;
+  }
+
+  /// "internal", "unnamed" or "accumulation", as tongues.csv writes it.
+  inline const char *resonance_kind(const InternalResonance &r)
+  {
+    return at_accumulation_point(r) ? "accumulation" : r.mode == 0 ? "unnamed" : "internal";
+  }
 
   struct BackbonePoint
   {

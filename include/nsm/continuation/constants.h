@@ -71,4 +71,12 @@ namespace nsm::continuation_constants
   /// The labels take the accumulation point as passed at
   /// W_acc (1 + this / M^2) along the branch, twice the farthest.
   constexpr double accumulation_reach = 4;
+  /// The climb's truncated zone below W_acc narrows like M^-2 (above), so the
+  /// zone of M / 2 harmonics, where the error estimate |E(M/2) / E(M) - 1|
+  /// exceeds Tongue share, reaches (M / (M / 2))^2 = 4 times as far below
+  /// W_acc as the zone of M. Measured against M = 160 on 1 + 0.2 x (FE_Q(1)
+  /// x 4000): at M = 40 the estimate exceeds 0.02 from 4.2e-4 below W_acc,
+  /// and the run's energy leaves M = 160's by more than 0.02 between 1.2e-4
+  /// and 0.7e-4 below it; at M = 20, 1.5e-3 and between 5.3e-4 and 4.1e-4.
+  constexpr double halved_truncation_reach = 4;
 } // namespace nsm::continuation_constants
