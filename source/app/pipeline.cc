@@ -573,11 +573,15 @@ namespace nsm
                   scene_.forcing.verify_periods > 0 ?
                     scene_.forcing.verify_periods :
                     steady_state_periods(forced.receptance(), curve.points[i].omega, ForcingParameters::max_verify_periods);
-                verifications.back()[i] =
-                  verify_forced_point(forced, curve.points[i].x, scene_.output.verify_steps, periods);
+                ForcedVerification &v = verifications.back()[i].emplace(
+                  verify_forced_point(forced, curve.points[i].x, scene_.output.verify_steps, periods));
+                // The integration's end state is a start for the shooting
+                // where the integration stayed on the point (not on another
+                // orbit it was drawn to).
                 if (scene_.forcing.floquet)
-                  verifications.back()[i]->floquet =
-                    floquet_multipliers(forced, curve.points[i].x, scene_.output.verify_steps);
+                  v.floquet = floquet_multipliers(
+                    forced, curve.points[i].x, scene_.output.verify_steps,
+                    stays_on(v, curve.points[i].measures.tip_amplitude) ? v.settled : std::vector<double>());
                 ++verified;
                 progress.update([&] {
                   return std::to_string(verified) + " points verified (F = " + significant(curve.forcing, 4) + ", Omega " +

@@ -7,7 +7,7 @@ namespace nsm
 {
   std::string floquet_summary(const std::vector<ForcedCurve> &curves, const ForcedVerifications &verifications)
   {
-    unsigned int                        points = 0, converged = 0, agree = 0;
+    unsigned int                        points = 0, converged = 0, settled = 0, agree = 0;
     std::map<std::string, unsigned int> outside;
     for (std::size_t c = 0; c < verifications.size(); ++c)
       for (std::size_t i = 0; i < verifications[c].size(); ++i)
@@ -17,6 +17,7 @@ namespace nsm
             if (!v->floquet->converged())
               continue;
             ++converged;
+            settled += v->floquet->from_settled ? 1 : 0;
             agree += (v->floquet->beyond_plus_one() % 2 == 1) == !curves[c].points[i].stable;
             if (const std::string kind = v->floquet->instability(); !kind.empty())
               ++outside[kind];
@@ -32,7 +33,11 @@ namespace nsm
       }
     return "forced response's Floquet multipliers (the stepped model's orbit by shooting from each point verified, "
            "compliant wall): " +
-           std::to_string(points) + " points, the shooting converged at " + std::to_string(converged) + "; " +
+           std::to_string(points) + " points, the shooting converged at " + std::to_string(converged) +
+           (settled > 0 ? " (" + std::to_string(settled) +
+                            " of them from where the integration in time ended, the point's own start stalling)" :
+                          std::string()) +
+           "; " +
            std::to_string(unstable) + " with a multiplier outside the unit circle" +
            (kinds.empty() ? "" : " (the largest: " + kinds + ")") +
            "; the fold test agrees (an odd number of real multipliers beyond +1 where det J < 0) at " +

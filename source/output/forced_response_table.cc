@@ -189,7 +189,7 @@ namespace nsm
             if (!p.stable)
               {
                 ++unstable;
-                left += change > within ? 1 : 0;
+                left += stays_on(*v, p.measures.tip_amplitude) ? 0 : 1;
                 continue;
               }
             amplitude.push_back(change);

@@ -60,8 +60,72 @@ namespace nsm
     return m.real() > 0 ? "fold" : "period doubling";
   }
 
+  namespace
+  {
+    /// Newton's method on z -> P(z) from z (shooting; see the header): true
+    /// with the orbit in z, the period's Jacobian there in `jacobian` and
+    /// the Newton steps and residual in `result`; false where it stalls.
+    bool shoot(ForcedModalSteps &model, const unsigned int steps, std::vector<double> &z,
+               std::vector<double> &jacobian, FloquetMultipliers &result)
+    {
+      const int n = 2 * model.modes();
+      // |P(z) - z| / |z| from one period without tangents.
+      const auto defect = [&](const std::vector<double> &start) {
+        model.restart(start);
+        for (unsigned int s = 0; s < steps; ++s)
+          model.step();
+        return relative_defect(model.state(), start);
+      };
+      model.restart(z);
+      for (unsigned int k = 0;; ++k)
+        {
+          const std::vector<double> image = period(model, steps, jacobian);
+          result.residual                 = relative_defect(image, z);
+          if (result.residual <= floquet_constants::orbit_tolerance)
+            {
+              result.newton_steps = k;
+              return true;
+            }
+          if (k == floquet_constants::newton_steps)
+            return false;
+          // (I - Phi) dz = P(z) - z, the step halved until the defect falls
+          // (the harmonic balance's start is a few per cent from the orbit in
+          // the high modes, and a full first step overshoots).
+          std::vector<double> a = jacobian;
+          for (int i = 0; i < n; ++i)
+            {
+              for (int j = 0; j < n; ++j)
+                a[std::size_t(j) * n + i] = -a[std::size_t(j) * n + i];
+              a[std::size_t(i) * n + i] += 1;
+            }
+          std::vector<double> r(n);
+          for (int i = 0; i < n; ++i)
+            r[i] = image[i] - z[i];
+          std::vector<int> pivots(n);
+          if (!lu_factor(n, a.data(), pivots.data()))
+            return false;
+          lu_solve(n, a.data(), pivots.data(), r.data());
+          bool accepted = false;
+          for (double share = 1; share >= floquet_constants::least_share && !accepted; share /= 2)
+            {
+              std::vector<double> trial = z;
+              for (int i = 0; i < n; ++i)
+                trial[i] += share * r[i];
+              if (defect(trial) < result.residual)
+                {
+                  z        = trial;
+                  accepted = true;
+                }
+            }
+          if (!accepted)
+            return false;
+          model.restart(z);
+        }
+    }
+  } // namespace
+
   FloquetMultipliers floquet_multipliers(const ForcedHarmonicBalance &hb, const std::vector<double> &x,
-                                         const unsigned int steps)
+                                         const unsigned int steps, const std::vector<double> &settled)
   {
     if (hb.law().rigid())
       throw InputError("Floquet multipliers need the compliant wall (Contact/Wall = compliant): the rigid wall's "
@@ -69,58 +133,13 @@ namespace nsm
     ForcedModalSteps    model(hb, x, steps);
     const int           n = 2 * model.modes();
     std::vector<double> z = model.state(), jacobian;
-    // |P(z) - z| / |z| from one period without tangents.
-    const auto defect = [&](const std::vector<double> &start) {
-      model.restart(start);
-      for (unsigned int s = 0; s < steps; ++s)
-        model.step();
-      return relative_defect(model.state(), start);
-    };
-    model.restart(z);
-    FloquetMultipliers result;
-    for (unsigned int k = 0;; ++k)
+    FloquetMultipliers  result;
+    if (!shoot(model, steps, z, jacobian, result))
       {
-        const std::vector<double> image = period(model, steps, jacobian);
-        result.residual                 = relative_defect(image, z);
-        if (result.residual <= floquet_constants::orbit_tolerance)
-          {
-            result.newton_steps = k;
-            break;
-          }
-        if (k == floquet_constants::newton_steps)
+        z = settled;
+        if (z.size() != std::size_t(n) || !shoot(model, steps, z, jacobian, result))
           return {};
-        // (I - Phi) dz = P(z) - z, the step halved until the defect falls
-        // (the harmonic balance's start is a few per cent from the orbit in
-        // the high modes, and a full first step overshoots).
-        std::vector<double> a = jacobian;
-        for (int i = 0; i < n; ++i)
-          {
-            for (int j = 0; j < n; ++j)
-              a[std::size_t(j) * n + i] = -a[std::size_t(j) * n + i];
-            a[std::size_t(i) * n + i] += 1;
-          }
-        std::vector<double> r(n);
-        for (int i = 0; i < n; ++i)
-          r[i] = image[i] - z[i];
-        std::vector<int> pivots(n);
-        if (!lu_factor(n, a.data(), pivots.data()))
-          return {};
-        lu_solve(n, a.data(), pivots.data(), r.data());
-        bool accepted = false;
-        for (double share = 1; share >= floquet_constants::least_share && !accepted; share /= 2)
-          {
-            std::vector<double> trial = z;
-            for (int i = 0; i < n; ++i)
-              trial[i] += share * r[i];
-            if (defect(trial) < result.residual)
-              {
-                z        = trial;
-                accepted = true;
-              }
-          }
-        if (!accepted)
-          return {};
-        model.restart(z);
+        result.from_settled = true;
       }
     dealii::LAPACKFullMatrix<double> monodromy(n, n);
     for (int c = 0; c < n; ++c)

@@ -44,6 +44,7 @@ namespace nsm
           result.energy = energy / steps;
         previous.swap(current);
       }
+    result.settled = model.state();
     return result;
   }
 } // namespace nsm

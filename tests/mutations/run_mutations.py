@@ -259,6 +259,8 @@ MUTATIONS = [
     ("the accumulation point passed at W_acc, inside the climb's truncated top", "source/continuation/main_branch.cc",
      "return params.accumulation_omega * (1 + continuation_constants::accumulation_reach / (m * m));",
      "return params.accumulation_omega;"),
+    ("the shooting not started again from the integration's end", "source/verification/forced_floquet.cc",
+     "z = settled;", "z.clear();"),
     ("the climb's truncated zone as deep as M / 2's", "source/continuation/accumulation_tongue.cc",
      "(1 - *from / w_acc) / continuation_constants::halved_truncation_reach", "(1 - *from / w_acc)"),
     ("the climb walked down past its converged points", "source/continuation/accumulation_tongue.cc",

@@ -51,6 +51,9 @@ namespace nsm
     unsigned int                      newton_steps = 0;
     /// |P(z) - z| / |z| at the orbit.
     double residual = 0;
+    /// Found from the integration's settled state (the point's own start
+    /// stalled).
+    bool from_settled = false;
 
     bool   converged() const { return !values.empty(); }
     double largest() const { return values.empty() ? 0.0 : std::abs(values.front()); }
@@ -64,7 +67,11 @@ namespace nsm
 
   /// The multipliers of the stepped model's orbit nearest the point x of
   /// `hb` (at its current Omega and forcing; the wall compliant), `steps`
-  /// time steps a period.
+  /// time steps a period. Where the shooting from x's own motion stalls
+  /// (the stepped map is piecewise linear: a step across a piece's edge may
+  /// not lower the defect), it starts again from `settled` if given: the
+  /// state the integration in time ended at (ForcedVerification::settled),
+  /// on the orbit where the orbit attracts.
   FloquetMultipliers floquet_multipliers(const ForcedHarmonicBalance &hb, const std::vector<double> &x,
-                                         unsigned int steps);
+                                         unsigned int steps, const std::vector<double> &settled = {});
 } // namespace nsm

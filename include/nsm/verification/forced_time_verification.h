@@ -18,6 +18,7 @@
 #include <nsm/harmonic_balance/forced_harmonic_balance.h>
 #include <nsm/verification/forced_floquet.h>
 
+#include <cmath>
 #include <optional>
 
 #include <vector>
@@ -49,9 +50,19 @@ namespace nsm
     double energy;        ///< period mean over the last period (the HB's definition)
     double drift;         ///< max |u(L, t) - u(L, t - T)| / g0 over the last period
     unsigned int periods; ///< integrated
+    /// Every summed mode's q and v where the integration ended, at t = 0 of
+    /// a period (ForcedModalSteps::state): on a stable orbit, the orbit.
+    std::vector<double> settled = {};
     /// The point's Floquet multipliers, where asked (Forcing/Floquet).
     std::optional<FloquetMultipliers> floquet = std::nullopt;
   };
+
+  /// Whether the integration stayed on a point of tip amplitude
+  /// `tip_amplitude`: its own within stays_within of it.
+  inline bool stays_on(const ForcedVerification &v, const double tip_amplitude)
+  {
+    return std::abs(v.tip_amplitude / tip_amplitude - 1) <= forced_verification_constants::stays_within;
+  }
 
   /// Integrates the point x of `hb` (at its current Omega and forcing) over
   /// `periods` periods of `steps` time steps each.
