@@ -83,36 +83,56 @@ namespace nsm
     /// entries is loaded and stored n / block times instead of n times.
     constexpr int block = 8;
 
-    /// Eight doubles, unaligned: one AVX-512 register, two AVX2 or four SSE2
-    /// ones, as the function's clone allows.
-    typedef double oct __attribute__((vector_size(64), aligned(8)));
+    /// Eight doubles, unaligned: one AVX-512 register. Without AVX-512 GCC
+    /// keeps such vectors in memory (the trailing update then took 402 us
+    /// against 105 at n = 161, benchmark_linear_solve), so the other builds
+    /// use four: one AVX2 register.
+    /// Vectors of `lanes` doubles, unaligned (a typedef's alignment would be
+    /// lost as a template argument).
+    template <int lanes>
+    struct Lanes;
+    template <>
+    struct Lanes<8>
+    {
+      typedef double vector __attribute__((vector_size(64), aligned(8)));
+    };
+    template <>
+    struct Lanes<4>
+    {
+      typedef double vector __attribute__((vector_size(32), aligned(8)));
+    };
 
-    /// A22 -= L21 U12 for `blocks` times eight rows from row i of columns c0
+    /// A22 -= L21 U12 for `blocks` vectors of rows from row i of columns c0
     /// and c1, held in registers through the block's `block` multiply-adds,
     /// each L21 load serving both columns.
-    template <int blocks>
+    template <int lanes, int blocks>
     __attribute__((always_inline)) inline void update_rows(const int n, const int i, const double *l, const double *u0,
                                                           const double *u1, double *c0, double *c1, const bool pair)
     {
-      oct a0[blocks], a1[blocks];
+      typedef typename Lanes<lanes>::vector Vector;
+      Vector                                a0[blocks], a1[blocks];
       for (int b = 0; b < blocks; ++b)
-        a0[b] = *reinterpret_cast<const oct *>(c0 + i + 8 * b), a1[b] = *reinterpret_cast<const oct *>(c1 + i + 8 * b);
+        a0[b] = *reinterpret_cast<const Vector *>(c0 + i + lanes * b),
+        a1[b] = *reinterpret_cast<const Vector *>(c1 + i + lanes * b);
       for (int p = 0; p < block; ++p)
         for (int b = 0; b < blocks; ++b)
           {
-            const oct lp = *reinterpret_cast<const oct *>(l + std::size_t(p) * n + i + 8 * b);
+            const Vector lp = *reinterpret_cast<const Vector *>(l + std::size_t(p) * n + i + lanes * b);
             a0[b] -= lp * u0[p], a1[b] -= lp * u1[p];
           }
       for (int b = 0; b < blocks; ++b)
         {
-          *reinterpret_cast<oct *>(c0 + i + 8 * b) = a0[b];
+          *reinterpret_cast<Vector *>(c0 + i + lanes * b) = a0[b];
           if (pair)
-            *reinterpret_cast<oct *>(c1 + i + 8 * b) = a1[b];
+            *reinterpret_cast<Vector *>(c1 + i + lanes * b) = a1[b];
         }
     }
 
     /// A22 -= L21 U12 for a whole block of pivots: two columns of A22 at a
-    /// time, sixteen rows (then eight) per register pass.
+    /// time, sixteen rows (then one vector's) per register pass. Every entry
+    /// gets the same multiply-adds in the same order whatever the vector, so
+    /// the builds' factors agree to the last bit.
+    template <int lanes>
     __attribute__((always_inline)) inline void update_trailing_block(const int n, const int k0, double *a)
     {
       const int     first = k0 + block;
@@ -126,9 +146,9 @@ namespace nsm
             u0[p] = c0[k0 + p], u1[p] = pair ? c1[k0 + p] : 0.0;
           int i = first;
           for (; i + 16 <= n; i += 16)
-            update_rows<2>(n, i, l, u0, u1, c0, c1, pair);
-          for (; i + 8 <= n; i += 8)
-            update_rows<1>(n, i, l, u0, u1, c0, c1, pair);
+            update_rows<lanes, 16 / lanes>(n, i, l, u0, u1, c0, c1, pair);
+          for (; i + lanes <= n; i += lanes)
+            update_rows<lanes, 1>(n, i, l, u0, u1, c0, c1, pair);
           for (; i < n; ++i)
             for (int p = 0; p < block; ++p)
               {
@@ -140,26 +160,52 @@ namespace nsm
         }
     }
 
+    /// The last, narrower block of pivots: one pivot at a time.
+    __attribute__((always_inline)) inline void update_trailing_narrow(const int n, const int k0, const int width,
+                                                                     double *a)
+    {
+      for (int p = 0; p < width; ++p)
+        {
+          const double *l = a + std::size_t(k0 + p) * n;
+          for (int j = k0 + width; j < n; ++j)
+            {
+              double      *c = a + std::size_t(j) * n;
+              const double u = c[k0 + p];
+              for (int i = k0 + width; i < n; ++i)
+                c[i] -= l[i] * u;
+            }
+        }
+    }
+
     /// The trailing update A22 -= L21 U12 of the block of `width` pivots from
-    /// column k0, built for AVX-512, for AVX2 and FMA where the processor has
-    /// them (GCC function multiversioning).
-    NSM_CLONES_AVX512_AVX2 void
-    update_trailing(const int n, const int k0, const int width, double *a)
+    /// column k0, built for AVX-512 on eight-double vectors.
+    NSM_TARGET_AVX512 void update_trailing_avx512(const int n, const int k0, const int width, double *a)
     {
       if (width == block)
-        update_trailing_block(n, k0, a);
+        update_trailing_block<8>(n, k0, a);
       else
-        for (int p = 0; p < width; ++p) // the last, narrower block
-          {
-            const double *l = a + std::size_t(k0 + p) * n;
-            for (int j = k0 + width; j < n; ++j)
-              {
-                double      *c = a + std::size_t(j) * n;
-                const double u = c[k0 + p];
-                for (int i = k0 + width; i < n; ++i)
-                  c[i] -= l[i] * u;
-              }
-          }
+        update_trailing_narrow(n, k0, width, a);
+    }
+
+    /// The same on four-double vectors, built for AVX2 and FMA where the
+    /// processor has them (GCC function multiversioning), and for plain
+    /// x86-64.
+    NSM_CLONES_AVX2 void update_trailing_avx2(const int n, const int k0, const int width, double *a)
+    {
+      if (width == block)
+        update_trailing_block<4>(n, k0, a);
+      else
+        update_trailing_narrow(n, k0, width, a);
+    }
+
+    /// The trailing update with the vectors asked for (LuVectors).
+    void update_trailing(const int n, const int k0, const int width, double *a, const LuVectors vectors)
+    {
+      static const bool avx512 = nsm_has_avx512();
+      if (avx512 && vectors == LuVectors::widest)
+        update_trailing_avx512(n, k0, width, a);
+      else
+        update_trailing_avx2(n, k0, width, a);
     }
 
     /// LU with partial pivoting of the panel of columns k0..k0+width-1 (rows
@@ -219,7 +265,7 @@ namespace nsm
     }
   } // namespace
 
-  bool lu_factor(const int n, double *a, int *pivots)
+  bool lu_factor(const int n, double *a, int *pivots, const LuVectors vectors)
   {
     Assert(n >= 1, dealii::ExcLowerRange(n, 1));
     Assert(a != nullptr && pivots != nullptr, ExcPrecondition("lu_factor: a null matrix or pivot array"));
@@ -230,7 +276,7 @@ namespace nsm
         const int width = std::min(block, n - k0);
         if (!factor_panel(n, k0, width, a, pivots))
           return false;
-        update_trailing(n, k0, width, a);
+        update_trailing(n, k0, width, a, vectors);
       }
     return true;
   }

@@ -6,9 +6,18 @@
 
 namespace nsm
 {
+  /// The vectors of the blocked factorisation's trailing update: the
+  /// processor's widest (eight doubles with AVX-512, else four), or four
+  /// (AVX2's; for tests: both give the same factors to the last bit).
+  enum class LuVectors
+  {
+    widest,
+    four
+  };
+
   /// P A = L U in place (A n x n column-major; pivots: n interchanges).
   /// False if a pivot is exactly zero (A singular).
-  bool lu_factor(int n, double *a, int *pivots);
+  bool lu_factor(int n, double *a, int *pivots, LuVectors vectors = LuVectors::widest);
 
   /// x <- A^{-1} x from lu_factor's factors and interchanges.
   void lu_solve(int n, const double *lu, const int *pivots, double *x);
