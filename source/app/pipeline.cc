@@ -330,7 +330,8 @@ namespace nsm
           estimates_ = estimate_energy_errors(hb(), branch(), backbone(), progress, &elsewhere);
           // The estimates show where the truncation sets the climb into the
           // accumulation point: the Result block's lines follow its labels.
-          if (name_accumulation_tongue(backbone(), estimates_, branch()) > 0)
+          // (Not after a stop: the points left have no estimate yet.)
+          if (point_stop_signal() == 0 && name_accumulation_tongue(backbone(), estimates_, branch()) > 0)
             relabelled();
           summary    = summarise_estimates(backbone(), estimates_, elsewhere);
           report_.result.push_back(estimate_summary(summary, scene_.harmonic_balance.harmonics));
@@ -575,13 +576,15 @@ namespace nsm
                     steady_state_periods(forced.receptance(), curve.points[i].omega, ForcingParameters::max_verify_periods);
                 ForcedVerification &v = verifications.back()[i].emplace(
                   verify_forced_point(forced, curve.points[i].x, scene_.output.verify_steps, periods));
-                // The integration's end state is a start for the shooting
-                // where the integration stayed on the point (not on another
-                // orbit it was drawn to).
+                // The integration's end is a start for the shooting where
+                // the point is stable by the fold test and the integration
+                // stayed on it: an integration settles only on an attracting
+                // orbit, which beside an unstable point is another one.
+                const bool settled_on_it =
+                  curve.points[i].stable && stays_on(v, curve.points[i].measures.tip_amplitude);
                 if (scene_.forcing.floquet)
-                  v.floquet = floquet_multipliers(
-                    forced, curve.points[i].x, scene_.output.verify_steps,
-                    stays_on(v, curve.points[i].measures.tip_amplitude) ? v.settled : std::vector<double>());
+                  v.floquet = floquet_multipliers(forced, curve.points[i].x, scene_.output.verify_steps,
+                                                  settled_on_it ? v.settled : std::vector<double>());
                 ++verified;
                 progress.update([&] {
                   return std::to_string(verified) + " points verified (F = " + significant(curve.forcing, 4) + ", Omega " +

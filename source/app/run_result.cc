@@ -1,10 +1,10 @@
 #include <nsm/app/run_result.h>
 #include <nsm/base/text.h>
+#include <nsm/continuation/accumulation_tongue.h>
 #include <nsm/continuation/main_branch.h>
 #include <nsm/model/exact_references.h>
 
 #include <algorithm>
-#include <limits>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -211,13 +211,12 @@ namespace nsm
     /// name_accumulation_tongue named one; empty otherwise.
     std::string climb_top(const Backbone &backbone)
     {
-      double      lo = std::numeric_limits<double>::infinity(), hi = -lo;
-      std::size_t count = 0;
-      for (const BackbonePoint &p : backbone.points)
-        if (p.branch == Branch::tongue && at_accumulation_point(p.resonance))
-          lo = std::min(lo, p.omega), hi = std::max(hi, p.omega), ++count;
+      const auto count = std::count_if(backbone.points.begin(), backbone.points.end(), [](const BackbonePoint &p) {
+        return p.branch == Branch::tongue && at_accumulation_point(p.resonance);
+      });
       if (count == 0)
         return "";
+      const auto [lo, hi] = accumulation_span(backbone.points);
       std::ostringstream s;
       s.precision(6);
       s << "; the climb's top from Omega = " << lo << " to " << hi << " (" << count

@@ -11,29 +11,18 @@ namespace nsm
 {
   namespace
   {
-    /// The main points between `low` and `passed`, highest Omega first.
+    /// The climb's main points between `low` and W_acc, highest Omega first
+    /// (the family beyond W_acc starts beyond it).
     std::vector<std::size_t> climb_down(const std::vector<BackbonePoint> &points, const double low,
-                                        const double passed)
+                                        const double w_acc)
     {
       std::vector<std::size_t> climb;
       for (std::size_t i = 0; i < points.size(); ++i)
-        if (points[i].branch == Branch::main && points[i].omega >= low && points[i].omega <= passed)
+        if (points[i].branch == Branch::main && points[i].omega >= low && points[i].omega <= w_acc)
           climb.push_back(i);
       std::stable_sort(climb.begin(), climb.end(),
                        [&](std::size_t a, std::size_t b) { return points[a].omega > points[b].omega; });
       return climb;
-    }
-
-    /// The Omega of the main point nearest to `omega` on its `side` (-1
-    /// below, +1 above); `omega` itself if there is none.
-    double nearest_main(const std::vector<BackbonePoint> &points, const double omega, const double side)
-    {
-      double nearest = omega;
-      for (const BackbonePoint &p : points)
-        if (p.branch == Branch::main && side * (p.omega - omega) > 0 &&
-            (nearest == omega || side * (p.omega - nearest) < 0))
-          nearest = p.omega;
-      return nearest;
     }
 
     /// The accumulation point's tongue as one row: its points may lie on
@@ -50,16 +39,24 @@ namespace nsm
           merged = t;
         else
           merged->max_energy = std::max(merged->max_energy, t.max_energy), merged->points += t.points;
-      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-      for (const BackbonePoint &p : backbone.points)
-        if (p.branch == Branch::tongue && at_accumulation_point(p.resonance))
-          lo = std::min(lo, p.omega), hi = std::max(hi, p.omega);
-      merged->foot_begin = nearest_main(backbone.points, lo, -1);
-      merged->foot_end   = nearest_main(backbone.points, hi, +1);
+      const auto [lo, hi]        = accumulation_span(backbone.points);
+      const BackbonePoint *below = nearest_on_side(backbone.points, lo, -1, true);
+      const BackbonePoint *above = nearest_on_side(backbone.points, hi, +1, true);
+      merged->foot_begin         = below ? below->omega : lo;
+      merged->foot_end           = above ? above->omega : hi;
       kept.push_back(*merged);
       backbone.tongues = std::move(kept);
     }
   } // namespace
+
+  std::pair<double, double> accumulation_span(const std::vector<BackbonePoint> &points)
+  {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const BackbonePoint &p : points)
+      if (p.branch == Branch::tongue && at_accumulation_point(p.resonance))
+        lo = std::min(lo, p.omega), hi = std::max(hi, p.omega);
+    return {lo, hi};
+  }
 
   std::size_t name_accumulation_tongue(Backbone &backbone, const std::vector<double> &estimates,
                                        const BranchParameters &params)
@@ -71,12 +68,22 @@ namespace nsm
     const double m   = params.harmonic_balance.harmonics;
     const double low = params.accumulation_omega * (1 - continuation_constants::accumulation_reach / (m * m));
     // A branch that starts inside the zone (the uniform bar's, at W_acc)
-    // does not climb into it.
-    if (points.empty() || !(points.front().omega < low))
+    // does not climb into it. It starts where it was traced from, in the
+    // range or not.
+    if (points.empty())
       return 0;
+    const double start_omega = backbone.traced_span.second > 0 ?
+                                 std::min(backbone.traced_span.first, points.front().omega) :
+                                 points.front().omega;
+    if (!(start_omega < low))
+      return 0;
+    // A point without an estimate (M / 2 did not converge, or not on the
+    // same motion) tells nothing: the walk goes on past it.
     std::optional<double> from;
-    for (const std::size_t i : climb_down(points, low, passed))
+    for (const std::size_t i : climb_down(points, low, params.accumulation_omega))
       {
+        if (std::isnan(estimates[i]))
+          continue;
         if (!(estimates[i] > params.continuation.tongue_share))
           break;
         from = points[i].omega;

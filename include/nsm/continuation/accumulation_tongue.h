@@ -8,22 +8,29 @@
 #include <nsm/continuation/branch_parameters.h>
 
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace nsm
 {
   /// Names the climb's truncated top. Down in Omega from the last main point
-  /// before the accumulation point counts as passed (accumulation_passed),
-  /// within W_acc (1 - accumulation_reach / M^2), each main point whose
-  /// energy moves by more than Tongue share when the harmonics are halved
-  /// (`estimates`, per point, NaN without one) joins it, up to the first
-  /// that does not; the family's points (main and tongue) from the lowest
-  /// of them to the passing point become tongue points of the accumulation
-  /// point, and the tongues are collected again. Nothing for a branch that
+  /// at or below W_acc, within W_acc (1 - accumulation_reach / M^2), the
+  /// main points whose energy moves by more than Tongue share when the
+  /// harmonics are halved (`estimates`, per point; NaN without one, passed
+  /// over) mark M / 2's truncated zone, up to the first that does not; M's
+  /// own zone reaches a quarter as deep below W_acc
+  /// (halved_truncation_reach). The family's points (main and tongue) from
+  /// there to where the accumulation point counts as passed
+  /// (accumulation_passed) become tongue points of the accumulation point,
+  /// one row of the tongues collected again. Nothing for a branch that
   /// does not cross W_acc (softening, or starting within W_acc (1 -
   /// accumulation_reach / M^2): the uniform bar's starts at W_acc) or without
   /// estimates. Returns the points it
   /// labelled (none when called again).
   std::size_t name_accumulation_tongue(Backbone &backbone, const std::vector<double> &estimates,
                                        const BranchParameters &params);
+
+  /// The lowest and highest Omega of the points on the accumulation point's
+  /// tongue (infinity and minus infinity if none).
+  std::pair<double, double> accumulation_span(const std::vector<BackbonePoint> &points);
 } // namespace nsm
