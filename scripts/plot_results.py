@@ -183,6 +183,10 @@ def tongue_top(points, tongues, i):
     low, high = min(begin, end), max(begin, end)
     on = [(e, w) for w, e, b in zip(points["Omega"], points["energy"], points["branch"])
           if b == "tongue" and low <= w <= high]
+    if tongues.get("kind") and tongues["kind"][i] == "accumulation":
+        # Its feet span other tongues too: its own highest point.
+        top = tongues["max_energy"][i]
+        on = [(e, w) for e, w in on if abs(e - top) <= 1e-12 * top]
     if not on:
         return tongues["omega_resonance"][i], tongues["max_energy"][i]
     energy, omega = max(on)

@@ -32,12 +32,11 @@ namespace nsm
     }
 
     /// Below this many unknowns (M < 96 in the cosine basis) the unblocked
-    /// elimination is used. On random systems the panels pay from about
-    /// n = 64 (tests/benchmarks/benchmark_linear_solve, medians unblocked
-    /// against blocked: 6.1 / 6.7 us at n = 41, 32.5 / 31.0 at 81, 270 / 165
-    /// at 161, 1900 / 991 at 321), but on the harmonic balance's own
-    /// Jacobians at n = 81 they do not: the authors' work at M = 80 (doc/log.md)
-    /// takes 1.31 to 1.33 s in its HB stage with them, 1.26 to 1.28 s without.
+    /// elimination is used. On random systems the panels are even with it
+    /// at n = 81 and pay beyond (doc/studies.md's table), but on the harmonic
+    /// balance's own Jacobians at n = 81 they do not: the authors' work at
+    /// M = 80 (doc/log.md) takes 1.31 to 1.33 s in its HB stage with them,
+    /// 1.26 to 1.28 s without.
     constexpr int blocked_from = 96;
 
     /// Partial pivoting's row for column k: the largest |a_ik|, i >= k, by a
@@ -83,12 +82,11 @@ namespace nsm
     /// entries is loaded and stored n / block times instead of n times.
     constexpr int block = 8;
 
-    /// Eight doubles, unaligned: one AVX-512 register. Without AVX-512 GCC
-    /// keeps such vectors in memory (the trailing update then took 402 us
-    /// against 105 at n = 161, benchmark_linear_solve), so the other builds
-    /// use four: one AVX2 register.
     /// Vectors of `lanes` doubles, unaligned (a typedef's alignment would be
-    /// lost as a template argument).
+    /// lost as a template argument): eight (one AVX-512 register) for the
+    /// AVX-512 build, four (one AVX2 register) for the others, where GCC
+    /// keeps eight-double vectors in memory (doc/studies.md, "The Newton
+    /// steps' LU").
     template <int lanes>
     struct Lanes;
     template <>

@@ -85,7 +85,9 @@ namespace nsm
                       "Add backbone.csv's energy_error_estimate: each point's |E(M / 2) / E(M) - 1|, "
                       "E(M / 2) solved with half the harmonics at its Omega; the summary gives its median "
                       "over the main points and the band check (the mesh against its cells halved). "
-                      "Both cost about half the harmonic balance's time on the seed scene.");
+                      "Both cost about half the harmonic balance's time on the seed scene. On a branch that "
+                      "crosses the accumulation point, the estimates also label the climb's truncated top a "
+                      "tongue of it.");
     prm.declare_entry("Bar amplitude",
                       text(d.bar_amplitude),
                       Patterns::Bool(),

@@ -269,7 +269,7 @@ MUTATIONS = [
     ("the climb walked down past its converged points", "source/continuation/accumulation_tongue.cc",
      "if (!(estimates[i] > params.continuation.tongue_share))", "if (false)"),
     ("the climb's truncated top not named", "source/app/pipeline.cc",
-     "if (name_accumulation_tongue(backbone(), estimates_, branch()) > 0)", "if (false)"),
+     "point_stop_signal() == 0 && name_accumulation_tongue(backbone(), estimates_, branch()) > 0", "false"),
     ("the gap search's failed solves not counted", "include/nsm/harmonic_balance/newton_solver.h",
      "d.failed_solves -= earlier.failed_solves;",
      "d.failed_solves = 0;"),

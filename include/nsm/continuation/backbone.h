@@ -19,7 +19,8 @@ namespace nsm
   enum class Branch
   {
     main,   ///< the nonsmooth mode: its family's monotone lower envelope (main_branch.h)
-    tongue, ///< above it, near W = w_j / k, where harmonic k drives mode j near its resonance
+    tongue, ///< above it, near W = w_j / k, where harmonic k drives mode j near its resonance; or the
+            ///< climb's truncated top at the accumulation point (accumulation_tongue.h)
     other   ///< another family (a leap landed on it): less contact than the mode before it
   };
 
@@ -69,7 +70,9 @@ namespace nsm
     InternalResonance        resonance = {0, 0, 0}; ///< of a tongue point; zero on the main branch
   };
 
-  /// A run of tongue points of one resonance along the backbone.
+  /// A run of tongue points of one resonance along the backbone (the
+  /// accumulation point's: all its points, its feet the main points next to
+  /// them in Omega).
   struct Tongue
   {
     InternalResonance resonance;

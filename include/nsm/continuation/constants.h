@@ -65,18 +65,23 @@ namespace nsm::continuation_constants
   /// resonances, and the motions of near half contact beside its top, reach
   /// beyond it by a truncation effect that falls like M^-2: the climb's top
   /// lies 8.7e-4, 2.2e-4, 5.5e-5, 1.7e-5 beyond pi / 2 at M = 20, 40, 80, 160
-  /// on 1 + 0.2 x (FE_Q(10) x 20), about 0.35 / M^2; at M = 40, the points of
+  /// on 1 + 0.2 x (FE_Q(10) x 20), about 0.35 / M^2 (0.22 and 0.24 / M^2 at
+  /// M = 20 and 40 on FE_Q(1) x 4000); at M = 40, the points of
   /// contact fraction above 0.35 beyond pi / 2 reach 0.34 / M^2 (relative)
   /// on 1 + 0.2 x, 1 + 0.3 x^3 and 1 + 0.05 x, 1.9 / M^2 on 1 + x and 1 + x^2.
   /// The labels take the accumulation point as passed at
-  /// W_acc (1 + this / M^2) along the branch, twice the farthest.
+  /// W_acc (1 + this / M^2) along the branch, twice the farthest. The
+  /// climb's truncated zone is looked for as deep below W_acc
+  /// (accumulation_tongue.h): the estimate's zone, 4 times M's, reached 0.2
+  /// to 2.1 / M^2 below it on those bars at M = 40 (doc/log.md); a branch
+  /// that starts within it does not climb.
   constexpr double accumulation_reach = 4;
   /// The climb's truncated zone below W_acc narrows like M^-2 (above), so the
   /// zone of M / 2 harmonics, where the error estimate |E(M/2) / E(M) - 1|
   /// exceeds Tongue share, reaches (M / (M / 2))^2 = 4 times as far below
   /// W_acc as the zone of M. Measured against M = 160 on 1 + 0.2 x (FE_Q(1)
   /// x 4000): at M = 40 the estimate exceeds 0.02 from 4.2e-4 below W_acc,
-  /// and the run's energy leaves M = 160's by more than 0.02 between 1.2e-4
-  /// and 0.7e-4 below it; at M = 20, 1.5e-3 and between 5.3e-4 and 4.1e-4.
+  /// and the run's energy leaves M = 160's by more than 0.02 between 1.7e-4
+  /// and 1.2e-4 below it; at M = 20, 1.5e-3 and between 5.3e-4 and 4.1e-4.
   constexpr double halved_truncation_reach = 4;
 } // namespace nsm::continuation_constants
