@@ -126,6 +126,11 @@ namespace nsm
       if (!record)
         return "not searched (the continuation ended before the gap search)";
       std::ostringstream s;
+      // A gap the final labels widened (the climb's truncated top named
+      // after the search) was searched as it stood then.
+      if (record->from != from || record->to != to)
+        s << std::setprecision(6) << "searched as the gap from Omega = " << record->from << " to " << record->to
+          << ": ";
       s.precision(3);
       const unsigned int failed = record->starts - record->other_family - record->tongue - record->above_energy_max;
       s << record->starts << " Newton starts from the predicted mode: " << record->other_family
