@@ -9,10 +9,11 @@ reference: the same climb with M = 160, whose own truncated zone lies 16 and
   (the bar's wave travel time is 1), and the Result block names it;
 - each of its points that M = 160's climb reaches lies more than Tongue share
   (0.02) from it: the truncation sets their energy;
-- the main points of the climb within 4 / M^2 below W_acc lie on M = 160's
-  climb: median within Tongue share / 4, each within 2 Tongue share (the
-  points next to the tongue: 1.8 and 1.4 Tongue share measured at M = 20 and
-  40, where the error grows by a factor 8 over one step);
+- the main points of the climb within 4 / M^2 below W_acc lie within Tongue
+  share of M = 160's climb, all but the one next to the tongue: the zone's
+  start is placed to within a continuation step, over which the error grows
+  by a factor 8 there (that point: 1.8 and 1.4 Tongue share off at M = 20 and
+  40, measured);
 - the tongue's top lies beyond W_acc by about the same multiple of M^-2 at
   M = 20 and 40 (0.22 and 0.24 measured; within a factor 2 checked), the
   scaling its zone's width relies on.
@@ -96,15 +97,15 @@ for m in (20, 40):
     check(judged, f"M = {m}: no tongue point inside M = 160's climb")
     for w, d in judged:
         check(abs(d) > SHARE, f"M = {m}: tongue point at {w} lies within {d:+.4f} of M = 160")
-    main = [(float(r["Omega"]), float(r["energy"])) for r in rows if r["branch"] == "main"
-            and W_ACC * (1 - 4 / m ** 2) <= float(r["Omega"]) < start]
-    off = sorted(abs(e / reference(w) - 1) for w, e in main if reference(w))
+    main = sorted((float(r["Omega"]), float(r["energy"])) for r in rows if r["branch"] == "main"
+                  and W_ACC * (1 - 4 / m ** 2) <= float(r["Omega"]) < start)
+    off = [(w, abs(e / reference(w) - 1)) for w, e in main[:-1] if reference(w)]
     check(len(off) >= 5, f"M = {m}: {len(off)} main points of the climb inside M = 160's")
     if off:
-        print(f"M = {m}: {len(off)} main points of the climb: median {off[len(off) // 2]:.4f}, "
-              f"largest {off[-1]:.4f} from M = 160")
-        check(off[len(off) // 2] <= SHARE / 4, f"M = {m}: main climb median {off[len(off) // 2]:.4f} from M = 160")
-        check(off[-1] <= 2 * SHARE, f"M = {m}: a main climb point {off[-1]:.4f} from M = 160")
+        print(f"M = {m}: {len(off)} main points of the climb below the one next to the tongue: largest "
+              f"{max(d for _, d in off):.4f} from M = 160")
+        for w, d in off:
+            check(d <= SHARE, f"M = {m}: the climb's main point at {w} lies {d:.4f} from M = 160")
 
 if len(tops) == 2:
     reach = {m: (tops[m] / W_ACC - 1) * m ** 2 for m in tops}
