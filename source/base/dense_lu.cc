@@ -176,24 +176,28 @@ namespace nsm
     }
 
     /// The trailing update A22 -= L21 U12 of the block of `width` pivots from
-    /// column k0, built for AVX-512 on eight-double vectors.
-    NSM_TARGET_AVX512 void update_trailing_avx512(const int n, const int k0, const int width, double *a)
+    /// column k0 on vectors of `lanes` doubles.
+    template <int lanes>
+    __attribute__((always_inline)) inline void update_trailing_on(const int n, const int k0, const int width,
+                                                                 double *a)
     {
       if (width == block)
-        update_trailing_block<8>(n, k0, a);
+        update_trailing_block<lanes>(n, k0, a);
       else
         update_trailing_narrow(n, k0, width, a);
     }
 
-    /// The same on four-double vectors, built for AVX2 and FMA where the
-    /// processor has them (GCC function multiversioning), and for plain
-    /// x86-64.
+    /// Built for AVX-512 on eight-double vectors.
+    NSM_TARGET_AVX512 void update_trailing_avx512(const int n, const int k0, const int width, double *a)
+    {
+      update_trailing_on<8>(n, k0, width, a);
+    }
+
+    /// On four-double vectors, built for AVX2 and FMA where the processor has
+    /// them (GCC function multiversioning), and for plain x86-64.
     NSM_CLONES_AVX2 void update_trailing_avx2(const int n, const int k0, const int width, double *a)
     {
-      if (width == block)
-        update_trailing_block<4>(n, k0, a);
-      else
-        update_trailing_narrow(n, k0, width, a);
+      update_trailing_on<4>(n, k0, width, a);
     }
 
     /// The trailing update with the vectors asked for (LuVectors).

@@ -20,6 +20,22 @@ namespace
         b[i] += a[i + j * n] * x[j];
     return b;
   }
+
+  /// LU with partial pivoting solves a nearby system: |A x - b| <= c n eps
+  /// |A| |x| with c of order the growth factor (a few for random matrices);
+  /// 4 n eps fails a wrong multiplier or a skipped update by orders of
+  /// magnitude.
+  void expect_backward_stable(const std::vector<double> &a, const std::vector<double> &b,
+                              const std::vector<double> &solution)
+  {
+    const int                 n    = int(b.size());
+    const std::vector<double> back = times(a, solution);
+    double                    largest = 0;
+    for (const double v : solution)
+      largest = std::max(largest, std::abs(v));
+    for (int i = 0; i < n; ++i)
+      EXPECT_LE(std::abs(back[i] - b[i]), 4 * n * 2.2e-16 * largest * n) << n << ' ' << i;
+  }
 } // namespace
 
 TEST(DenseLu, SolvesARandomSystemOfTheJacobiansSize)
@@ -39,22 +55,14 @@ TEST(DenseLu, SolvesARandomSystemOfTheJacobiansSize)
 TEST(DenseLu, IsBackwardStableAtTheJacobiansSizesForHighHarmonics)
 {
   // M = 160 and 320 (cosine basis), and sizes between whole blocks of the
-  // factorisation: LU with partial pivoting solves a nearby system, |A x - b|
-  // <= c n eps |A| |x| with c of order the growth factor (a few for random
-  // matrices); 4 n eps fails a wrong multiplier or a skipped update by
-  // orders of magnitude.
+  // factorisation (expect_backward_stable).
   for (const int n : {7, 9, 161, 321})
     {
       const auto [a, x]           = testing_helpers::random_system(n, n);
       const std::vector<double> b = times(a, x);
       std::vector<double>       solution = b, lu = a;
       ASSERT_TRUE(nsm::dense_solve(n, lu.data(), solution.data()));
-      const std::vector<double> back = times(a, solution);
-      double                    largest = 0;
-      for (const double v : solution)
-        largest = std::max(largest, std::abs(v));
-      for (int i = 0; i < n; ++i)
-        EXPECT_LE(std::abs(back[i] - b[i]), 4 * n * 2.2e-16 * largest * n) << n << ' ' << i;
+      expect_backward_stable(a, b, solution);
     }
 }
 
@@ -130,14 +138,10 @@ TEST(DenseLu, FourAndEightDoubleVectorsGiveTheSameFactors)
       EXPECT_EQ(wide_pivots, four_pivots) << n;
       EXPECT_EQ(wide, four) << n;
       // And the four-double factors solve the system (the widest are checked
-      // above): back-substituted, |A x - b| within LU's backward error.
-      std::vector<double> b = times(a, x), solution = b;
+      // above) within LU's backward error.
+      const std::vector<double> b = times(a, x);
+      std::vector<double>       solution = b;
       nsm::lu_solve(n, four.data(), four_pivots.data(), solution.data());
-      const std::vector<double> back = times(a, solution);
-      double                    largest = 0;
-      for (const double v : solution)
-        largest = std::max(largest, std::abs(v));
-      for (int i = 0; i < n; ++i)
-        EXPECT_LE(std::abs(back[i] - b[i]), 4 * n * 2.2e-16 * largest * n) << n << ' ' << i;
+      expect_backward_stable(a, b, solution);
     }
 }
