@@ -39,7 +39,7 @@ namespace nsm
           if (context.beyond(q.omega, gap.first) && context.beyond(gap.second, q.omega))
             inside.push_back(&q);
       std::sort(inside.begin(), inside.end(), [&](const BackbonePoint *a, const BackbonePoint *b) {
-        if (a->branch != b->branch)
+        if ((a->branch == Branch::main) != (b->branch == Branch::main))
           return a->branch == Branch::main;
         return context.beyond(b->omega, a->omega);
       });
