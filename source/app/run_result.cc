@@ -251,7 +251,7 @@ namespace nsm
         << (continuation.mode > 1 ? "(2n - 1) " : "") << "pi / (2 tau), tau = L sqrt(rho / E)): it starts below it, at "
         << start << ", the tongues crowd towards it, and the branch's climb into it is set by the truncation M; "
         << "beyond it the labels judge the branch on its own (the uniform bar's mode continued): " << beyond
-        << " of the " << main.size() << " main points lie beyond it";
+        << " of the " << main.size() << " main points " << (beyond == 1 ? "lies" : "lie") << " beyond it";
       s << climb_top(backbone) << " (doc/method.md, \"The accumulation point\")";
       return {s.str()};
     }

@@ -115,4 +115,9 @@ namespace nsm
     s << value;
     return s.str();
   }
+
+  std::string counted(const std::size_t n, const std::string &noun)
+  {
+    return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+  }
 } // namespace nsm

@@ -408,9 +408,67 @@ namespace nsm
           if (on_linear_response(curve_.points[i], i))
             {
               curve_.points.resize(i);
+              cut_retrace(before);
               return false;
             }
-        return finished;
+        return !cut_retrace(before) && finished;
+      }
+
+      /// Where the stepper has come back along the curve (retrace_points
+      /// points in a row on the path traced before them, share_off_traced_path
+      /// at most retrace_share), it turned at a corner onto the branch it came
+      /// on: the points after that turn (the last turn of the swept parameter
+      /// before them, not before the run's first point) are dropped and
+      /// counted. Returns whether it cut.
+      bool cut_retrace(const std::size_t before)
+      {
+        using namespace continuation_constants;
+        std::size_t in_a_row = 0, found = curve_.points.size();
+        for (std::size_t i = before; i < curve_.points.size() && found == curve_.points.size(); ++i)
+          {
+            in_a_row = share_off_traced_path(i) <= retrace_share ? in_a_row + 1 : 0;
+            if (in_a_row == retrace_points)
+              found = i + 1 - retrace_points;
+          }
+        if (found == curve_.points.size())
+          return false;
+        std::size_t turn = found - 1;
+        while (turn > before && turn + 1 < curve_.points.size() &&
+               (sweep_.value(curve_.points[turn]) - sweep_.value(curve_.points[turn - 1])) *
+                   (sweep_.value(curve_.points[turn + 1]) - sweep_.value(curve_.points[turn])) >= 0)
+          --turn;
+        curve_.retraced += curve_.points.size() - (turn + 1);
+        curve_.points.resize(turn + 1);
+        return true;
+      }
+
+      /// The least distance of the curve's point `index` from the path
+      /// between two consecutive points of one segment among the curve's
+      /// points before index - 2, over that pair's distance (the stepper's
+      /// metric); infinity if none.
+      double share_off_traced_path(const std::size_t index) const
+      {
+        const ForcedPoint &p     = curve_.points[index];
+        double             least = std::numeric_limits<double>::infinity();
+        for (std::size_t i = 1; i + 2 < index; ++i)
+          {
+            const ForcedPoint &a = curve_.points[i - 1], &b = curve_.points[i];
+            if (a.segment != b.segment)
+              continue;
+            const double length = distance(sweep_, a, b);
+            if (length <= 0)
+              continue;
+            // p's projection onto the chord from a to b, clamped to it.
+            double along = (sweep_.value(p) - sweep_.value(a)) * (sweep_.value(b) - sweep_.value(a));
+            for (std::size_t k = 0; k < p.x.size(); ++k)
+              along += (p.x[k] - a.x[k]) * (b.x[k] - a.x[k]);
+            const double t = std::clamp(along / (length * length), 0.0, 1.0);
+            double       d = std::pow(sweep_.value(p) - sweep_.value(a) - t * (sweep_.value(b) - sweep_.value(a)), 2);
+            for (std::size_t k = 0; k < p.x.size(); ++k)
+              d += std::pow(p.x[k] - a.x[k] - t * (b.x[k] - a.x[k]), 2);
+            least = std::min(least, std::sqrt(d) / length);
+          }
+        return least;
       }
 
       /// Whether `next` is off the wall at a parameter between two

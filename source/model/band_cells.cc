@@ -132,7 +132,7 @@ namespace nsm
     s.precision(2);
     s << "Discretisation/Cells = 0: " << choice.cells << " cells of FE_Q(" << degree
       << "): its eigenfrequencies up to " << significant(choice.agreement.top, 4) << " ("
-      << choice.agreement.modes << " modes) agree with twice the cells' to " << choice.agreement.error
+      << counted(choice.agreement.modes, "mode") << ") agree with twice the cells' to " << choice.agreement.error
       << ", within " << band_tolerance << " (tried";
     for (const unsigned int c : choice.tried)
       s << ' ' << c;

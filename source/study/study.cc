@@ -241,12 +241,6 @@ namespace nsm
 
   namespace
   {
-    /// "1 row", "2 rows".
-    std::string counted(const std::size_t n, const std::string &noun)
-    {
-      return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
-    }
-
     /// "; n combinations left out: ..." if study_combinations left any out.
     std::string left_out_note(const StudyParameters &study, const std::size_t rows)
     {

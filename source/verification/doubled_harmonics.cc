@@ -148,8 +148,9 @@ namespace nsm
       << " found again on the same motion";
     if (std::isfinite(check.median_estimate))
       s << ", where the estimate reads a median " << 100 * check.median_estimate << " %";
-    s << "; " << check.resonances << " resonances w_j / k with " << check.harmonics / 2 << " < k <= "
-      << check.harmonics << " lie on the main branch's range, which neither M / 2 nor M holds";
+    s << "; " << counted(check.resonances, "resonance") << " w_j / k with " << check.harmonics / 2 << " < k <= "
+      << check.harmonics << (check.resonances == 1 ? " lies" : " lie")
+      << " on the main branch's range, which neither M / 2 nor M holds";
     return s.str();
   }
 

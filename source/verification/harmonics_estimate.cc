@@ -133,6 +133,8 @@ namespace nsm
   {
     std::ostringstream s;
     s.precision(2);
+    if (harmonics < 2)
+      return "estimated energy error of these M = 1 points: none (with M / 2 = 0 no harmonic is left to compare)";
     s << "estimated energy error of these M = " << harmonics << " points, |E(M/2) / E(M) - 1| with E(M/2) solved "
       << "with M = " << harmonics / 2 << " at the same Omega: ";
     if (summary.estimated == 0)

@@ -68,7 +68,7 @@ namespace nsm
     s.precision(2);
     s << "spatial error (" << ours << " against " << judge
       << "): eigenfrequencies up to M times the branch's highest Omega = " << significant(band.top, 4) << " ("
-      << band.modes << " modes) agree to " << band.error;
+      << counted(band.modes, "mode") << ") agree to " << band.error;
     if (energy_changes.empty())
       return {s.str(), ""};
     s << "; the " << found.size() << " of " << energy_changes.size() << " main points found again on the same motion";

@@ -1,6 +1,7 @@
 // Text from the user, and numbers, as messages show them.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 namespace nsm
@@ -25,4 +26,7 @@ namespace nsm
   /// `value` to `digits` significant digits, whatever its scale (energies go
   /// down to 1e-20 with small gaps), as messages and notes print numbers.
   std::string significant(double value, int digits);
+
+  /// "1 restart", "2 restarts": `n` and `noun`, plural with an s.
+  std::string counted(std::size_t n, const std::string &noun);
 } // namespace nsm

@@ -35,6 +35,16 @@ namespace nsm::continuation_constants
   /// many times (forced_response.h): on the seed bar's curves each corner
   /// needs one.
   constexpr unsigned int forced_restarts = 50;
+  /// A forced curve's stepper has come back along the curve where this
+  /// many points in a row lie on the path traced before them, each within
+  /// retrace_share of a chord's length from a chord between two earlier
+  /// consecutive points (the stepper's metric). Measured on prm/forced.prm
+  /// and its uniform drive: points that retrace lie 0.001 to 0.27 of a
+  /// chord off it, mostly below 0.1; a curve's own folds and ripples come
+  /// within 0.065 to 0.3 of its other side at one to three points in a
+  /// row.
+  constexpr unsigned int retrace_points = 5;
+  constexpr double       retrace_share  = 0.1;
   /// The first move of the contact force's mean (over F_s = g0 / gamma(0),
   /// the force that closes the gap statically) by which a forced curve
   /// leaves a corner whose branch turns back (then tenths of it, to 1e-4

@@ -52,6 +52,9 @@ namespace nsm
     /// Leaps: where no start from the last point goes on, a fixed-W solve
     /// at growing distances ahead (up to Search reach) starts a new segment.
     unsigned int leaps = 0;
+    /// Points dropped where the stepper came back along the curve after
+    /// turning at a corner onto the branch it came on.
+    unsigned int retraced = 0;
   };
 
   /// The curve of amplitude `forcing` over [omega_min, omega_max], from the
