@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Plots of an nsm-bar output directory (run by nsm-bar when Output/Plots = true).
 
-usage: plot_results.py DIRECTORY --gap G0 [--wall rigid|compliant]
+usage: plot_results.py DIRECTORY [--gap G0] [--wall rigid|compliant]
+--gap and --wall default to the run's own record, DIRECTORY/parameters.prm
+(Contact/Gap and Contact/Wall), as nsm-bar wrote it.
 Writes backbone.png (from backbone.csv, tongues.csv, resonances.csv, fields.csv), frc.png
 (from frc.csv, over backbone.csv's main branch), per
 field k, field_k_spacetime.png and field_k_tip.png, and for a study study.png (from
@@ -711,14 +713,58 @@ def read_inputs(directory):
         study_rows(os.path.join(directory, "study.csv"))
 
 
+def recorded_contact(directory):
+    """Contact/Gap and Contact/Wall as the run's record (parameters.prm)
+    holds them, each None where it does not (no record, or no such entry)."""
+    path = os.path.join(directory, "parameters.prm")
+    gap = wall = None
+    if not os.path.isfile(path):
+        return gap, wall
+    depth, contact = 0, False
+    with open(path, encoding="utf-8", errors="replace") as f:
+        for line in f:
+            words = line.split("#")[0].split()
+            if words[:1] == ["subsection"]:
+                depth += 1
+                contact = depth == 1 and " ".join(words[1:]) == "Contact"
+            elif words[:1] == ["end"]:
+                depth -= 1
+                contact = False
+            elif contact and words[:1] == ["set"] and "=" in line:
+                name, value = (t.strip() for t in line.split("#")[0].split("=", 1)[0:2])
+                if name == "set Gap":
+                    gap = value
+                elif name == "set Wall":
+                    wall = value
+    return gap, wall
+
+
 def main():
     parser = Parser(prog=PROG)
     parser.add_argument("directory")
-    parser.add_argument("--gap", type=gap_value, required=True, help="the gap g0: a number > 0")
-    parser.add_argument("--wall", choices=("rigid", "compliant"), default="rigid",
-                        help="compliant: u(L) > g0 is the spring's compression, not an overshoot")
+    parser.add_argument("--gap", type=gap_value, help="the gap g0: a number > 0 (default: the run's Contact/Gap)")
+    parser.add_argument("--wall", choices=("rigid", "compliant"),
+                        help="compliant: u(L) > g0 is the spring's compression, not an overshoot "
+                             "(default: the run's Contact/Wall, else rigid)")
     parser.add_argument("--caption", default="", help="what run drew the plots: its scene, mesh and M")
     arguments = parser.parse_args()
+    recorded_gap, recorded_wall = recorded_contact(arguments.directory)
+    # The gap scales the forced curves' amplitudes and the fields; a folder
+    # without them (a study's) draws nothing in units of g0.
+    in_gaps = any(os.path.exists(os.path.join(arguments.directory, name))
+                  for name in ("frc.csv", "force_response.csv")) or bool(field_tips(arguments.directory))
+    if arguments.gap is None and recorded_gap is not None:
+        try:
+            arguments.gap = gap_value(recorded_gap)
+        except argparse.ArgumentTypeError as error:
+            fail(f"{os.path.join(arguments.directory, 'parameters.prm')}: Contact/Gap: {error}")
+    if arguments.gap is None and in_gaps:
+        fail(f"--gap: needed, since {os.path.join(arguments.directory, 'parameters.prm')} does not give "
+             "Contact/Gap (a number > 0)")
+    if arguments.gap is None:
+        arguments.gap = 1.0
+    if arguments.wall is None:
+        arguments.wall = recorded_wall if recorded_wall in ("rigid", "compliant") else "rigid"
     global CAPTION, GAP
     CAPTION = arguments.caption
     GAP = arguments.gap

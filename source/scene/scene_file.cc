@@ -421,7 +421,19 @@ namespace nsm
     if (equals == std::string::npos || equals == 0 || text.find('/') > equals)
       throw InputError("command line: --set '" + printable(text) +
                        "' is not of the form \"Section/Entry=value\"");
-    return {text.substr(0, equals), text.substr(equals + 1)};
+    ParameterOverride o{text.substr(0, equals), text.substr(equals + 1)};
+    // A scene file's "set Entry = value" drops the spaces around '='; on the
+    // command line they would stay in the name (no such parameter) or the
+    // value (which the record cannot hold), so they are named here.
+    const auto trimmed = [](const std::string &t) {
+      const std::size_t first = t.find_first_not_of(" \t");
+      return first == std::string::npos ? std::string() : t.substr(first, t.find_last_not_of(" \t") - first + 1);
+    };
+    if (trimmed(o.path) != o.path || trimmed(o.value) != o.value)
+      throw InputError("command line: --set '" + printable(text) + "' has white space around '=' or at the value's "
+                       "ends, which the run's record cannot hold: write --set \"" + printable(trimmed(o.path)) + "=" +
+                       printable(trimmed(o.value)) + "\"");
+    return o;
   }
 
   void set_parameter_overrides(const std::vector<ParameterOverride> &overrides)

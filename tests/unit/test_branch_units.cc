@@ -199,7 +199,9 @@ namespace
     Method third_method;
     EXPECT_EQ(third_method.trace(third.context, third.backbone, 0), nsm::SegmentEnd::range);
     if (third.backbone.points.size() > stop_at && q.size() > stop_at)
-      EXPECT_NE(third.backbone.points[stop_at].omega, q[stop_at].omega);
+      {
+        EXPECT_NE(third.backbone.points[stop_at].omega, q[stop_at].omega);
+      }
     return {q, first_method.resume_step(), first.context.max_step()};
   }
 } // namespace

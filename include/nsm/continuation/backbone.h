@@ -156,6 +156,11 @@ namespace nsm
     /// The Omega of the written point furthest in the branch's `direction`
     /// (branch_direction); none if no point was written.
     std::optional<double> omega_reached(double direction) const;
+
+    /// The Omega the branch was traced from (its grazing start, in the range
+    /// or not: traced_span), or its first written point where no span was
+    /// kept; none if no point was written.
+    std::optional<double> traced_from(double direction) const;
   };
 
   /// Omega min <= omega <= Omega max.
