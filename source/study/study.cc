@@ -170,6 +170,36 @@ namespace nsm
       return varying.empty() ? " the scene's own values (one row)" : name;
     }
 
+    /// The forced peaks against the backbone, a line per row that traced
+    /// forced curves with the backbone (Study/Forced peaks): how many peaks
+    /// were compared, the largest distance in energy, and the fundamental's
+    /// phase lag at the peaks (pi / 2 at phase resonance).
+    std::vector<std::string> forced_peak_notes(const CsvTable &table, const std::size_t key_size)
+    {
+      const std::size_t distance = column_of(table, "forced_peak_distance_max");
+      if (distance == table.columns.size())
+        return {};
+      const auto               varying = varying_columns(table, key_size);
+      std::vector<std::string> notes;
+      for (const auto &row : table.rows)
+        {
+          if (text_cell(row, distance).empty())
+            continue;
+          std::ostringstream note;
+          note.precision(2);
+          note << " " << row_name(table, row, varying) << ": " << text_cell(row, column_of(table, "forced_peaks_compared"))
+               << " of " << text_cell(row, column_of(table, "forced_curves")) << " peaks compared, the largest "
+               << 100 * std::stod(text_cell(row, distance)) << " % from the main branch in energy; phase lag "
+               << significant(std::stod(text_cell(row, column_of(table, "forced_peak_phase_min"))), 3) << " to "
+               << significant(std::stod(text_cell(row, column_of(table, "forced_peak_phase_max"))), 3);
+          notes.push_back(note.str());
+        }
+      if (!notes.empty())
+        notes.insert(notes.begin(), "the forced curves' peaks against the backbone's main branch (phase lag pi / 2 "
+                                    "= 1.57 at phase resonance):");
+      return notes;
+    }
+
     /// The run summary's answer to "what does accuracy cost": per measured
     /// error, the rows that no other row beats in both error and median
     /// time (the Pareto front), fastest first. The backbone's energy errors
@@ -212,13 +242,13 @@ namespace nsm
                 best = e;
                 std::ostringstream note;
                 note.precision(3);
-                note << "  " << error << " " << e << " in " << seconds_taken << " s:"
+                note << "  " << measured << " " << e << " in " << seconds_taken << " s:"
                      << row_name(table, *row, varying);
                 notes.push_back(note.str());
               }
           if (backbone_error && !rows.empty())
-            notes.push_back("  (" + error + ": over the " + shared +
-                            " Backbone omegas every row shares with the reference, column " + measured + ")");
+            notes.push_back("  (" + measured + ": " + error + " over the " + shared +
+                            " Backbone omegas every row shares with the reference)");
           if (partial > 0)
             notes.push_back("  (" + error + ": " + std::to_string(partial) +
                             (partial == 1 ? " row left out: its continuation ended" :
@@ -433,6 +463,8 @@ namespace nsm
                           ": a rerun of the same scene computes the others");
         lines.insert(lines.end(), reference_notes.begin(), reference_notes.end());
         for (std::string &line : pareto_notes(table_, key_size_))
+          lines.push_back(std::move(line));
+        for (std::string &line : forced_peak_notes(table_, key_size_))
           lines.push_back(std::move(line));
         return lines;
       }

@@ -17,6 +17,8 @@ Runs the study (the seed bar's three forced curves at modal damping 0.01,
   agrees to 1e-9 relative, so the study scales the force levels and
   measures the peaks as a run does. A study that did not scale the force
   levels (or scaled them the wrong way) gives the 0.004 row other peaks;
+- the run summary gives each row's peaks compared and largest distance as
+  study.csv holds them;
 - study_forced.png is drawn.
 """
 import csv
@@ -75,6 +77,11 @@ def main():
         check(0 < low <= high < math.pi, f"{ratio}: phase lags at the peaks from {low} to {high}")
         print(f"modal ratio {ratio}: largest |peak / main - 1| {float(r['forced_peak_distance_max']):.4f} over "
               f"{r['forced_peaks_compared']} peaks, phase lags {low:.2f} to {high:.2f}")
+    # The run summary gives each row's peaks as study.csv holds them.
+    for ratio, r in rows.items():
+        line = (f"modal_ratio {ratio:g}: {r['forced_peaks_compared']} of {r['forced_curves']} peaks compared, "
+                f"the largest {100 * float(r['forced_peak_distance_max']):.2g} % from the main branch")
+        check(line in run.stdout, f"{ratio}: the run summary does not say '{line}'")
     check(float(rows[0.002]["forced_peak_distance_max"]) <= 0.05,
           f"at 0.002 a peak lies {rows[0.002]['forced_peak_distance_max']} from the main branch")
     for ratio, amplitudes in ((0.004, "2e-5, 4e-5, 8e-5"), (0.002, "1e-5, 2e-5, 4e-5")):
