@@ -5,6 +5,7 @@
 #include <nsm/harmonic_balance/harmonic_balance.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <sstream>
 
 namespace nsm
@@ -164,10 +165,14 @@ namespace nsm
   ContinuationCheckpoint read_checkpoint(const std::string &path, const BranchParameters &params, HarmonicBalance &hb)
   {
     CheckpointReader reader(path);
+    std::error_code  error;
     if (!reader.opened())
       throw InputError("command line: --resume needs the interrupted run's " + std::string(checkpoint_file) +
                        " in Output/Directory, and '" + printable(path) +
-                       "' cannot be read: run the scene without --resume");
+                       (std::filesystem::exists(path, error) ?
+                          "' cannot be read" :
+                          "' does not exist (a run leaves one only where a stop signal ended it before its end)") +
+                       ": run the scene without --resume");
     reader.expect(format_line);
     check_entries(reader, params.computation_entries);
     ContinuationCheckpoint c;

@@ -115,7 +115,7 @@ def refusals(executable, failures):
         checkpoint = f.read()
     before = {n: open(f"refused/{n}").read() for n in os.listdir("refused")}
     cases = [("a changed entry", ["--set", "Harmonic balance/Harmonics=10"], "Harmonic balance/Harmonics = 10"),
-             ("no checkpoint", [], "cannot be read"),
+             ("no checkpoint", [], "does not exist"),
              ("a damaged checkpoint", [], "is not a checkpoint nsm-bar wrote")]
     for what, extra, expected in cases:
         if what == "no checkpoint":
