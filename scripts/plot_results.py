@@ -717,26 +717,21 @@ def recorded_contact(directory):
     """Contact/Gap and Contact/Wall as the run's record (parameters.prm)
     holds them, each None where it does not (no record, or no such entry)."""
     path = os.path.join(directory, "parameters.prm")
-    gap = wall = None
+    values = {}
     if not os.path.isfile(path):
-        return gap, wall
-    depth, contact = 0, False
+        return None, None
+    sections = []
     with open(path, encoding="utf-8", errors="replace") as f:
         for line in f:
             words = line.split("#")[0].split()
             if words[:1] == ["subsection"]:
-                depth += 1
-                contact = depth == 1 and " ".join(words[1:]) == "Contact"
-            elif words[:1] == ["end"]:
-                depth -= 1
-                contact = False
-            elif contact and words[:1] == ["set"] and "=" in line:
-                name, value = (t.strip() for t in line.split("#")[0].split("=", 1)[0:2])
-                if name == "set Gap":
-                    gap = value
-                elif name == "set Wall":
-                    wall = value
-    return gap, wall
+                sections.append(" ".join(words[1:]))
+            elif words == ["end"] and sections:
+                sections.pop()
+            elif words[:1] == ["set"] and sections == ["Contact"] and "=" in " ".join(words):
+                name, value = " ".join(words[1:]).split("=", 1)
+                values[" ".join(name.split())] = value.strip()
+    return values.get("Gap"), values.get("Wall")
 
 
 def main():

@@ -68,7 +68,7 @@ namespace nsm
         << other << " on other families";
       // A branch traced from a grazing start outside the range is written
       // from the range's near end on.
-      const double from = *backbone.traced_from(direction);
+      const double from = *backbone.traced_from();
       if (direction * (from - (direction > 0 ? c.omega_min : c.omega_max)) < 0)
         s << "; traced from grazing at Omega = " << from << ", outside the range, and written from Continuation/"
           << (direction > 0 ? "Omega min = " : "Omega max = ") << (direction > 0 ? c.omega_min : c.omega_max)
@@ -248,7 +248,7 @@ namespace nsm
                                                    const ContinuationParameters &continuation, const double direction)
     {
       const double w_acc = bar.accumulation_frequency(continuation.mode);
-      const double start = *backbone.traced_from(direction);
+      const double start = *backbone.traced_from();
       if (!(direction > 0 && start < w_acc && continuation.omega_max > w_acc))
         return {};
       const auto beyond = std::count_if(main.begin(), main.end(), [&](const BackbonePoint *p) { return p->omega > w_acc; });

@@ -70,7 +70,7 @@ namespace nsm
     // A branch that starts inside the zone (the uniform bar's, at W_acc)
     // does not climb into it. It starts where it was traced from, in the
     // range or not.
-    if (points.empty() || !(*backbone.traced_from(1.0) < low))
+    if (points.empty() || !(*backbone.traced_from() < low))
       return 0;
     // A point without an estimate (M / 2 did not converge, or not on the
     // same motion) tells nothing: the walk goes on past it.

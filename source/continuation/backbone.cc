@@ -58,14 +58,11 @@ namespace nsm
     return furthest->omega;
   }
 
-  std::optional<double> Backbone::traced_from(const double direction) const
+  std::optional<double> Backbone::traced_from() const
   {
     if (points.empty())
       return std::nullopt;
-    if (!(traced_span.second > 0))
-      return points.front().omega;
-    return direction > 0 ? std::min(traced_span.first, points.front().omega) :
-                           std::max(traced_span.second, points.front().omega);
+    return traced_start ? *traced_start : points.front().omega;
   }
 
   unsigned int Backbone::points_on(const Branch branch) const

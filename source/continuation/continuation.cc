@@ -190,7 +190,10 @@ namespace nsm
     // Points traced on the way from grazing to the range are not written.
     auto &p = backbone.points;
     if (!p.empty())
-      backbone.traced_span = {p.front().omega, p.front().omega};
+      {
+        backbone.traced_span  = {p.front().omega, p.front().omega};
+        backbone.traced_start = p.front().omega;
+      }
     for (const BackbonePoint &q : p)
       backbone.traced_span = {std::min(backbone.traced_span.first, q.omega), std::max(backbone.traced_span.second, q.omega)};
     p.erase(std::remove_if(p.begin(), p.end(),

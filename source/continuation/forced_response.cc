@@ -376,7 +376,8 @@ namespace nsm
                  0u;
       }
 
-      /// Goes on from `start` if its first point is acceptable.
+      /// Goes on from `start` if its first point is acceptable and the run
+      /// keeps a point (a run cut whole, cut_retrace, went nowhere).
       template <typename Accept>
       bool go_on(StepperStart start, const Accept &accept)
       {
@@ -386,9 +387,10 @@ namespace nsm
         run(start, probe);
         if (probe.empty() || !accept(probe.front()))
           return false;
-        start.max_steps = steps_left();
-        curve_.finished = run_on(start);
-        return true;
+        start.max_steps           = steps_left();
+        const std::size_t before  = curve_.points.size();
+        curve_.finished           = run_on(start);
+        return curve_.finished || curve_.points.size() > before;
       }
 
       /// The stepper from `start`, its points appended to the curve up to
@@ -398,8 +400,9 @@ namespace nsm
       /// linear response, unique at each Omega, so such a point and those
       /// after it retrace the curve backwards (a contact branch that leaves
       /// a fold back to grazing meets the linear response below it, and the
-      /// stepper follows it back to the range's start). Returns whether the
-      /// run reached an end of the range without doing so.
+      /// stepper follows it back to the range's start); and without the
+      /// points after a turn back onto the path it came on (cut_retrace).
+      /// Returns whether the run reached an end of the range without either.
       bool run_on(const StepperStart &start)
       {
         const std::size_t before   = curve_.points.size();
@@ -418,7 +421,8 @@ namespace nsm
       /// points in a row on the path traced before them, share_off_traced_path
       /// at most retrace_share), it turned at a corner onto the branch it came
       /// on: the points after that turn (the last turn of the swept parameter
-      /// before them, not before the run's first point) are dropped and
+      /// before them; with none in the run, after the run's first point, or
+      /// the whole run where that point already retraces) are dropped and
       /// counted. Returns whether it cut.
       bool cut_retrace(const std::size_t before)
       {

@@ -107,10 +107,10 @@ namespace nsm
         text += ", " + counted(curve.restarts, "restart") + " at corners, " + counted(curve.leaps, "leap") +
                 " past stalls";
       if (curve.rejected > 0)
-        text += ", " + std::to_string(curve.rejected) + " steps above the tolerance not written";
+        text += ", " + counted(curve.rejected, "step") + " above the tolerance not written";
       if (curve.retraced > 0)
-        text += ", " + std::to_string(curve.retraced) +
-                " points not written where the stepper came back along the curve past a corner";
+        text += ", " + counted(curve.retraced, "point") +
+                " not written where the stepper came back along the curve past a corner";
       const auto unstable =
         std::count_if(curve.points.begin(), curve.points.end(), [](const ForcedPoint &p) { return !p.stable; });
       text += "; " + std::to_string(unstable) + " unstable by the fold test";

@@ -250,7 +250,7 @@ namespace nsm
             notes.push_back("  (" + measured + ": " + error + " over the " + shared +
                             " Backbone omegas every row shares with the reference)");
           if (partial > 0)
-            notes.push_back("  (" + error + ": " + std::to_string(partial) +
+            notes.push_back("  (" + measured + ": " + std::to_string(partial) +
                             (partial == 1 ? " row left out: its continuation ended" :
                                             " rows left out: their continuations ended") +
                             " inside the Backbone omegas (energy_error_partial), or no Omega is shared)");

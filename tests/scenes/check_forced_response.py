@@ -17,9 +17,9 @@ damping 0.002, F = 1e-5, 2e-5, 4e-5) with its backbone, and checks (exit 0):
 - the drive's power equals the damping's to 1e-6 (relative) at every point:
   the rigid wall does no work over a period;
 - no curve runs back along itself (retraced_from: five points in a row on
-  the path traced before them; the stepper turning at a corner onto the
-  branch it came on did so on the F = 1e-5 curve, and on the uniform load's
-  F = 4e-5 curve, before it cut such retraces);
+  the path traced before them, as the stepper's turn at a corner onto the
+  branch it came on leaves them on the F = 1e-5 curve and the uniform
+  load's F = 4e-5 curve where it is not cut);
 - the curves are continuous: between consecutive points of a segment the
   fundamental's phase lag turns by less than 0.5 (a step within the guard's
   Max solution change, 0.2 of the contact end's motion, turns it by about 0.2
@@ -116,7 +116,7 @@ def retraced_from(curve, in_a_row=5, energy=3e-3, phase=0.03, contact=0.03):
     retrace lie on the earlier path to the chord's interpolation error:
     within 1e-3 of energy and 1e-2 of phase and contact fraction at 5 points
     in a row (measured on prm/forced.prm's F = 1e-5 curve and the uniform
-    load's F = 2e-5 and 4e-5 curves before the stepper cut its retraces);
+    load's F = 2e-5 and 4e-5 curves with the stepper's cut planted away);
     the curves' own folds and ripples, at ten times these tolerances, give
     no such run (measured)."""
     on = 0

@@ -176,6 +176,9 @@ def new_rows(executable):
              words=["Output/Directory"], before_work=True),
         dict(name="space_ending_cross_section", cls=1, scene=SPECTRUM, args=["--set", "Bar/Cross section=1.5 - x "],
              code=2, words=["Bar/Cross section", "white space"], before_work=True),
+        # A scene file's "set Entry = value" written on the command line.
+        dict(name="spaces_around_equals", cls=1, scene=SPECTRUM, args=["--set", "Bar/Cross section = 1.5 - x"],
+             code=2, words=["white space", '--set "Bar/Cross section=1.5 - x"'], before_work=True),
         dict(name="hash_in_cross_section", cls=1, scene=SPECTRUM, args=["--set", "Bar/Cross section=1.5 - x#c"],
              code=2, words=["Bar/Cross section", "'#'"], before_work=True),
         dict(name="hash_in_json_value", cls=1, scene_file="scene.json",

@@ -362,6 +362,13 @@ def plot_cases():
         p("--gap 0x1p-3", "options", args=["--gap", "0x1p-3", "--", "out"], names="--gap"),
         p("--gap empty", "options", args=["--gap", "", "--", "out"], names="--gap"),
         p("--wall bogus", "options", args=["--gap", "0.01", "--wall", "bogus", "--", "out"], names="--wall"),
+        p("valid: no --gap, the run's record gives Contact/Gap (accepted)", "options",
+          {"out/parameters.prm": f"subsection Bar\n  set Length = 1\nend\nsubsection Contact\n  set Gap = {GAP}\n"
+                                 "  set Wall = rigid\nend\n"},
+          args=["--", "out"], ok=True, check=plots("backbone.png", "field_0_tip.png")),
+        p("no --gap and no record to read it from", "options", args=["--", "out"], names="--gap"),
+        p("no --gap, a record without Contact/Gap", "options",
+          {"out/parameters.prm": "subsection Bar\n  set Gap = 0.5\nend\n"}, args=["--", "out"], names="--gap"),
         p("Omega all nan (NaN axis limits)", "non-finite", {OUT_B: set_column(base, "Omega", "nan")},
           names=OUT_B, line=2, column="Omega"),
         p("energy all nan", "non-finite", {OUT_B: set_column(base, "energy", "nan")}, names=OUT_B, line=2,

@@ -370,7 +370,7 @@ def energy_front_leaves_out_partial_rows(executable, studies):
     front = [line for line in summary.splitlines() if line.startswith("    energy_error_max_shared ")]
     assert front and not any("harmonics 40" in line for line in front), summary
     words = "1 row left out: its continuation ended"
-    for error in ("energy_error_max", "energy_error_median"):
+    for error in ("energy_error_max_shared", "energy_error_median_shared"):
         assert f"({error}: {words} inside the Backbone omegas" in summary, summary
     # The others are compared over the Backbone omegas they all share with
     # the reference (the exact mode), not left out for having fewer: the

@@ -27,6 +27,8 @@ namespace
         backbone.points.push_back(p);
       }
     backbone.traced_span = span;
+    if (span.second > 0)
+      backbone.traced_start = span.first;
     return nsm::backbone_result(backbone, bar, scene.contact, scene.continuation).front();
   }
 } // namespace

@@ -148,6 +148,9 @@ namespace nsm
     /// The Omegas of the points traced from grazing, in the range or not
     /// (only those in it are written): lowest and highest.
     std::pair<double, double> traced_span{0, 0};
+    /// The Omega of the first point traced (grazing), in the range or not;
+    /// none where no point was traced.
+    std::optional<double> traced_start;
 
     /// The points labelled `branch`.
     unsigned int points_on(Branch branch) const;
@@ -157,10 +160,10 @@ namespace nsm
     /// (branch_direction); none if no point was written.
     std::optional<double> omega_reached(double direction) const;
 
-    /// The Omega the branch was traced from (its grazing start, in the range
-    /// or not: traced_span), or its first written point where no span was
-    /// kept; none if no point was written.
-    std::optional<double> traced_from(double direction) const;
+    /// The Omega the branch was traced from (traced_start: grazing, in the
+    /// range or not), or its first written point where none was kept; none
+    /// if no point was written.
+    std::optional<double> traced_from() const;
   };
 
   /// Omega min <= omega <= Omega max.

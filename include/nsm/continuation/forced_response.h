@@ -40,8 +40,9 @@ namespace nsm
     /// The drive's fixed frequency (F sweeps).
     double                   omega = 0;
     std::vector<ForcedPoint> points;
-    /// LOCA reached an end of the range; false: a step failed at Min step or
-    /// Max steps ran out, and the curve ends where it stopped.
+    /// LOCA reached an end of the range; false: a step failed at Min step,
+    /// Max steps ran out, or the last run was cut (it came back along the
+    /// curve, or onto the linear response), and no restart went on.
     bool         finished = false;
     /// Steps LOCA accepted whose residual missed the scene's tolerance: not
     /// written.
@@ -59,7 +60,8 @@ namespace nsm
 
   /// The curve of amplitude `forcing` over [omega_min, omega_max], from the
   /// linear response's guess (no contact) at omega_min, with the scene's
-  /// step bounds and Max steps (points over all the stepper's runs). Where
+  /// step bounds and Max steps (points kept over all the stepper's runs;
+  /// points a run retraced and dropped free their budget). Where
   /// every step fails, the stepper starts again from the last point in the
   /// direction that leaves the point before it behind; where none does, it
   /// leaps ahead in W, as the backbone's continuation does at a stall.
