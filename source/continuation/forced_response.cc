@@ -447,9 +447,9 @@ namespace nsm
       }
 
       /// The least distance of the curve's point `index` from the path
-      /// between two consecutive points of one segment among the curve's
-      /// points before index - 2, over that pair's distance (the stepper's
-      /// metric); infinity if none.
+      /// between two consecutive points of one segment, of its verdict,
+      /// among the curve's points before index - 2, over that pair's distance
+      /// (the stepper's metric); infinity if none.
       double share_off_traced_path(const std::size_t index) const
       {
         const ForcedPoint &p     = curve_.points[index];
@@ -457,7 +457,9 @@ namespace nsm
         for (std::size_t i = 1; i + 2 < index; ++i)
           {
             const ForcedPoint &a = curve_.points[i - 1], &b = curve_.points[i];
-            if (a.segment != b.segment)
+            // The same motion has the same verdict: beside a fold the other
+            // side's points (the fold test's other verdict) come as close.
+            if (a.segment != b.segment || a.stable != p.stable || b.stable != p.stable)
               continue;
             const double length = distance(sweep_, a, b);
             if (length <= 0)
