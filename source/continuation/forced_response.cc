@@ -447,13 +447,32 @@ namespace nsm
       }
 
       /// The least distance of the curve's point `index` from the path
-      /// between two consecutive points of one segment, of its verdict,
-      /// among the curve's points before index - 2, over that pair's distance
-      /// (the stepper's metric); infinity if none.
+      /// between two consecutive points of one segment, of its verdict, that
+      /// it runs back along (the step into it points against theirs, and it
+      /// lies beside them, not beyond either), among the curve's points before
+      /// index - 2, over that pair's distance (the stepper's metric); infinity
+      /// if none.
       double share_off_traced_path(const std::size_t index) const
       {
         const ForcedPoint &p     = curve_.points[index];
         double             least = std::numeric_limits<double>::infinity();
+        if (index == 0 || curve_.points[index - 1].segment != p.segment)
+          return least;
+        const ForcedPoint &previous = curve_.points[index - 1];
+        // (parameter, x) of q - r, the stepper's metric.
+        const auto difference = [&](const ForcedPoint &q, const ForcedPoint &r) {
+          std::vector<double> d{sweep_.value(q) - sweep_.value(r)};
+          for (std::size_t k = 0; k < q.x.size(); ++k)
+            d.push_back(q.x[k] - r.x[k]);
+          return d;
+        };
+        const auto dot = [](const std::vector<double> &u, const std::vector<double> &v) {
+          double sum = 0;
+          for (std::size_t k = 0; k < u.size(); ++k)
+            sum += u[k] * v[k];
+          return sum;
+        };
+        const std::vector<double> step = difference(p, previous);
         for (std::size_t i = 1; i + 2 < index; ++i)
           {
             const ForcedPoint &a = curve_.points[i - 1], &b = curve_.points[i];
@@ -461,18 +480,15 @@ namespace nsm
             // side's points (the fold test's other verdict) come as close.
             if (a.segment != b.segment || a.stable != p.stable || b.stable != p.stable)
               continue;
-            const double length = distance(sweep_, a, b);
-            if (length <= 0)
+            const std::vector<double> chord = difference(b, a), off = difference(p, a);
+            const double              length2 = dot(chord, chord);
+            const double              t       = length2 > 0 ? dot(off, chord) / length2 : -1;
+            if (t < 0 || t > 1 || dot(step, chord) >= 0)
               continue;
-            // p's projection onto the chord from a to b, clamped to it.
-            double along = (sweep_.value(p) - sweep_.value(a)) * (sweep_.value(b) - sweep_.value(a));
-            for (std::size_t k = 0; k < p.x.size(); ++k)
-              along += (p.x[k] - a.x[k]) * (b.x[k] - a.x[k]);
-            const double t = std::clamp(along / (length * length), 0.0, 1.0);
-            double       d = std::pow(sweep_.value(p) - sweep_.value(a) - t * (sweep_.value(b) - sweep_.value(a)), 2);
-            for (std::size_t k = 0; k < p.x.size(); ++k)
-              d += std::pow(p.x[k] - a.x[k] - t * (b.x[k] - a.x[k]), 2);
-            least = std::min(least, std::sqrt(d) / length);
+            double d = 0;
+            for (std::size_t k = 0; k < off.size(); ++k)
+              d += (off[k] - t * chord[k]) * (off[k] - t * chord[k]);
+            least = std::min(least, std::sqrt(d / length2));
           }
         return least;
       }

@@ -36,9 +36,9 @@ namespace nsm::continuation_constants
   /// needs one.
   constexpr unsigned int forced_restarts = 50;
   /// A forced curve's stepper has come back along the curve where this
-  /// many points in a row lie on the path traced before them, each within
-  /// retrace_share of a chord's length from a chord between two earlier
-  /// consecutive points (the stepper's metric). Measured on prm/forced.prm
+  /// many points in a row run back along the path traced before them, each
+  /// within retrace_share of a chord's length from a chord between two
+  /// earlier consecutive points of its verdict (the stepper's metric). Measured on prm/forced.prm
   /// and its uniform drive: points that retrace lie 0.001 to 0.27 of a
   /// chord off it, mostly below 0.1; a curve's own folds and ripples come
   /// within 0.065 to 0.3 of its other side at one to three points in a
