@@ -68,11 +68,10 @@ namespace nsm
         << other << " on other families";
       // A branch traced from a grazing start outside the range is written
       // from the range's near end on.
-      const double from = *backbone.traced_from();
-      if (direction * (from - (direction > 0 ? c.omega_min : c.omega_max)) < 0)
+      const double from = *backbone.traced_from(), near_end = direction > 0 ? c.omega_min : c.omega_max;
+      if (direction * (from - near_end) < 0)
         s << "; traced from grazing at Omega = " << from << ", outside the range, and written from Continuation/"
-          << (direction > 0 ? "Omega min = " : "Omega max = ") << (direction > 0 ? c.omega_min : c.omega_max)
-          << " on";
+          << (direction > 0 ? "Omega min = " : "Omega max = ") << near_end << " on";
       return s.str();
     }
 

@@ -459,20 +459,13 @@ namespace nsm
         if (index == 0 || curve_.points[index - 1].segment != p.segment)
           return least;
         const ForcedPoint &previous = curve_.points[index - 1];
-        // (parameter, x) of q - r, the stepper's metric.
-        const auto difference = [&](const ForcedPoint &q, const ForcedPoint &r) {
-          std::vector<double> d{sweep_.value(q) - sweep_.value(r)};
+        // (q - r) . (u - w) in the stepper's metric: the parameter, then x.
+        const auto dot = [&](const ForcedPoint &q, const ForcedPoint &r, const ForcedPoint &u, const ForcedPoint &w) {
+          double sum = (sweep_.value(q) - sweep_.value(r)) * (sweep_.value(u) - sweep_.value(w));
           for (std::size_t k = 0; k < q.x.size(); ++k)
-            d.push_back(q.x[k] - r.x[k]);
-          return d;
-        };
-        const auto dot = [](const std::vector<double> &u, const std::vector<double> &v) {
-          double sum = 0;
-          for (std::size_t k = 0; k < u.size(); ++k)
-            sum += u[k] * v[k];
+            sum += (q.x[k] - r.x[k]) * (u.x[k] - w.x[k]);
           return sum;
         };
-        const std::vector<double> step = difference(p, previous);
         for (std::size_t i = 1; i + 2 < index; ++i)
           {
             const ForcedPoint &a = curve_.points[i - 1], &b = curve_.points[i];
@@ -480,14 +473,15 @@ namespace nsm
             // side's points (the fold test's other verdict) come as close.
             if (a.segment != b.segment || a.stable != p.stable || b.stable != p.stable)
               continue;
-            const std::vector<double> chord = difference(b, a), off = difference(p, a);
-            const double              length2 = dot(chord, chord);
-            const double              t       = length2 > 0 ? dot(off, chord) / length2 : -1;
-            if (t < 0 || t > 1 || dot(step, chord) >= 0)
+            const double length2 = dot(b, a, b, a);
+            const double t       = length2 > 0 ? dot(p, a, b, a) / length2 : -1;
+            if (t < 0 || t > 1 || dot(p, previous, b, a) >= 0)
               continue;
-            double d = 0;
-            for (std::size_t k = 0; k < off.size(); ++k)
-              d += (off[k] - t * chord[k]) * (off[k] - t * chord[k]);
+            // |(p - a) - t (b - a)|^2, term by term.
+            const double dv = (sweep_.value(p) - sweep_.value(a)) - t * (sweep_.value(b) - sweep_.value(a));
+            double       d  = dv * dv;
+            for (std::size_t k = 0; k < p.x.size(); ++k)
+              d += ((p.x[k] - a.x[k]) - t * (b.x[k] - a.x[k])) * ((p.x[k] - a.x[k]) - t * (b.x[k] - a.x[k]));
             least = std::min(least, std::sqrt(d / length2));
           }
         return least;

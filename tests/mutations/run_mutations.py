@@ -66,7 +66,7 @@ MUTATIONS = [
     ("forced response: steps may retrace the linear response", "source/continuation/forced_response.cc",
      "if (on_linear_response(curve_.points[i], i))", "if (false)"),
     ("result: no note where the branch was traced from grazing outside the range", "source/app/run_result.cc",
-     "if (direction * (from - (direction > 0 ? c.omega_min : c.omega_max)) < 0)", "if (false)"),
+     "if (direction * (from - near_end) < 0)", "if (false)"),
     ("forced response: a run that comes back along the curve is not cut", "source/continuation/forced_response.cc",
      "in_a_row = share_off_traced_path(i) <= retrace_share ? in_a_row + 1 : 0;", "in_a_row = 0;"),
     ("forced response: the retrace cut keeps the points after the turn", "source/continuation/forced_response.cc",

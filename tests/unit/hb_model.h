@@ -105,4 +105,20 @@ namespace testing_helpers
       return std::nullopt;
     return point;
   }
+
+  /// A backbone of two written points at 1.6 and 1.7 (energy
+  /// 1e-6, contact fraction 0.1), for the Result block's lines.
+  inline nsm::Backbone two_point_backbone()
+  {
+    nsm::Backbone backbone;
+    for (const double omega : {1.6, 1.7})
+      {
+        nsm::BackbonePoint p{};
+        p.omega                     = omega;
+        p.measures.energy           = 1e-6;
+        p.measures.contact_fraction = 0.1;
+        backbone.points.push_back(p);
+      }
+    return backbone;
+  }
 } // namespace testing_helpers

@@ -160,16 +160,8 @@ TEST(GapFilling, TheResultBlockCountsTheLandingsLedByAHigherHarmonicApart)
   nsm::Scene scene                        = testing_helpers::seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
   scene.continuation.fill_gaps_wider_than = 0.02;
   const nsm::BarModel bar(scene.bar);
-  nsm::Backbone       backbone;
-  for (const double omega : {1.6, 1.7})
-    {
-      nsm::BackbonePoint p{};
-      p.omega                     = omega;
-      p.measures.energy           = 1e-6;
-      p.measures.contact_fraction = 0.1;
-      backbone.points.push_back(p);
-    }
-  backbone.end = nsm::BackboneEnd::lost;
+  nsm::Backbone       backbone = testing_helpers::two_point_backbone();
+  backbone.end                 = nsm::BackboneEnd::lost;
   const auto gap_line = [&](const unsigned int other, const unsigned int led) {
     backbone.gap_searches = {{1.6, 1.7, 10, other, led, 1, 0, 0.12, 0.3, {}}};
     for (const std::string &line : nsm::backbone_result(backbone, bar, scene.contact, scene.continuation))

@@ -17,16 +17,8 @@ namespace
   {
     const nsm::Scene    scene = testing_helpers::seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
     const nsm::BarModel bar(scene.bar);
-    nsm::Backbone       backbone;
-    for (const double omega : {1.6, 1.7})
-      {
-        nsm::BackbonePoint p{};
-        p.omega                     = omega;
-        p.measures.energy           = 1e-6;
-        p.measures.contact_fraction = 0.1;
-        backbone.points.push_back(p);
-      }
-    backbone.traced_span = span;
+    nsm::Backbone       backbone = testing_helpers::two_point_backbone();
+    backbone.traced_span         = span;
     if (span.second > 0)
       backbone.traced_start = span.first;
     return nsm::backbone_result(backbone, bar, scene.contact, scene.continuation).front();
