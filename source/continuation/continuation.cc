@@ -217,9 +217,14 @@ namespace nsm
     const auto   &p = backbone.points;
     BranchContext context(hb, params, {});
     BackbonePoint point;
-    const auto    labelled = [&]() -> BackbonePoint & {
-      label_point(hb, params, p, point);
+    // Labelled among the points where it lies: in its segment, beside the
+    // point it continues.
+    const auto labelled = [&](const std::size_t position) -> BackbonePoint & {
+      label_point(hb, params, p, point, position);
       return point;
+    };
+    const auto beside = [&](const BackbonePoint &q) {
+      return static_cast<std::size_t>(&q - p.data()) + (q.omega < omega ? 1 : 0);
     };
     // Between two points of one segment, the solution must continue the branch
     // from both, as a step would; Newton from their interpolation can land on
@@ -237,7 +242,7 @@ namespace nsm
       for (std::size_t i = 0; i + 1 < p.size(); ++i)
         if (p[i].segment == p[i + 1].segment && (p[i].omega - omega) * (p[i + 1].omega - omega) <= 0 &&
             main_pair(i) == main_pairs && (main_pairs || !main_only) && between(p[i], p[i + 1]))
-          return labelled();
+          return labelled(i + 1);
     // Omega in the gap a leap left, or Newton failed between the points: as a
     // leap does, with a line search, from the nearest points below and above
     // and from the impulsive guess.
@@ -245,11 +250,12 @@ namespace nsm
       {
         for (const BackbonePoint *q : {nearest_on_side(p, omega, -1), nearest_on_side(p, omega, 1)})
           if (q && context.solve(omega, q->x, q->segment, point, BranchContext::Newton::both))
-            return labelled();
+            return labelled(beside(*q));
         hb.set_omega(omega);
-        const std::vector<double> guess = hb.grazing_guess();
-        if (!guess.empty() && context.solve(omega, guess, nearest_on_side(p, omega, 0)->segment, point, BranchContext::Newton::both))
-          return labelled();
+        const std::vector<double> guess   = hb.grazing_guess();
+        const BackbonePoint      &nearest = *nearest_on_side(p, omega, 0);
+        if (!guess.empty() && context.solve(omega, guess, nearest.segment, point, BranchContext::Newton::both))
+          return labelled(beside(nearest));
       }
     std::ostringstream s;
     s.precision(10);

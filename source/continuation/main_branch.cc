@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 
 namespace nsm
 {
@@ -261,8 +262,11 @@ namespace nsm
 
   namespace
   {
-    /// label_branches on one side of the accumulation point.
-    void label_side(HarmonicBalance &hb, const BranchParameters &params, std::vector<BackbonePoint> &points)
+    /// label_branches on one side of the accumulation point; with `only`,
+    /// the tongue runs other than the one holding that point are left
+    /// unnamed (their names cost a spectrum each).
+    void label_side(HarmonicBalance &hb, const BranchParameters &params, std::vector<BackbonePoint> &points,
+                    const std::optional<std::size_t> only)
     {
       const auto             &c         = params.continuation;
       const double            direction = branch_direction(params.contact);
@@ -279,7 +283,11 @@ namespace nsm
           std::size_t end = first;
           while (end < points.size() && family[end] && !on[end])
             ++end;
-          label_run(hb, c.mode, points, first, end);
+          if (!only || (first <= *only && *only < end))
+            label_run(hb, c.mode, points, first, end);
+          else
+            for (std::size_t i = first; i < end; ++i)
+              mark(points[i], Branch::tongue);
           first = end;
         }
     }
@@ -293,23 +301,39 @@ namespace nsm
     }
   } // namespace
 
+  namespace
+  {
+    /// label_branches; with `only`, named as label_side says.
+    void label_sides(HarmonicBalance &hb, const BranchParameters &params, std::vector<BackbonePoint> &points,
+                     const std::optional<std::size_t> only)
+    {
+      // The two sides of the accumulation point are labelled apart: nothing on
+      // one side vetoes a family on the other (doc/method.md, "The
+      // accumulation point").
+      const double direction = branch_direction(params.contact), passed = accumulation_passed(params);
+      for (const bool side_beyond : {false, true})
+        {
+          std::vector<std::size_t>   side;
+          std::vector<BackbonePoint> part;
+          std::optional<std::size_t> only_here;
+          for (std::size_t i = 0; i < points.size(); ++i)
+            if (beyond(points[i].omega, direction, passed) == side_beyond)
+              {
+                if (only && *only == i)
+                  only_here = side.size();
+                side.push_back(i), part.push_back(std::move(points[i]));
+              }
+          if (!only || only_here)
+            label_side(hb, params, part, only ? only_here : std::nullopt);
+          for (std::size_t k = 0; k < side.size(); ++k)
+            points[side[k]] = std::move(part[k]);
+        }
+    }
+  } // namespace
+
   void label_branches(HarmonicBalance &hb, const BranchParameters &params, std::vector<BackbonePoint> &points)
   {
-    // The two sides of the accumulation point are labelled apart: nothing on
-    // one side vetoes a family on the other (doc/method.md, "The
-    // accumulation point").
-    const double direction = branch_direction(params.contact), passed = accumulation_passed(params);
-    for (const bool side_beyond : {false, true})
-      {
-        std::vector<std::size_t>   side;
-        std::vector<BackbonePoint> part;
-        for (std::size_t i = 0; i < points.size(); ++i)
-          if (beyond(points[i].omega, direction, passed) == side_beyond)
-            side.push_back(i), part.push_back(points[i]);
-        label_side(hb, params, part);
-        for (std::size_t k = 0; k < side.size(); ++k)
-          points[side[k]] = std::move(part[k]);
-      }
+    label_sides(hb, params, points, std::nullopt);
   }
 
   double accumulation_passed(const BranchParameters &params)
@@ -336,22 +360,15 @@ namespace nsm
   void label_point(HarmonicBalance                  &hb,
                    const BranchParameters           &params,
                    const std::vector<BackbonePoint> &points,
-                   BackbonePoint                    &point)
+                   BackbonePoint                    &point,
+                   const std::optional<std::size_t>  position)
   {
-    const auto  &c         = params.continuation;
-    const double direction = branch_direction(params.contact);
-    const double least =
-      std::min(point.measures.energy, envelope_at(points, point.omega, direction, accumulation_passed(params)));
-    const bool   above     = exceeds_envelope(point.measures.energy, least, c.tongue_share);
-    if (point.measures.contact_fraction <
-          most_contact_before(points, point.omega, direction, c.tongue_share, accumulation_passed(params)) -
-            c.main_contact_drop ||
-        (!above && !moves_at_omega(point)))
-      mark(point, Branch::other);
-    else if (!above)
-      mark(point, Branch::main);
-    else
-      mark_excursion(point, tongue_resonance(hb, point), c.mode, point.omega, point.omega);
+    std::vector<BackbonePoint> with = points;
+    const std::size_t          at   = position ? std::min(*position, with.size()) : with.size();
+    with.insert(with.begin() + at, point);
+    label_sides(hb, params, with, at);
+    point.branch    = with[at].branch;
+    point.resonance = with[at].resonance;
     hb.set_omega(point.omega);
   }
 

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <map>
 #include <set>
 
 #include "hb_model.h"
@@ -510,4 +511,51 @@ TEST(MainBranch, ATongueIsNamedOnlyNearItsResonance)
   EXPECT_EQ(nsm::named_if_near({2.0, 1, 3}, 2.0201, 2.03).harmonic, 0u);
   EXPECT_EQ(nsm::named_if_near({2.0, 1, 3}, 1.97, 1.9801).harmonic, 3u);
   EXPECT_EQ(nsm::named_if_near({2.0, 1, 3}, 1.97, 1.9799).harmonic, 0u);
+}
+
+// One labeller: a point solved off the backbone (a gap search's landing, a
+// field at a given Omega) gets, where it lies among the labelled points, the
+// label the whole backbone's labels give it there, name included. Checked by
+// taking each point of a run out and labelling it back in its place: the
+// seed bar with arclength at M = 20, whose backbone holds main points,
+// tongue points above the envelope and behind their segment's front, named
+// and unnamed tongues and other families. A one-point rule that knows no
+// front calls the points behind it main.
+TEST(MainBranch, APointLabelledAloneGetsTheWholeBackbonesLabel)
+{
+  nsm::Scene scene                 = testing_helpers::seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
+  scene.harmonic_balance.harmonics = 20;
+  scene.continuation.method        = nsm::ContinuationMethod::arclength;
+  scene.continuation.fill_gaps_wider_than = nsm::ContinuationParameters().fill_gaps_wider_than;
+  HbModel                               model(scene);
+  const std::vector<nsm::BackbonePoint> points = model.backbone().points;
+  const std::vector<bool>               family =
+    nsm::main_family(points, 1.0, scene.continuation.tongue_share, scene.continuation.main_contact_drop);
+  const std::vector<bool> above =
+    nsm::above_envelope(points, 1.0, scene.continuation.tongue_share, family);
+  const std::vector<bool> behind = nsm::behind_front(points, 1.0, above, family);
+  std::map<nsm::Branch, unsigned int> kinds;
+  unsigned int                        behind_tongues = 0, named = 0;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    {
+      std::vector<nsm::BackbonePoint> rest = points;
+      rest.erase(rest.begin() + i);
+      nsm::BackbonePoint point = points[i];
+      point.branch             = points[i].branch == nsm::Branch::main ? nsm::Branch::other : nsm::Branch::main;
+      point.resonance          = {0, 0, 0};
+      nsm::label_point(model.hb, model.branch, rest, point, i);
+      EXPECT_EQ(point.branch, points[i].branch) << points[i].omega;
+      EXPECT_EQ(point.resonance.mode, points[i].resonance.mode) << points[i].omega;
+      EXPECT_EQ(point.resonance.harmonic, points[i].resonance.harmonic) << points[i].omega;
+      ++kinds[points[i].branch];
+      behind_tongues += behind[i] && points[i].branch == nsm::Branch::tongue;
+      named += points[i].resonance.harmonic > 0;
+    }
+  // Every kind of label is met.
+  EXPECT_GT(kinds[nsm::Branch::main], 0u);
+  EXPECT_GT(kinds[nsm::Branch::tongue], 0u);
+  EXPECT_GT(kinds[nsm::Branch::other], 0u);
+  EXPECT_GT(behind_tongues, 0u);
+  EXPECT_GT(named, 0u);
+  EXPECT_LT(named, kinds[nsm::Branch::tongue]);
 }

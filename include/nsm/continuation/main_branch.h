@@ -106,18 +106,16 @@ namespace nsm
   /// their own.
   void label_branches(HarmonicBalance &hb, const BranchParameters &params, std::vector<BackbonePoint> &points);
 
-  /// Labels one point solved off the backbone (a field at a given Omega) by
-  /// the same rule against the labelled `points`: other if its contact
-  /// fraction lies more than Main contact drop below most_contact_before it,
-  /// or if it is not above the envelope and a harmonic other than the
-  /// fundamental leads its contact end; a tongue point, named from its own
-  /// spectrum, if its energy exceeds (1 + Tongue share) times the least
-  /// energy of their main and tongue points at or beyond its Omega and it
-  /// names an internal resonance; else main.
+  /// Labels one point solved off the backbone (a landing of the gap search,
+  /// a field at a given Omega) as label_branches labels it among the
+  /// labelled `points`, inserted before `position` (at their end if none:
+  /// a segment of its own when its segment number is new). The labels of
+  /// `points` are left as they are.
   void label_point(HarmonicBalance                  &hb,
                    const BranchParameters           &params,
                    const std::vector<BackbonePoint> &points,
-                   BackbonePoint                    &point);
+                   BackbonePoint                    &point,
+                   std::optional<std::size_t>        position = std::nullopt);
 
   /// The envelope at omega: the least energy of `points` not labelled other
   /// at omega or beyond it in `direction` (infinity if none).
