@@ -111,7 +111,7 @@ namespace nsm
   {
     double       from, to;             ///< Omega of the main points around it, or the range's end
     unsigned int starts          = 0;  ///< Newton solves from the predicted mode
-    unsigned int other_family    = 0;  ///< converged on another family (either rule of label_point)
+    unsigned int other_family    = 0;  ///< converged on another family (labelled other by label_point)
     unsigned int other_harmonic  = 0;  ///< of those, led by a harmonic other than the fundamental
     unsigned int tongue          = 0;  ///< converged above the envelope (a tongue's flank)
     unsigned int above_energy_max = 0; ///< converged above Energy max (not kept)
