@@ -7,7 +7,8 @@ usage: plot_results.py DIRECTORY [--gap G0] [--wall rigid|compliant]
 Writes backbone.png (from backbone.csv, tongues.csv, resonances.csv, fields.csv), frc.png
 (from frc.csv, over backbone.csv's main branch), per
 field k, field_k_spacetime.png and field_k_tip.png, and for a study study.png (from
-study.csv); prints "wrote PATH" per file, and "plots done" last.
+study.csv); prints "wrote PATH" per file, and "plots done" last. A folder
+with none of these files is an error (exit 2): there is nothing to plot.
 
 Every input is read and checked before any plot is drawn: bad input (a file
 that is not UTF-8 CSV with one named column per field of every row, a number
@@ -139,6 +140,8 @@ CAPTION = ""
 GAP = 1.0  # --gap
 # The last line of a complete run of this script (source/output/plots.cc).
 DONE = "plots done"
+# The files a plot is drawn from (besides each field's field_k_tip.csv).
+PLOTTED = ("backbone.csv", "frc.csv", "force_response.csv", "study.csv")
 
 
 def label_between_decades(axes):
@@ -743,6 +746,11 @@ def main():
                              "(default: the run's Contact/Wall, else rigid)")
     parser.add_argument("--caption", default="", help="what run drew the plots: its scene, mesh and M")
     arguments = parser.parse_args()
+    if not os.path.isdir(arguments.directory):
+        fail(f"{arguments.directory}: not a directory (a run's or a study's output folder)")
+    if not any(os.path.exists(os.path.join(arguments.directory, name)) for name in PLOTTED) and \
+            not field_tips(arguments.directory):
+        fail(f"{arguments.directory}: nothing to plot (none of {', '.join(PLOTTED)} or field_k_tip.csv)")
     recorded_gap, recorded_wall = recorded_contact(arguments.directory)
     # The gap scales the forced curves' amplitudes and the fields; a folder
     # without them (a study's) draws nothing in units of g0.

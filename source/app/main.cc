@@ -139,9 +139,13 @@ namespace
             "goes on); ask again to stop that row at its next point and leave it out\n",
             "nsm-bar: stop asked again: the current row stops at its next point and is left out\n", true);
         const bool           root   = !mpi || dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
-        const nsm::RunReport report = nsm::run_study(path, file);
+        nsm::RunReport report = nsm::run_study(path, file);
         if (root)
           {
+            // The study's record, as a run's: summary.txt in its folder.
+            const std::string summary = file.scene.output.directory + "/summary.txt";
+            report.files.push_back(summary);
+            nsm::write_summary(summary, command_line, report);
             std::cout << "nsm-bar: study " << path << overrides_note() << '\n';
             nsm::print_report(report, std::cout);
           }

@@ -813,10 +813,7 @@ namespace nsm
       report.files.push_back(summary);
       RunReport shown = report;
       shown.files     = output.final_paths(report.files);
-      write_atomically(summary, [&](std::ostream &out) {
-        out << record_header(command_line);
-        print_report(shown, out, true);
-      });
+      write_summary(summary, command_line, shown);
     }
   } // namespace
 

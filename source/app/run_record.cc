@@ -1,4 +1,5 @@
 #include <nsm/app/run_record.h>
+#include <nsm/base/csv.h>
 #include <nsm/base/text.h>
 
 #include <deal.II/base/config.h>
@@ -78,5 +79,13 @@ namespace nsm
         << "\nTrilinos: " << TRILINOS_VERSION_STRING << "\ndate: " << utc_now() << "\nmachine: " << machine()
         << '\n';
     return out.str();
+  }
+
+  void write_summary(const std::string &path, const std::string &command_line, const RunReport &report)
+  {
+    write_atomically(path, [&](std::ostream &out) {
+      out << record_header(command_line);
+      print_report(report, out, true);
+    });
   }
 } // namespace nsm

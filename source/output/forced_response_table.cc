@@ -118,7 +118,7 @@ namespace nsm
       for (std::size_t i = 1; i < curve.points.size(); ++i)
         if (curve.points[i].segment == curve.points[i - 1].segment &&
             curve.points[i].stable != curve.points[i - 1].stable)
-          changes += (changes.empty() ? std::string(", the verdict changing at ") + (in_omega ? "Omega " : "F ") :
+          changes += (changes.empty() ? std::string(", the verdict changing along the curve at ") + (in_omega ? "Omega " : "F ") :
                                         std::string(", ")) +
                      significant(value(curve.points[i]), 6);
       return text + changes;

@@ -57,8 +57,8 @@ namespace nsm
 
     /// What a study writes into its directory, in place; NAME.partial is a
     /// write it did not finish.
-    const std::set<std::string> study_files = {"study.csv", "study.scene", "reference.csv", "study.png",
-                                               "plots.log"};
+    const std::set<std::string> study_files = {"study.csv",        "study.scene", "reference.csv", "study.png",
+                                               "study_forced.png", "plots.log",   "summary.txt"};
 
     /// Output/Directory of a study, before anything reads or writes it:
     /// missing, or a directory (not a link) that holds only regular files
@@ -69,7 +69,7 @@ namespace nsm
       const auto refuse = [&](const std::string &why) {
         throw InputError("parameter 'Output/Directory' = '" + printable(directory) + "' is not allowed: " + why +
                          "; allowed: a new or empty directory, or this study's (study.scene, study.csv, "
-                         "reference.csv, study.png, plots.log)");
+                         "reference.csv, study.png, study_forced.png, plots.log, summary.txt)");
       };
       std::error_code       error;
       const fs::file_status status = fs::symlink_status(directory, error);

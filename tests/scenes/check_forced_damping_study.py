@@ -19,7 +19,10 @@ Runs the study (the seed bar's three forced curves at modal damping 0.01,
   levels (or scaled them the wrong way) gives the 0.004 row other peaks;
 - the run summary gives each row's peaks compared and largest distance as
   study.csv holds them;
-- study_forced.png is drawn.
+- study_forced.png is drawn, and summary.txt holds the command and the
+  summary as printed;
+- a rerun into the study's folder takes its four rows from it and leaves
+  study.csv as it was.
 """
 import csv
 import math
@@ -89,6 +92,23 @@ def main():
         study = float(rows[ratio]["forced_peak_distance_max"])
         check(abs(study / single - 1) <= 1e-9, f"{ratio}: the study's largest distance {study}, a single run's {single}")
     check(os.path.exists(os.path.join(out, "study_forced.png")), "study_forced.png not drawn")
+    # The study's record: summary.txt opens with the command and holds the
+    # summary as printed.
+    summary_path = os.path.join(out, "summary.txt")
+    summary = open(summary_path).read() if os.path.exists(summary_path) else ""
+    check(summary.startswith("command: ") and STUDY in summary.split("\n")[0], "summary.txt: no command line first")
+    for line in run.stdout.split("\n"):
+        if "modal_ratio" in line:
+            check(line in summary, f"summary.txt does not hold '{line.strip()}'")
+    # A rerun into its own folder (its plot and record included) takes every
+    # row from it.
+    with open(os.path.join(out, "study.csv"), "rb") as f:
+        before = f.read()
+    again = subprocess.run([EXE, STUDY, "--output", out], capture_output=True, text=True)
+    check(again.returncode == 0 and "4 from an earlier run" in again.stdout,
+          f"a rerun into the study's folder: exit {again.returncode}, {again.stderr.strip()}")
+    with open(os.path.join(out, "study.csv"), "rb") as f:
+        check(f.read() == before, "a rerun changed study.csv")
     return report(failures, "forced damping study")
 
 

@@ -432,6 +432,8 @@ def plot_cases():
           {"out/study.csv": study().replace("receptance_error", "receptance")}, names="out/study.csv",
           column="receptance_error"),
         p("folder that does not exist", "files", args=["--gap", "0.01", "--", "nowhere"], names="nowhere"),
+        p("a folder with nothing to plot (its summary alone)", "files",
+          {**{k: None for k in run_folder()}, "out/summary.txt": "Result\n"}, names="nothing to plot"),
     ]
 
 

@@ -2,6 +2,8 @@
 // the code's version, deal.II's and Trilinos's, the date and the machine.
 #pragma once
 
+#include <nsm/output/run_report.h>
+
 #include <string>
 #include <vector>
 
@@ -16,4 +18,9 @@ namespace nsm
   /// "version: ...", "deal.II: ...", "Trilinos: ...", "date: ...",
   /// "machine: ..."), for the command line `command_line`.
   std::string record_header(const std::string &command_line);
+
+  /// Writes summary.txt at `path` (whole, or not at all): the record's
+  /// header for `command_line`, then the summary `report` as printed, with
+  /// the continuation's events.
+  void write_summary(const std::string &path, const std::string &command_line, const RunReport &report);
 } // namespace nsm
