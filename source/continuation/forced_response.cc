@@ -356,13 +356,46 @@ namespace nsm
         curve_.omega    = sweep_.kind == ForcedSweep::omega ? 0.0 : hb_.omega();
         curve_.finished = run_on({low_, std::vector<double>(hb_.n_unknowns(), 0.0), continuation_.initial_step,
                                   continuation_.max_steps, true, 0});
-        while (!curve_.finished && curve_.restarts + curve_.leaps < continuation_constants::forced_restarts &&
-               curve_.points.size() >= 2 && steps_left() > 0 && (restart_at_corner() || enter_contact() || leap()))
-          {}
+        go_on_at_stalls();
+        if (!curve_.finished && sweep_.kind == ForcedSweep::omega && !curve_.points.empty() && steps_left() > 0)
+          trace_from_far_end();
         return curve_;
       }
 
     private:
+      /// Restarts at corners, entries into contact and leaps from the
+      /// curve's last point while every step fails there.
+      void go_on_at_stalls()
+      {
+        while (!curve_.finished && curve_.restarts + curve_.leaps < continuation_constants::forced_restarts &&
+               curve_.points.size() >= 2 && steps_left() > 0 && (restart_at_corner() || enter_contact() || leap()))
+          {}
+      }
+
+      /// The curve from the linear response's guess at the range's far end
+      /// back towards where the trace from the near end stopped, as a new
+      /// segment, on at its own stalls; it ends where it lands back on the
+      /// curve's linear response or comes back along the curve, as any run,
+      /// or where it stalls too, which may be where the first trace stopped
+      /// (a corner neither stepper turns: the two traces meet).
+      void trace_from_far_end()
+      {
+        const ForcedPoint stopped = curve_.points.back();
+        const std::size_t before  = curve_.points.size();
+        run_on({high_, std::vector<double>(hb_.n_unknowns(), 0.0), -continuation_.initial_step, steps_left(), true,
+                stopped.segment + 1});
+        if (curve_.points.size() == before)
+          return;
+        curve_.finished = false;
+        go_on_at_stalls();
+        curve_.finished       = false;
+        const ForcedPoint &reached = curve_.points.back();
+        const bool met = std::abs(sweep_.value(reached) - sweep_.value(stopped)) <= continuation_.initial_step &&
+                         within_guard(hb_, sweep_, continuation_, stopped, reached);
+        curve_.from_far_end = ForcedCurve::FromFarEnd{sweep_.value(stopped), sweep_.value(reached),
+                                                      static_cast<unsigned int>(curve_.points.size() - before), met};
+      }
+
       bool run(const StepperStart &start, std::vector<ForcedPoint> &points)
       {
         return run_stepper(hb_, sweep_, harmonic_balance_, continuation_, low_, high_, start, points,

@@ -101,7 +101,16 @@ namespace nsm
                                                    });
       std::string text = std::to_string(curve.points.size()) + " points on " + (in_omega ? "" : "F in ") + "[" +
                          significant(value(*low), 6) + ", " + significant(value(*high), 6) + "]";
-      if (!curve.finished)
+      if (const auto &far = curve.from_far_end; !curve.finished && far && far->met)
+        text += ", traced from both ends of the range, the two traces meeting at Omega " +
+                significant(far->stopped, 6) + ", a corner neither goes on from (" + counted(far->points, "point") +
+                " from Omega max = " + significant(value(*high), 6) + ", segments of their own)";
+      else if (!curve.finished && far)
+        text += ", stopped before the range's end at Omega " + significant(far->stopped, 6) +
+                " (no step, restart or leap went on), then traced again from Omega max = " +
+                significant(value(*high), 6) + " until it stopped at Omega " + significant(far->reached, 6) + " (" +
+                counted(far->points, "point") + ", segments of their own)";
+      else if (!curve.finished)
         text += ", stopped before the range's end (no step, restart or leap went on)";
       if (curve.restarts + curve.leaps > 0)
         text += ", " + counted(curve.restarts, "restart") + " at corners, " + counted(curve.leaps, "leap") +
@@ -271,7 +280,8 @@ namespace nsm
                                                    const Backbone                 *backbone)
   {
     return curve_lines(curves, [backbone](const ForcedCurve &curve, const ForcedPoint &peak) {
-      std::string line = extent(curve) + "; peak (most energy) at Omega " + significant(peak.omega, 6) +
+      std::string line = extent(curve) + (curve.whole() ? "; peak (most energy)" : "; the most energy of the points traced") +
+                         " at Omega " + significant(peak.omega, 6) +
                          ": energy " + significant(peak.measures.energy, 4) + ", phase lag " +
                          significant(peak.measures.phase, 3) + " (pi/2 at phase resonance), contact fraction " +
                          significant(peak.measures.contact_fraction, 2) +

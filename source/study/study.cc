@@ -187,8 +187,14 @@ namespace nsm
             continue;
           std::ostringstream note;
           note.precision(2);
+          const std::string curves = text_cell(row, column_of(table, "forced_curves")),
+                            whole  = text_cell(row, column_of(table, "forced_curves_whole"));
           note << " " << row_name(table, row, varying) << ": " << text_cell(row, column_of(table, "forced_peaks_compared"))
-               << " of " << text_cell(row, column_of(table, "forced_curves")) << " peaks compared, the largest "
+               << " of " << curves << " peaks compared"
+               << (whole != curves ? " (" + std::to_string(std::stoi(curves) - std::stoi(whole)) +
+                                       " not traced whole: a stretch neither trace reached may hold the peak)" :
+                                     std::string())
+               << ", the largest "
                << 100 * std::stod(text_cell(row, distance)) << " % from the main branch in energy; phase lag "
                << significant(std::stod(text_cell(row, column_of(table, "forced_peak_phase_min"))), 3) << " to "
                << significant(std::stod(text_cell(row, column_of(table, "forced_peak_phase_max"))), 3);

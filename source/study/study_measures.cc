@@ -126,6 +126,10 @@ namespace nsm
           if (curve.points.empty())
             continue;
           ++m.forced_curves;
+          // A curve with a stretch neither trace reached may peak there.
+          if (!curve.whole())
+            continue;
+          ++m.forced_curves_whole;
           const ForcedPeak peak = forced_peak(curve, &backbone);
           m.forced_peak_phase_min = std::min(m.forced_peak_phase_min.value_or(peak.phase), peak.phase);
           m.forced_peak_phase_max = std::max(m.forced_peak_phase_max.value_or(peak.phase), peak.phase);

@@ -115,7 +115,7 @@ namespace nsm
                                         "main_time_defect_max", "energy_points",
                                         "main_points", "newton_iterations", "failed_solves",
                                         "backbone_end", "omega_reached", "energy_error_partial",
-                                        "forced_curves", "forced_peaks_compared", "forced_peak_distance_max",
+                                        "forced_curves", "forced_curves_whole", "forced_peaks_compared", "forced_peak_distance_max",
                                         "forced_peak_phase_min", "forced_peak_phase_max",
                                         "peak_memory_mib", "wall_total_min", "wall_total_median",
                                         "wall_total_max", "cpu_total_median"};
@@ -176,6 +176,7 @@ namespace nsm
                                     text(m.omega_reached),
                                     m.energy_error_partial ? (*m.energy_error_partial ? "yes" : "no") : "",
                                     run.study.forced_peaks ? std::to_string(m.forced_curves) : "",
+                                    run.study.forced_peaks ? std::to_string(m.forced_curves_whole) : "",
                                     run.study.forced_peaks ? std::to_string(m.forced_peaks_compared) : "",
                                     text(m.forced_peak_distance_max),
                                     text(m.forced_peak_phase_min),

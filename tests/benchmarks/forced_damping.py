@@ -5,7 +5,8 @@ usage: forced_damping.py NSM_BAR [WORK_DIRECTORY]
 Runs prm/forced.prm (the seed bar, FE_Q(10) x 20, M = 40) at modal damping
 0.01, 0.004, 0.002 and 0.001 with F = zeta x (5e-3, 1e-2, 2e-2), so that the
 peaks reach about the same energies, and prints the table of doc/method.md,
-"The forced response": per curve its peak (most energy) and where its phase
+"The forced response": per curve the Omegas its traces reached (from Omega
+min, and from Omega max where that one stopped), its peak (most energy) and where its phase
 lag crosses pi/2, each against the backbone's main branch (the peak also in
 Omega at its own energy), read from frc.csv
 and backbone.csv (main points on both sides at most 0.02 apart). About 15 s.
@@ -76,10 +77,17 @@ def main():
         for force in forces:
             curve = [r for r in frc if math.isclose(float(r["forcing"]), force, rel_tol=1e-12)]
             omegas = [float(r["Omega"]) for r in curve]
+            # A curve traced again from Omega max (its trace from Omega min
+            # stopped): that trace's start and where it stopped.
+            far = next((i for i, r in enumerate(curve) if i > 0 and float(r["Omega"]) == max(omegas)
+                        and r["segment"] != curve[i - 1]["segment"] and max(omegas[:i]) < max(omegas)), None)
+            reached = (f"{min(omegas):.3f} to {max(omegas):.4f}" if far is None else
+                       f"{min(omegas[:far]):.3f} to {max(omegas[:far]):.4f}; from {max(omegas):.4f} to "
+                       f"{omegas[-1]:.4f}")
             peak = max(curve, key=lambda r: float(r["energy"]))
             w, e = float(peak["Omega"]), float(peak["energy"])
             crossings = "; ".join(f"{q:.4f}, {against(main, q, qe)}" for q, qe in quadratures(curve)) or "none"
-            print(f"| {zeta} | {force:g} | {min(omegas):.3f} to {max(omegas):.4f} | {w:.4f} | {against(main, w, e)} | "
+            print(f"| {zeta} | {force:g} | {reached} | {w:.4f} | {against(main, w, e)} | "
                   f"{at_same_energy(main, w, e)} | {float(peak['phase']):.2f} | {crossings} |", flush=True)
 
 

@@ -19,6 +19,9 @@ Runs the study (the seed bar's three forced curves at modal damping 0.01,
   levels (or scaled them the wrong way) gives the 0.004 row other peaks;
 - the run summary gives each row's peaks compared and largest distance as
   study.csv holds them;
+- a row's curves not traced whole (forced_curves - forced_curves_whole) are
+  those a single run at that damping says stopped (none at 0.002, 2 of 3 at
+  0.001), and only whole curves' peaks are compared;
 - study_forced.png is drawn, and summary.txt holds the command and the
   summary as printed;
 - a rerun into the study's folder takes its four rows from it and leaves
@@ -37,6 +40,7 @@ from main_branch import main_branch, main_energy_at  # noqa: E402
 
 EXE, STUDY, FORCED = sys.argv[1], sys.argv[2], sys.argv[3]
 failures = []
+stopped_curves = 0  # the last single run's curves that its Result block says stopped
 
 
 def check(ok, message):
@@ -56,6 +60,8 @@ def single_run(ratio, amplitudes):
     main = main_branch(out)
     with open(os.path.join(out, "frc.csv")) as f:
         rows = list(csv.DictReader(f))
+    global stopped_curves
+    stopped_curves = sum("stopped before the range's end" in line for line in run.stdout.split("\n"))
     distances = []
     for force in sorted({r["forcing"] for r in rows}):
         peak = max((r for r in rows if r["forcing"] == force), key=lambda r: float(r["energy"]))
@@ -82,8 +88,11 @@ def main():
               f"{r['forced_peaks_compared']} peaks, phase lags {low:.2f} to {high:.2f}")
     # The run summary gives each row's peaks as study.csv holds them.
     for ratio, r in rows.items():
-        line = (f"modal_ratio {ratio:g}: {r['forced_peaks_compared']} of {r['forced_curves']} peaks compared, "
-                f"the largest {100 * float(r['forced_peak_distance_max']):.2g} % from the main branch")
+        open_curves = int(r["forced_curves"]) - int(r["forced_curves_whole"])
+        line = (f"modal_ratio {ratio:g}: {r['forced_peaks_compared']} of {r['forced_curves']} peaks compared"
+                + (f" ({open_curves} not traced whole" if open_curves else ",")
+                + ("" if open_curves else f" the largest {100 * float(r['forced_peak_distance_max']):.2g} % "
+                                          "from the main branch"))
         check(line in run.stdout, f"{ratio}: the run summary does not say '{line}'")
     check(float(rows[0.002]["forced_peak_distance_max"]) <= 0.05,
           f"at 0.002 a peak lies {rows[0.002]['forced_peak_distance_max']} from the main branch")
@@ -91,6 +100,16 @@ def main():
         single = single_run(ratio, amplitudes)
         study = float(rows[ratio]["forced_peak_distance_max"])
         check(abs(study / single - 1) <= 1e-9, f"{ratio}: the study's largest distance {study}, a single run's {single}")
+    # A curve not traced whole is one whose single run says it stopped (at
+    # 0.001, measured: 2 of 3), and its peak is not compared.
+    for ratio, amplitudes in ((0.002, "1e-5, 2e-5, 4e-5"), (0.001, "5e-6, 1e-5, 2e-5")):
+        single_run(ratio, amplitudes)
+        r = rows[ratio]
+        check(int(r["forced_curves"]) - int(r["forced_curves_whole"]) == stopped_curves,
+              f"{ratio}: {r['forced_curves_whole']} of {r['forced_curves']} curves traced whole, a single run "
+              f"stops {stopped_curves}")
+        check(int(r["forced_peaks_compared"]) <= int(r["forced_curves_whole"]),
+              f"{ratio}: {r['forced_peaks_compared']} peaks compared of {r['forced_curves_whole']} whole curves")
     check(os.path.exists(os.path.join(out, "study_forced.png")), "study_forced.png not drawn")
     # The study's record: summary.txt opens with the command and holds the
     # summary as printed.

@@ -64,6 +64,8 @@ damping 0.002, F = 1e-5, 2e-5, 4e-5) with its backbone, and checks (exit 0):
   4e-5 per unit length; check_uniform_load): curves over the range, ends,
   balance, peaks within 5 % (measured -1.1 and -2.2 %), continuity, and the
   verdicts against the integration;
+- a curve the trace from Omega min leaves at a corner is traced again from
+  Omega max, and the two traces meet there (check_from_both_ends);
 - frc.png is drawn.
 A planted error in the damping's sign, the drive's phase or the damped
 receptance moves the ends' lags or the balance (and ForcedResponse.* fails).
@@ -339,6 +341,58 @@ def check_uniform_load():
     check_verdicts_in_time(rows, least_unstable=3, least_settled=10, within=0.02)
 
 
+def check_from_both_ends():
+    """Damping 0.005, F = 1e-4 at the contact end: the trace from Omega min
+    stops at 2.0178 on the unstable branch, where the curve turns at a
+    corner the stepper does not follow; traced again from Omega max, the
+    curve runs down the linear response above the resonance, up its unstable
+    branch and stops at the same corner. Checked: the Result line names the
+    meeting at the first trace's last Omega; the second trace is the last
+    segment and starts at Omega max on the linear response (no contact,
+    stable, the lag beyond pi/2 above the resonance); the two traces' last
+    points are one motion (Omega within Initial step, energy within 1 %,
+    phase lag within 0.1, contact fraction within 0.01: measured 6e-7,
+    9e-6, 1e-5 and 2e-4); together they cover [1.5, 2.2] (the first from
+    1.5 to 2.038, the second from 1.985 to 2.2); continuous, and the fold
+    test's verdicts as on every curve (check_stability)."""
+    out = os.path.abspath("forced-both-ends")
+    shutil.rmtree(out, ignore_errors=True)
+    run = subprocess.run([EXE, SCENE, "--output", out, "--set", "Damping/Modal ratio=0.005",
+                          "--set", "Forcing/Amplitudes=1e-4", "--set", "Forcing/Omegas=",
+                          "--set", "Forcing/Verify every=0", "--set", "Output/Backbone=false",
+                          "--set", "Output/Plots=false"], capture_output=True, text=True)
+    check(run.returncode == 0, f"the run from both ends exited {run.returncode}: {run.stderr.strip()}")
+    if run.returncode != 0:
+        return
+    with open(os.path.join(out, "frc.csv")) as f:
+        rows = list(csv.DictReader(f))
+    last_segment = max(rows, key=lambda r: int(r["segment"]))["segment"]
+    first = next(i for i, r in enumerate(rows) if r["segment"] == last_segment)
+    check(first > 0 and all(r["segment"] == last_segment for r in rows[first:]),
+          "the trace from Omega max is not the last segment")
+    if first == 0:
+        return
+    start, stopped, reached = rows[first], rows[first - 1], rows[-1]
+    check(float(start["Omega"]) == 2.2 and float(start["contact_fraction"]) == 0 and start["stable"] == "1"
+          and float(start["phase"]) > math.pi / 2,
+          f"the second trace starts at {start['Omega']} (contact {start['contact_fraction']}, lag {start['phase']})")
+    line = next((l for l in run.stdout.split("\n") if "forced response F = 0.0001" in l), "")
+    said = f"traced from both ends of the range, the two traces meeting at Omega {float(stopped['Omega']):.6g}"
+    check(said in line, f"the Result line does not say '{said}': {line[:200]}")
+    check(abs(float(reached["Omega"]) - float(stopped["Omega"])) <= 1e-3
+          and abs(float(reached["energy"]) / float(stopped["energy"]) - 1) <= 0.01
+          and abs(float(reached["phase"]) - float(stopped["phase"])) <= 0.1
+          and abs(float(reached["contact_fraction"]) - float(stopped["contact_fraction"])) <= 0.01,
+          f"the traces end apart: {[stopped[k] for k in ('Omega', 'energy', 'phase', 'contact_fraction')]} and "
+          f"{[reached[k] for k in ('Omega', 'energy', 'phase', 'contact_fraction')]}")
+    near = [float(r["Omega"]) for r in rows[:first]]
+    far = [float(r["Omega"]) for r in rows[first:]]
+    check(min(near) == 1.5 and max(far) == 2.2 and min(far) <= max(near),
+          f"the traces cover [{min(near)}, {max(near)}] and [{min(far)}, {max(far)}], not [1.5, 2.2]")
+    check_continuity(rows)
+    check_stability(rows)
+
+
 def main():
     shutil.rmtree(OUT, ignore_errors=True)
     run = subprocess.run([EXE, SCENE, "--output", OUT], capture_output=True, text=True)
@@ -377,6 +431,7 @@ def main():
         check_continuity(light_rows)
         check_stability(light_rows)
     check_uniform_load()
+    check_from_both_ends()
     check(os.path.exists(os.path.join(OUT, "frc.png")), "frc.png not drawn")
     return report(failures, "forced response")
 

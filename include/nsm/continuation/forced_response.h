@@ -7,6 +7,7 @@
 #include <nsm/scene/continuation_parameters.h>
 #include <nsm/scene/harmonic_balance_parameters.h>
 
+#include <optional>
 #include <vector>
 
 namespace nsm
@@ -56,6 +57,25 @@ namespace nsm
     /// Points dropped where the stepper came back along the curve after
     /// turning at a corner onto the branch it came on.
     unsigned int retraced = 0;
+    /// Where the trace from the range's near end stopped before its far
+    /// end: the curve traced again from the far end towards it, as a
+    /// segment of its own (trace_forced_curve).
+    struct FromFarEnd
+    {
+      double       stopped;  ///< the swept parameter where the trace from the near end stopped
+      double       reached;  ///< where the trace from the far end stopped
+      unsigned int points;   ///< the points it wrote
+      /// The two traces' last points lie within Initial step of each
+      /// other and within the step's guard: the curve is whole, and both
+      /// stalled where it turns at a corner.
+      bool met;
+    };
+    std::optional<FromFarEnd> from_far_end;
+
+    /// Traced over its whole range: to its far end, or from both ends to a
+    /// meeting. A curve with a stretch neither trace reached may have its
+    /// peak there.
+    bool whole() const { return finished || (from_far_end && from_far_end->met); }
   };
 
   /// The curve of amplitude `forcing` over [omega_min, omega_max], from the
@@ -65,6 +85,11 @@ namespace nsm
   /// every step fails, the stepper starts again from the last point in the
   /// direction that leaves the point before it behind; where none does, it
   /// leaps ahead in W, as the backbone's continuation does at a stall.
+  /// Where nothing goes on before omega_max, the curve is traced again, as
+  /// a new segment, from the linear response's guess at omega_max down
+  /// (with the same restarts and leaps): a light damping's curve can stop
+  /// at a fold the stepper does not turn, and its side above the resonance
+  /// is then traced from there.
   ForcedCurve trace_forced_curve(ForcedHarmonicBalance           &hb,
                                  const HarmonicBalanceParameters &harmonic_balance,
                                  const ContinuationParameters    &continuation,

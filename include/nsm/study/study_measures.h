@@ -37,10 +37,11 @@ namespace nsm
       force_error_max, contact_fraction_error_max, main_error_median, main_error_q90, time_defect_median,
       time_defect_max;
     unsigned int          energy_points = 0, main_points = 0;
-    /// Study/Forced peaks: the curves traced (with a point), those whose
-    /// peak has main points on both sides, the largest |E_peak / E_main - 1|
-    /// among these, and the peaks' phase lags' extremes.
-    unsigned int          forced_curves = 0, forced_peaks_compared = 0;
+    /// Study/Forced peaks: the curves traced (with a point), those traced
+    /// whole (ForcedCurve::whole), those of these whose peak has main points
+    /// on both sides, the largest |E_peak / E_main - 1| among these, and the
+    /// peaks' phase lags' extremes.
+    unsigned int          forced_curves = 0, forced_curves_whole = 0, forced_peaks_compared = 0;
     std::optional<double> forced_peak_distance_max, forced_peak_phase_min, forced_peak_phase_max;
     std::vector<std::optional<MainBranchPoint>> points; ///< at each Backbone omega on the main branch
     std::vector<BackbonePoint>                  solved; ///< those found, for the verification in time
