@@ -555,12 +555,20 @@ namespace nsm
           return verifications;
         Progress     progress("forced response's verification in time", scene_.output.progress_every);
         unsigned int verified = 0;
+        // One entry per point of every curve, so that a stop signal leaves
+        // the curves after it unverified, not missing.
         for (const ForcedCurve &curve : curves)
+          verifications.emplace_back(curve.points.size());
+        for (std::size_t c = 0; c < curves.size(); ++c)
           {
-            verifications.emplace_back(curve.points.size());
+            const ForcedCurve &curve = curves[c];
             forced.set_forcing(curve.forcing);
             for (std::size_t i = 0; i < curve.points.size(); i += every)
               {
+                // The static response (Omega = 0, a curve from the range's
+                // default start) has no period to integrate over.
+                if (!(curve.points[i].omega > 0))
+                  continue;
                 if (point_stop_signal() != 0)
                   {
                     if (forced_left_out_.empty())
@@ -574,7 +582,7 @@ namespace nsm
                   scene_.forcing.verify_periods > 0 ?
                     scene_.forcing.verify_periods :
                     steady_state_periods(forced.receptance(), curve.points[i].omega, ForcingParameters::max_verify_periods);
-                ForcedVerification &v = verifications.back()[i].emplace(
+                ForcedVerification &v = verifications[c][i].emplace(
                   verify_forced_point(forced, curve.points[i].x, scene_.output.verify_steps, periods));
                 // The integration's end is a start for the shooting where
                 // the point is stable by the fold test and the integration

@@ -12,7 +12,9 @@ rows are the first rows of an uninterrupted run's, byte for byte, and fewer
 (but for the error estimate's last column, which the stopped run leaves out).
 Then the same for the forced stage, in a run without the backbone: SIGINT at
 its first progress line, after its first curve, leaves the second curve and
-the curve in F out, and the first curve as an uninterrupted run writes it.
+the curve in F out, and the first curve as an uninterrupted run writes it; and SIGINT while it
+verifies the first curve's points in time leaves both curves written and
+the verification's rest out.
 Standard library only.
 """
 import os
@@ -69,6 +71,7 @@ def main():
         if not os.path.exists(f"stopped/{name}"):
             failures.append(f"{name} missing from the stopped run")
     failures += forced_stop(executable)
+    failures += verification_stop(executable)
     return report(failures, f"stopped after {len(stopped) - 1} of {len(expected) - 1} points")
 
 
@@ -107,6 +110,52 @@ def forced_stop(executable):
                         f"({len(first)} points)")
     if not os.path.exists("forced-whole/force_response.csv") or os.path.exists("forced-stopped/force_response.csv"):
         failures.append("forced: force_response.csv written by the stopped run, or not by the whole one")
+    return failures
+
+
+VERIFIED = FORCED.replace("  set Omegas = 1.97\n", "  set Omegas = 1.97\n  set Verify every = 1\n  set Verify periods = 2\n") \
+    .replace("set Directory = forced-whole", "set Directory = verified-whole\n  set Verify steps = 100")
+
+
+def verification_stop(executable):
+    """SIGINT while the forced stage verifies its first curve's points in
+    time (each point's progress line; the stop waits in the first line that
+    finds no room in one page of the pipe, some 50 lines in, after the two
+    curves' lines and within the first curve's 150 points): the run exits
+    130, says where the verification stopped, and writes both curves as an
+    uninterrupted run does (the verified columns empty from the stop on). A
+    verification that kept an entry only for the curves it reached left the
+    table reading past them. The curves start at Omega min = 0 (the
+    default): the static response there has no period, and is not
+    integrated (its non-finite step made the whole run fail)."""
+    for d in ("verified-whole", "verified-stopped"):
+        shutil.rmtree(d, ignore_errors=True)
+    with open("verified.prm", "w") as f:
+        f.write(VERIFIED)
+    whole = subprocess.run([executable, "verified.prm"], capture_output=True, text=True, timeout=600)
+    if whole.returncode != 0:
+        return [f"the verified run exited {whole.returncode}: {whole.stderr.strip()[-300:]}"]
+    returncode, stdout, stderr = signal_when_blocked([executable, "verified.prm", "--output", "verified-stopped"],
+                                                     signal.SIGINT, "a verified point", room_pages=1)
+    failures = []
+    if returncode != 128 + signal.SIGINT:
+        return [f"verification: exit {returncode}, not 130: {stderr[-300:]}"]
+    if "left out: the forced response's verification in time from F = 1e-05, Omega = " not in stdout:
+        failures.append(f"verification: the summary does not say where it stopped: {stdout[-500:]}")
+    with open("verified-whole/frc.csv") as f:
+        whole_lines = f.read().splitlines()
+    whole_rows = [line.split(",")[:12] for line in whole_lines]
+    with open("verified-stopped/frc.csv") as f:
+        stopped_lines = f.read().splitlines()
+    stopped_rows = [line.split(",")[:12] for line in stopped_lines]
+    if stopped_rows != whole_rows:
+        failures.append(f"verification: the stopped frc.csv's curves ({len(stopped_rows)} lines) are not the whole "
+                        f"run's ({len(whole_rows)})")
+    unverified = sum(line.split(",")[12] == "" for line in stopped_lines[1:])
+    if whole_lines[1].split(",")[2] != "0" or whole_lines[1].split(",")[12] != "":
+        failures.append(f"verification: the whole run's first point is not the static one, unverified: {whole_lines[1]}")
+    if not 0 < unverified < len(stopped_lines) - 1:
+        failures.append(f"verification: {unverified} of {len(stopped_lines) - 1} points without a verification")
     return failures
 
 
