@@ -93,12 +93,18 @@ namespace nsm
     }
 
     /// Checks that Output/Directory is new, empty, or holds this base
-    /// scene's study; returns the rows it already holds, by key.
-    std::map<std::vector<std::string>, std::vector<CsvCell>>
-    earlier_rows(const std::string &directory, const std::string &scene_text,
-                 const std::vector<std::string> &columns, const std::size_t key_size)
+    /// scene's study; returns the rows it already holds, by key, and their
+    /// keys in the file's order.
+    struct EarlierRows
     {
-      std::map<std::vector<std::string>, std::vector<CsvCell>> rows;
+      std::map<std::vector<std::string>, std::vector<CsvCell>> by_key;
+      std::vector<std::vector<std::string>>                    order;
+    };
+
+    EarlierRows earlier_rows(const std::string &directory, const std::string &scene_text,
+                             const std::vector<std::string> &columns, const std::size_t key_size)
+    {
+      EarlierRows rows;
       const std::string recorded = directory + "/study.scene";
       std::error_code   error;
       check_study_directory(directory);
@@ -119,7 +125,9 @@ namespace nsm
           std::vector<std::string> key;
           for (std::size_t c = 0; c < key_size; ++c)
             key.push_back(text_cell(row, c));
-          rows[key] = std::vector<CsvCell>(row.begin(), row.begin() + own);
+          if (rows.by_key.count(key) == 0)
+            rows.order.push_back(key);
+          rows.by_key[key] = std::vector<CsvCell>(row.begin(), row.begin() + own);
         }
       return rows;
     }
@@ -352,10 +360,16 @@ namespace nsm
         own_columns_ = table_.columns;
         std::vector<std::string> written = own_columns_;
         written.insert(written.end(), shared_error_columns().begin(), shared_error_columns().end());
-        rows_ = earlier_rows(directory(), scene_text_, written, key_size_);
+        EarlierRows earlier = earlier_rows(directory(), scene_text_, written, key_size_);
+        rows_               = std::move(earlier.by_key);
         for (std::size_t i = 0; i < combinations_.size(); ++i)
           if (rows_.count(combinations_[i].key) == 0)
             missing_.push_back(i);
+        // The rows of an earlier sweep that this one's lists leave out stay.
+        for (std::vector<std::string> &key : earlier.order)
+          if (std::none_of(combinations_.begin(), combinations_.end(),
+                           [&](const StudyCombination &c) { return c.key == key; }))
+            kept_.push_back(std::move(key));
         in_combination_order();
       }
 
@@ -454,6 +468,10 @@ namespace nsm
              << counted(ended_early(), "row") << " ended before the Omega range's end (backbone_end)"
              << left_out_note(base_.study, combinations_.size());
         std::vector<std::string> lines{note.str()};
+        if (!kept_.empty())
+          lines.push_back("study.csv keeps " + counted(kept_.size(), "row") +
+                          " of an earlier run that this sweep's lists leave out, after its own (delete study.csv "
+                          "to drop them)");
         if (const std::size_t fewer = fewer_spectrum_modes(); fewer > 0)
           lines.push_back(counted(fewer, "row") + " measured fewer than Study/Spectrum modes = " +
                           std::to_string(base_.study.spectrum_modes) +
@@ -515,7 +533,8 @@ namespace nsm
       }
 
       /// study.csv holds the rows computed so far (earlier runs' too), in
-      /// combination order.
+      /// combination order, then the rows of an earlier sweep outside this
+      /// one, in their earlier order.
       void in_combination_order()
       {
         table_.rows.clear();
@@ -523,6 +542,8 @@ namespace nsm
         for (const StudyCombination &c : combinations_)
           if (const auto row = rows_.find(c.key); row != rows_.end())
             table_.rows.push_back(row->second);
+        for (const std::vector<std::string> &key : kept_)
+          table_.rows.push_back(rows_.at(key));
         add_shared_errors(table_, base_.study.backbone_omega_values, reference_energies_);
       }
 
@@ -578,6 +599,7 @@ namespace nsm
       std::vector<std::string>            own_columns_; ///< study.csv's columns but the shared errors
       std::vector<std::optional<double>>  reference_energies_; ///< at the Backbone omegas
       std::map<std::vector<std::string>, std::vector<CsvCell>> rows_;
+      std::vector<std::vector<std::string>> kept_; ///< keys of earlier rows outside this sweep, in file order
       std::vector<std::size_t>            missing_;
       unsigned int                        failed_ = 0;
       int                                 stopped_by_ = 0;

@@ -25,7 +25,8 @@ Runs the study (the seed bar's three forced curves at modal damping 0.01,
 - study_forced.png is drawn, and summary.txt holds the command and the
   summary as printed;
 - a rerun into the study's folder takes its four rows from it and leaves
-  study.csv as it was.
+  study.csv as it was; one with a shorter sweep (0.002 alone) keeps the
+  three rows it leaves out, and says so.
 """
 import csv
 import math
@@ -128,6 +129,15 @@ def main():
           f"a rerun into the study's folder: exit {again.returncode}, {again.stderr.strip()}")
     with open(os.path.join(out, "study.csv"), "rb") as f:
         check(f.read() == before, "a rerun changed study.csv")
+    # A rerun with a shorter sweep keeps the earlier rows its lists leave
+    # out and says so (nothing to run: study.csv is left as it was).
+    shorter = subprocess.run([EXE, STUDY, "--output", out, "--set", "Study/Damping ratios=0.002"],
+                             capture_output=True, text=True)
+    with open(os.path.join(out, "study.csv")) as f:
+        kept = [float(r["modal_ratio"]) for r in csv.DictReader(f)]
+    check(shorter.returncode == 0 and sorted(kept) == [0.001, 0.002, 0.004, 0.01]
+          and "study.csv keeps 3 rows of an earlier run" in shorter.stdout,
+          f"a rerun with a shorter sweep: exit {shorter.returncode}, study.csv rows {kept}")
     return report(failures, "forced damping study")
 
 
