@@ -806,17 +806,22 @@ namespace nsm
 
   namespace
   {
-    /// The run's record in its output folder: parameters.prm (the scene as
-    /// read) and summary.txt (the record's header, then the summary as
-    /// printed, with the continuation's events and every file, these two
-    /// included, at its final path).
-    void write_record(const Scene &scene, const std::string &command_line, const OutputDirectory &output,
-                      RunReport &report)
+    /// The scene as read, parameters.prm, in the output folder: before the
+    /// plots, which read the run's settings (the gap, the wall, the drive's
+    /// shape) from it.
+    void write_parameters(const Scene &scene, const OutputDirectory &output, RunReport &report)
     {
       if (!scene.parameter_file.empty())
         report.files.push_back(write_atomically(output.staging() + "/parameters.prm", [&](std::ostream &out) {
           out << scene.parameter_file;
         }));
+    }
+
+    /// The run's summary.txt in its output folder: the record's header,
+    /// then the summary as printed, with the continuation's events and every
+    /// file, this one included, at its final path.
+    void write_record(const std::string &command_line, const OutputDirectory &output, RunReport &report)
+    {
       const std::string summary = output.staging() + "/summary.txt";
       report.files.push_back(summary);
       RunReport shown = report;
@@ -918,6 +923,7 @@ namespace nsm
       skipped.push_back(run.forced_left_out());
     stage(needs_fields, "fields", [&] { run.fields(); });
     run.write(output.staging());
+    write_parameters(scene, output, report);
     // The plots are an output like the others, drawn also after a stop: a
     // stop while they are drawn ends them and keeps the rest; so does a
     // failure of the plotting environment (said in the summary, exit 5).
@@ -950,7 +956,7 @@ namespace nsm
     if (!report.plot_failure.empty())
       note("plots not drawn: " + report.plot_failure);
     report.stages = run.timings();
-    write_record(scene, command_line, output, report);
+    write_record(command_line, output, report);
     report.files = output.commit(report.files, manifest_notes);
     return report;
   }

@@ -66,7 +66,8 @@ damping 0.002, F = 1e-5, 2e-5, 4e-5) with its backbone, and checks (exit 0):
   verdicts against the integration;
 - a curve the trace from Omega min leaves at a corner is traced again from
   Omega max, and the two traces meet there (check_from_both_ends);
-- frc.png is drawn.
+- frc.png is drawn, after parameters.prm (which it reads the drive's shape
+  from: a uniform load's legend says F per length).
 A planted error in the damping's sign, the drive's phase or the damped
 receptance moves the ends' lags or the balance (and ForcedResponse.* fails).
 """
@@ -398,6 +399,7 @@ def main():
     run = subprocess.run([EXE, SCENE, "--output", OUT], capture_output=True, text=True)
     if run.returncode != 0:
         sys.exit(f"nsm-bar {SCENE} exited {run.returncode}: {run.stderr.strip()}")
+    main_stdout = run.stdout
     with open(os.path.join(OUT, "frc.csv")) as f:
         rows = list(csv.DictReader(f))
     main = main_branch(OUT)
@@ -433,6 +435,12 @@ def main():
     check_uniform_load()
     check_from_both_ends()
     check(os.path.exists(os.path.join(OUT, "frc.png")), "frc.png not drawn")
+    # The plots read the drive's shape (and the gap) from parameters.prm:
+    # it is written before them (files written, in order).
+    written = [line.strip() for line in main_stdout.split("\n") if line.startswith("    ")]
+    names = [os.path.basename(w) for w in written]
+    check("parameters.prm" in names and "frc.png" in names and names.index("parameters.prm") < names.index("frc.png"),
+          f"parameters.prm not written before the plots: {names}")
     return report(failures, "forced response")
 
 
