@@ -173,16 +173,20 @@ namespace nsm
     }
 
     /// Every interval wider than Fill gaps wider than where no main point was
-    /// found (up to the range's end if the branch reached it), with what the
-    /// gap search found there.
+    /// found (up to the range's end if the branch reached it, from its near
+    /// end if the branch was traced from outside it), with what the gap
+    /// search found there.
     std::vector<std::string> unfound_stretches(const Backbone &backbone, const double direction,
                                                const ContinuationParameters &c)
     {
       const bool reached = backbone.end == BackboneEnd::range;
-      const double far   = direction > 0 ? c.omega_max : c.omega_min;
+      const double far   = direction > 0 ? c.omega_max : c.omega_min, near = direction > 0 ? c.omega_min : c.omega_max;
+      // From the range's near end too where the branch was traced from outside it.
+      const bool entered = backbone.traced_start && !in_omega_range(c, *backbone.traced_start);
       std::vector<std::string> lines;
       for (const auto &[from, to] : main_gaps_wider_than(backbone.points, direction, c.fill_gaps_wider_than,
-                                                         reached ? std::optional<double>(far) : std::nullopt))
+                                                         reached ? std::optional<double>(far) : std::nullopt,
+                                                         entered ? std::optional<double>(near) : std::nullopt))
         {
           std::ostringstream s;
           s.precision(6);

@@ -312,7 +312,11 @@ namespace nsm
         // Up to the range's end too if the branch reached it.
         const std::optional<double> end =
           backbone.end == BackboneEnd::range ? std::optional<double>(context.far_end) : std::nullopt;
-        for (const Gap &gap : main_gaps_wider_than(labelled, context.direction, width, end))
+        // From the range's near end too where the branch entered the range
+        // from outside it (grazing beyond Omega min).
+        const std::optional<double> start =
+          context.in_range(backbone.points.front().omega) ? std::nullopt : std::optional<double>(context.near_end);
+        for (const Gap &gap : main_gaps_wider_than(labelled, context.direction, width, end, start))
           {
             if (std::find(tried.begin(), tried.end(), gap) != tried.end())
               continue;

@@ -384,7 +384,7 @@ namespace nsm
   }
 
   std::vector<std::pair<double, double>> main_gaps(const std::vector<BackbonePoint> &points, const double direction,
-                                                   const std::optional<double> end)
+                                                   const std::optional<double> end, const std::optional<double> start)
   {
     std::vector<double> main;
     for (const BackbonePoint &p : points)
@@ -393,6 +393,8 @@ namespace nsm
     std::sort(main.begin(), main.end(), [&](double a, double b) { return direction * a < direction * b; });
     if (!main.empty() && end)
       main.push_back(*end);
+    if (!main.empty() && start)
+      main.insert(main.begin(), *start);
     std::vector<std::pair<double, double>> gaps;
     for (std::size_t i = 1; i < main.size(); ++i)
       gaps.emplace_back(main[i - 1], main[i]);
@@ -401,9 +403,10 @@ namespace nsm
 
   std::vector<std::pair<double, double>> main_gaps_wider_than(const std::vector<BackbonePoint> &points,
                                                               const double direction, const double width,
-                                                              const std::optional<double> end)
+                                                              const std::optional<double> end,
+                                                              const std::optional<double> start)
   {
-    std::vector<std::pair<double, double>> gaps = main_gaps(points, direction, end);
+    std::vector<std::pair<double, double>> gaps = main_gaps(points, direction, end, start);
     gaps.erase(std::remove_if(gaps.begin(), gaps.end(),
                               [&](const auto &g) { return !(std::abs(g.second - g.first) > width); }),
                gaps.end());

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -209,4 +210,49 @@ TEST(GapFilling, TheSearchSolvesEachStartOnce)
   const auto &other = memory.solve(run, p.omega, {p.omega, 1, 2}, std::vector<double>(p.x.size(), 0.0));
   EXPECT_GT(solves(), once);
   EXPECT_FALSE(other.has_value());
+}
+
+// A branch traced from grazing below Omega min enters the range where a
+// leap happened to land: the stretch from Omega min to the first main point
+// is a gap like any other, searched (back from its far side, or from the
+// branch with half the harmonics) and, if left, named. On the seed bar from
+// Omega min = 2.0 (grazing at 1.919) the first written points are another
+// family's (contact fraction 0.04); the whole range's run finds the mode
+// there. Without the search of that stretch the first main point is at
+// 2.0201, 7 % below the whole run's main branch (another family's).
+TEST(GapFilling, TheStretchFromTheRangesNearEndIsAGapWhereTheBranchEntersFromOutside)
+{
+  nsm::Scene scene = testing_helpers::seed_scene(nsm::ForceSign::physical, 1.5, 2.2);
+  scene.discretisation.cells              = 7;
+  scene.continuation.fill_gaps_wider_than = nsm::ContinuationParameters().fill_gaps_wider_than;
+  testing_helpers::HbModel whole_model(scene);
+  const nsm::Backbone      whole = whole_model.backbone();
+  scene.continuation.omega_min = 2.0;
+  testing_helpers::HbModel entered_model(scene);
+  const nsm::Backbone      entered = entered_model.backbone();
+  ASSERT_TRUE(entered.traced_start.has_value());
+  ASSERT_LT(*entered.traced_start, 2.0);
+  double first = std::numeric_limits<double>::infinity();
+  const nsm::BackbonePoint *first_point = nullptr;
+  for (const nsm::BackbonePoint &p : entered.points)
+    if (p.branch == nsm::Branch::main && p.omega < first)
+      first = p.omega, first_point = &p;
+  ASSERT_NE(first_point, nullptr);
+  // Within the search's width of Omega min, on the whole run's main branch
+  // there (its main points on both sides, linear between them, within the
+  // Tongue share).
+  EXPECT_LE(first, 2.0 + scene.continuation.fill_gaps_wider_than);
+  const nsm::BackbonePoint *below = nullptr, *above = nullptr;
+  for (const nsm::BackbonePoint &p : whole.points)
+    if (p.branch == nsm::Branch::main)
+      {
+        if (p.omega <= first && (!below || p.omega > below->omega))
+          below = &p;
+        if (p.omega >= first && (!above || p.omega < above->omega))
+          above = &p;
+      }
+  ASSERT_TRUE(below && above);
+  const double t    = above->omega == below->omega ? 0 : (first - below->omega) / (above->omega - below->omega);
+  const double main = below->measures.energy + t * (above->measures.energy - below->measures.energy);
+  EXPECT_NEAR(first_point->measures.energy / main, 1, scene.continuation.tongue_share) << first;
 }

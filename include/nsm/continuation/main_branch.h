@@ -132,15 +132,19 @@ namespace nsm
                      double passed = std::numeric_limits<double>::quiet_NaN());
 
   /// The intervals (from, to) between consecutive main points of `points` in
-  /// `direction`, and from the last one to `end` if given.
+  /// `direction`, from `start` to the first one if given (the range's near
+  /// end, where the branch was traced from outside the range), and from the
+  /// last one to `end` if given.
   std::vector<std::pair<double, double>> main_gaps(const std::vector<BackbonePoint> &points, double direction,
-                                                   std::optional<double> end = std::nullopt);
+                                                   std::optional<double> end   = std::nullopt,
+                                                   std::optional<double> start = std::nullopt);
 
   /// Those of main_gaps wider than `width`: the gaps the gap search tries
   /// (gap_filling.h) and the Result block names.
   std::vector<std::pair<double, double>> main_gaps_wider_than(const std::vector<BackbonePoint> &points,
                                                               double direction, double width,
-                                                              std::optional<double> end = std::nullopt);
+                                                              std::optional<double> end   = std::nullopt,
+                                                              std::optional<double> start = std::nullopt);
 
   /// The tongues of a labelled backbone: runs of tongue points of one
   /// resonance, with the Omega of the main points at their feet.
