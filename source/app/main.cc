@@ -199,6 +199,7 @@ namespace
   CommandLine parse_command_line(const std::vector<std::string> &arguments)
   {
     CommandLine line;
+    bool        output_given = false;
     for (std::size_t i = 0; i < arguments.size(); ++i)
       {
         const std::string &a = arguments[i];
@@ -212,7 +213,18 @@ namespace
         if (a == "--set" || a.rfind("--set=", 0) == 0)
           line.overrides.push_back(nsm::parse_override(value("--set")));
         else if (a == "--output" || a.rfind("--output=", 0) == 0)
-          line.overrides.push_back({"Output/Directory", value("--output")});
+          {
+            // An empty value (a shell variable unset) would write the
+            // scene's default folder; a second one would override the first.
+            const std::string folder = value("--output");
+            if (folder.empty())
+              throw nsm::InputError("command line: --output has an empty folder name; allowed: a folder path "
+                                    "(leave --output out for the scene's Output/Directory)");
+            if (output_given)
+              throw nsm::InputError("command line: --output given twice; allowed: one output folder");
+            output_given = true;
+            line.overrides.push_back({"Output/Directory", folder});
+          }
         else if (a == "--verbose")
           line.verbose = true;
         else if (a == "--resume")

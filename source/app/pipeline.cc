@@ -832,6 +832,20 @@ namespace nsm
 
   namespace
   {
+    /// The earlier output in `directory` (its manifest present): the command
+    /// line its summary.txt records ("a run" if none); "" if it holds none.
+    std::string earlier_output(const std::string &directory)
+    {
+      if (!std::ifstream(directory + "/" + OutputDirectory::manifest).good())
+        return "";
+      std::ifstream summary(directory + "/summary.txt");
+      std::string   first;
+      const std::string command = "command: ";
+      if (std::getline(summary, first) && first.compare(0, command.size(), command) == 0)
+        return first;
+      return "a run whose command is not recorded";
+    }
+
     /// The scene file (canonical) whose default folder the run writes, or ""
     /// for an explicit Output/Directory; a resumed run keeps the one its
     /// output records. A run of an output's own record (DIR/parameters.prm)
@@ -882,6 +896,10 @@ namespace nsm
     if (!resume && std::ifstream(scene.output.directory + "/" + checkpoint_file).good())
       report.notes.push_back("Output/Directory held a stopped run's " + std::string(checkpoint_file) +
                              ": this run started again and replaces it (--resume goes on from one)");
+    else if (!resume)
+      if (const std::string earlier = earlier_output(scene.output.directory); !earlier.empty())
+        report.notes.push_back("Output/Directory held an earlier run's output (" + earlier +
+                               "): this run replaces it");
     OutputDirectory output(scene.output.directory, default_folder_of(scene, resume));
     report.notes.push_back(memory_note(memory, scene.resources));
     SceneRun        run(scene, report, resume);

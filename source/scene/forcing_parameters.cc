@@ -20,7 +20,7 @@ namespace nsm
     {
       const std::string   name = "Forcing/" + entry;
       std::vector<double> values;
-      for (const std::string &item : list_items(prm.get(entry)))
+      for (const std::string &item : list_items(prm.get(entry), name))
         {
           const double v = parse_double(item, name);
           require(v > 0 && v <= magnitude_limit, name, "numbers in (0, 1e20]", item);

@@ -19,7 +19,7 @@ namespace nsm
                                            const std::string &parameter)
   {
     std::vector<double> values;
-    for (const std::string &item : list_items(text))
+    for (const std::string &item : list_items(text, parameter))
       {
         std::vector<std::string> parts;
         std::stringstream        fields(item);

@@ -2,6 +2,7 @@
 #include <nsm/scene/scene_entries.h>
 #include <nsm/base/text.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <cerrno>
@@ -41,13 +42,19 @@ namespace nsm::scene_entries
     return s.substr(first, last - first + 1);
   }
 
-  std::vector<std::string> list_items(const std::string &text)
+  std::vector<std::string> list_items(const std::string &text, const std::string &parameter)
   {
     std::vector<std::string> items;
-    std::stringstream        in(text);
+    if (trim(text).empty())
+      return items;
+    // getline drops a trailing empty field: "1," reads as one item.
+    const bool trailing = trim(text).back() == ',';
+    std::stringstream in(text);
     for (std::string item; std::getline(in, item, ',');)
-      if (!(item = trim(item)).empty())
-        items.push_back(item);
+      items.push_back(trim(item));
+    if (trailing || std::any_of(items.begin(), items.end(), [](const std::string &i) { return i.empty(); }))
+      throw InputError("parameter '" + parameter + "' = '" + printable(text) +
+                       "' has an empty item; allowed: comma-separated values (or nothing: an empty list)");
     return items;
   }
 

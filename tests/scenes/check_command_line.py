@@ -66,6 +66,8 @@ def main():
         (["--set", "Harmonics"], ["'Harmonics'", "Section/Entry=value"]),
         (["--set"], ["--set needs a value"]),
         (["--bogus"], ["'--bogus'"]),
+        (["--output", "bad2"], ["--output given twice"]),
+        (["--set", "Output/Fields at=1.9,,2.0"], ["'Output/Fields at'", "has an empty item"]),
     ]
     for extra, needles in bad_rows:
         result = run(executable, "base.prm", "--output", "bad", *extra)
@@ -74,6 +76,22 @@ def main():
         check(len(lines) == 1 and all(n in result.stderr for n in needles),
               f"{extra}: stderr {result.stderr!r} lacks {needles} or is not one line")
         check(not os.path.exists("bad") and not os.path.exists("base"), f"{extra}: a directory was left behind")
+
+    # An empty --output (an unset shell variable) would write the scene's
+    # default folder: refused.
+    result = run(executable, "base.prm", "--output", "")
+    check(result.returncode == 2 and len(result.stderr.strip().splitlines()) == 1
+          and "--output has an empty folder name" in result.stderr and not os.path.exists("base"),
+          f"--output '': exit {result.returncode}, {result.stderr!r}")
+
+    # A run into an earlier run's output replaces it, and says whose.
+    shutil.rmtree("again", ignore_errors=True)
+    first_run = run(executable, "base.prm", "--output", "again")
+    second = run(executable, "base.prm", "--output", "again", "--set", "Harmonic balance/Harmonics=10")
+    check(first_run.returncode == 0 and second.returncode == 0 and
+          "Output/Directory held an earlier run's output (command: " in second.stdout and
+          "--output again): this run replaces it" in second.stdout and "held an earlier" not in first_run.stdout,
+          f"the second run into one folder does not say it replaces the first: {second.stdout[-600:]}")
 
     # The summary's Result block on the uniform bar: the main points' median
     # energy error against the exact mode E = g0^2 / (2 (T - 3)^2), recomputed

@@ -37,8 +37,10 @@ namespace nsm::scene_entries
   /// `s` without its leading and trailing blanks and tabs.
   std::string trim(const std::string &s);
 
-  /// The comma-separated items of a list entry, trimmed; empty ones left out.
-  std::vector<std::string> list_items(const std::string &text);
+  /// The comma-separated items of the list entry `parameter`, trimmed; an
+  /// empty text is the empty list, and an empty item in a list ("1,,2",
+  /// ",") is refused (InputError naming the parameter).
+  std::vector<std::string> list_items(const std::string &text, const std::string &parameter);
 
   /// A finite number, all of `text`; else an InputError naming `parameter`.
   /// A subnormal one is refused too (outside_normal_range).
