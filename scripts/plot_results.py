@@ -29,7 +29,11 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from csv_input import BACKBONE, BRANCHES, FRC, BadInput, Column, checked, decimal, read_table  # noqa: E402
 import csv_input  # noqa: E402
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError as missing:  # a python3 without Debian's python3-matplotlib (a virtualenv's, pyenv's)
+    sys.exit(f"plot_results.py: error: {missing} in {sys.executable}; run it with /usr/bin/python3, "
+             "which ./run.sh provides with matplotlib")
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
