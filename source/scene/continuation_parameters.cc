@@ -148,7 +148,7 @@ namespace nsm
     omega_max = prm.get_double("Omega max");
     require(omega_max == 0 || omega_max > omega_min,
             "Continuation/Omega max",
-            "> Omega min = " + format_value(omega_min) + ", or 0 (from the spectrum)",
+            "> Continuation/Omega min = " + format_value(omega_min) + " (the range runs from Omega min up to Omega max), or 0 (from the spectrum)",
             format_value(omega_max));
     energy_max   = prm.get_double("Energy max");
     energy_max_over_grazing = prm.get_double("Energy max over grazing");

@@ -313,6 +313,17 @@ namespace nsm
                              "> 0 with Study/Forcing scaled with damping = true (the rows' amplitudes are scaled "
                              "by their ratio over it)",
                              format_value(scene.damping.modal_ratio));
+    // An undamped row of a driven scene would be refused by its run, naming
+    // the entry the sweep sets (or the amplitude scaled to 0): named here.
+    if (scene.forcing.enabled())
+      for (const StudyParameters::Sweep &sweep : study.sweeps)
+        if (sweep.column == "modal_ratio")
+          for (const std::string &value : sweep.values)
+            scene_entries::require(scene_entries::parse_double(value, "Study/Damping ratios") > 0,
+                                   "Study/Damping ratios",
+                                   "numbers > 0 when Forcing/Amplitudes or Omegas is set (an undamped drive has no "
+                                   "bounded linear response at resonance)",
+                                   value);
     for (const double w : study.backbone_omega_values)
       scene_entries::require(scene.contact.enabled && w >= c.omega_min && w <= c.omega_max,
                              "Study/Backbone omegas",

@@ -422,6 +422,15 @@ def rows(executable):
              output(Directory="out"), code=2, words=["Study/Degrees", "'1,,2'", "an empty value"]),
         dict(name="study_value_twice", scene=section("Study", Cells="4, 8, 4", Spectrum_modes=2) +
              output(Directory="out"), code=2, words=["Study/Cells", "'4' is listed twice"]),
+        # An undamped row of a driven study: named as the swept entry, not
+        # as the amplitude the scaling sets to 0.
+        dict(name="study_damping_zero",
+             scene=section("Damping", Modal_ratio="0.002") + section("Forcing", Amplitudes="1e-5") +
+             section("Receptance", Method="modal") +
+             section("Continuation", Omega_min="1.5", Omega_max="2.2", Energy_max="1e-3") +
+             section("Study", Damping_ratios="0.01, 0", Forced_peaks="true", Forcing_scaled_with_damping="true",
+                     Backbone_omegas="1.95") +
+             output(Directory="out"), code=2, words=["Study/Damping ratios", "numbers > 0"]),
         dict(name="study_measures_nothing", scene=section("Study", Degrees="1, 2") +
              output(Directory="out"), code=2, words=["Study/Spectrum modes"]),
         dict(name="study_combination", scene=section("Discretisation", Refinement="graded") +

@@ -86,7 +86,7 @@ namespace
       {"harmonics_zero", "subsection Harmonic balance\n set Harmonics = 0\nend\n", "Harmonic balance/Harmonics", "[1, 1000]"},
       {"samples_few", "subsection Harmonic balance\n set Harmonics = 10\n set Time samples = 20\nend\n", "Time samples", "[2 M + 1"},
       {"tolerance_zero", "subsection Harmonic balance\n set Tolerance = 0\nend\n", "Harmonic balance/Tolerance", "a number in [1e-15, 1e-06]"},
-      {"omega_order", "subsection Continuation\n set Omega min = 3\n set Omega max = 2\nend\n", "Continuation/Omega max", "> Omega min"},
+      {"omega_order", "subsection Continuation\n set Omega min = 3\n set Omega max = 2\nend\n", "Continuation/Omega max", "> Continuation/Omega min = 3"},
       {"min_step_large", "subsection Continuation\n set Min step = 1\nend\n", "Continuation/Min step", "<= Initial step"},
       {"vtk_without_fields", "subsection Output\n set Backbone = true\n set VTK = true\nend\n", "Output/VTK", "fields are requested"},
       {"plots_without_data", "subsection Output\n set Plots = true\nend\n", "Output/Plots", "Output/Backbone = true"},
