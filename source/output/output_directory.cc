@@ -104,6 +104,9 @@ namespace nsm
       if (fs::is_empty(target, error))
         return;
       const std::set<std::string> listed = listed_files(target / OutputDirectory::manifest);
+      if (listed.empty() && fs::exists(target / "study.scene", error))
+        throw directory_error(name, "holds a study's output (study.scene), which a scene's run does not replace: "
+                                    "choose a new, an empty or an earlier run's output directory");
       if (listed.empty())
         throw directory_error(name, "holds files that no nsm-bar run wrote (it has no " +
                                       std::string(OutputDirectory::manifest) +

@@ -122,6 +122,18 @@ def earlier_run(executable, extra_file=False):
     return setup
 
 
+def study_folder(_):
+    """A study's output (it writes no manifest: its rows resume in place)."""
+    os.makedirs("out")
+    for name, text in (("study.scene", "subsection Study\nend\n"), ("study.csv", "degree,status\n1,ok\n")):
+        with open(os.path.join("out", name), "w") as f:
+            f.write(text)
+
+
+def study_folder_kept(_):
+    assert sorted(os.listdir("out")) == ["study.csv", "study.scene"], "a study's folder was changed"
+
+
 def extra_file_kept(_):
     with open("out/field_9_tip.csv") as f:
         assert f.read() == "left by hand\n", "a file the program did not write was changed"
@@ -402,6 +414,9 @@ def rows(executable):
         dict(name="earlier_output_with_a_users_file", scene=SMALL + spectrum_scene("out", 4),
              setup=earlier_run(executable, extra_file=True), code=2, check=extra_file_kept,
              words=["Output/Directory", "field_9_tip.csv"], leaves={"out"}),
+        # A study's folder is not a scene's earlier output: named as such.
+        dict(name="scene_into_a_study_folder", scene=SMALL + spectrum_scene("out", 4), setup=study_folder,
+             code=2, check=study_folder_kept, words=["Output/Directory", "a study's output"], leaves={"out"}),
         # 11. long runs say what they do; short ones say nothing
         dict(name="progress_lines", scene=BACKBONE + output(
             Directory="out", Backbone="true", Progress_every="1e-9"), code=0,
