@@ -148,14 +148,16 @@ DONE = "plots done"
 PLOTTED = ("backbone.csv", "frc.csv", "force_response.csv", "study.csv")
 
 
-def label_between_decades(axes):
-    """A log axis spanning few decades gets labels at 2 and 5 times each
-    power of ten too, so that values can be read off it."""
-    low, high = axes.get_ylim()
-    if low > 0 and high / low < 1e4:
-        axes.yaxis.set_major_locator(ticker.LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
-        axes.yaxis.set_major_formatter(ticker.FuncFormatter(lambda value, _: f"{value:g}"))
-        axes.yaxis.set_minor_formatter(ticker.NullFormatter())
+def label_between_decades(axes, which="y"):
+    """A log axis ("x", "y" or both) spanning few decades gets labels at 2 and
+    5 times each power of ten too, so that values can be read off it."""
+    for name in which:
+        axis = axes.xaxis if name == "x" else axes.yaxis
+        low, high = axes.get_xlim() if name == "x" else axes.get_ylim()
+        if axis.get_scale() == "log" and low > 0 and high / low < 1e4:
+            axis.set_major_locator(ticker.LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+            axis.set_major_formatter(ticker.FuncFormatter(lambda value, _: f"{value:g}"))
+            axis.set_minor_formatter(ticker.NullFormatter())
 
 
 def grazing_scale(directory):
@@ -527,6 +529,8 @@ def field_plots(directory, gap, rigid):
             axes.set_xlabel("$x$")
             axes.set_ylabel("$t / T$")
             axes.set_title("Displacement field over one period, " + title)
+            if CAPTION:
+                figure.text(0.5, 0.005, CAPTION, ha="center", va="bottom", fontsize=7, color="0.3")
             save(figure, grid_path.replace(".csv", ".png"))
 
 
@@ -604,6 +608,13 @@ def forced_study_plot(directory):
     ratio = [float(r["modal_ratio"]) for r in rows]
     figure, (top, bottom) = plt.subplots(2, 1, figsize=(7, 7), sharex=True)
     top.semilogx(ratio, [100 * float(r["forced_peak_distance_max"]) for r in rows], "o-", color="C0")
+    # A row whose curves were not all traced whole compares fewer peaks.
+    for x, r in zip(ratio, rows):
+        if r.get("forced_curves_whole") not in (None, "", r["forced_curves"]):
+            whole = r["forced_curves_whole"]
+            top.annotate(f"{r['forced_peaks_compared']} of {r['forced_curves']} peaks\n({whole} "
+                         f"curve{'' if whole == '1' else 's'} traced whole)", (x, 100 * float(r["forced_peak_distance_max"])),
+                         textcoords="offset points", xytext=(8, 4), fontsize=7)
     top.set_ylabel("largest |E_peak / E_main - 1| (%)")
     top.set_title((CAPTION + "\n" if CAPTION else "") + "Forced curves' peaks against the backbone's main branch",
                   fontsize=10)
@@ -613,6 +624,7 @@ def forced_study_plot(directory):
     bottom.set_ylabel("phase lag at the peaks")
     bottom.set_xlabel("Damping/Modal ratio")
     bottom.legend(fontsize=8)
+    label_between_decades(bottom, "x")
     save(figure, os.path.join(directory, "study_forced.png"))
 
 
@@ -680,6 +692,9 @@ def study_plot(directory):
         by_time.set_title("relative error: " + name + over + ", against time", fontsize=9)
         for a in (by_dofs, by_time):
             a.grid(True, which="both", alpha=0.3)
+        if size != "harmonics":
+            label_between_decades(by_dofs, "xy")
+        label_between_decades(by_time, "xy")
         by_time.legend(fontsize=7)
         if axes_row == 0:  # the series' legend once, right of the first row
             by_dofs.legend(fontsize=8, ncol=1 + len(groups) // 12, loc="upper left", bbox_to_anchor=(2.25, 1))

@@ -64,7 +64,7 @@ namespace nsm
                 (v->floquet->instability().empty() ? std::string("every multiplier back inside the unit circle") :
                                                      "the largest multiplier outside the unit circle (" +
                                                        v->floquet->instability() + ", modulus " +
-                                                       significant(v->floquet->largest(), 4) + ")") +
+                                                       significant(v->floquet->largest(), 7) + ")") +
                 " between Omega " + significant(before->omega, 7) + " and " + significant(p.omega, 7));
             before = &p;
             last   = &*v->floquet;
