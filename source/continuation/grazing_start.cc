@@ -58,13 +58,25 @@ namespace nsm
       return s.str();
     }
 
-    [[noreturn]] void no_start(const BranchContext &context, const unsigned int mode, const double w)
+    /// The grazing start's Newton solves: how many, and how many ended at
+    /// Harmonic balance/Max iterations.
+    struct StartTally
+    {
+      unsigned int solves = 0, at_limit = 0;
+    };
+
+    [[noreturn]] void no_start(const BranchContext &context, const unsigned int mode, const double w,
+                               const StartTally &tally)
     {
       std::ostringstream s;
       s << "no converged non-trivial solution within Continuation/Search reach = "
         << text(context.params.continuation.search_reach) << " (relative) of grazing of clamped-free mode " << mode
-        << " (w = " << w << ") and before the end of Continuation/Omega min..max"
-        << "; " << weight_note(context.params.contact, context.hb.receptance()(0.0).gamma);
+        << " (w = " << w << ") and before the end of Continuation/Omega min..max";
+      if (tally.at_limit > 0)
+        s << "; " << tally.at_limit << " of " << tally.solves
+          << " Newton solves stopped at Harmonic balance/Max iterations = "
+          << context.params.harmonic_balance.iterations() << " (more may converge)";
+      s << "; " << weight_note(context.params.contact, context.hb.receptance()(0.0).gamma);
       throw NumericalError(s.str());
     }
   } // namespace
@@ -91,6 +103,7 @@ namespace nsm
     // in it.
     if (const double start = w * (1 + context.direction * c.grazing_offset); context.beyond(start, context.far_end))
       range_misses_branch(context, mode, w, start);
+    StartTally tally;
     for (double offset = c.grazing_offset; offset < c.search_reach; offset *= continuation_constants::search_growth)
       {
         const double omega = w * (1 + context.direction * offset);
@@ -99,8 +112,14 @@ namespace nsm
         context.hb.set_omega(omega);
         const std::vector<double> guess = context.hb.grazing_guess();
         BackbonePoint             point;
-        if (guess.empty() || !context.solve(omega, guess, 0, point))
+        if (guess.empty())
           continue;
+        ++tally.solves;
+        if (!context.solve(omega, guess, 0, point))
+          {
+            tally.at_limit += context.last_failure() == BranchContext::SolveFailure::iteration_limit;
+            continue;
+          }
         std::ostringstream s;
         s.precision(10);
         s << "start at grazing of clamped-free mode " << mode << " (w = " << w << ") at Omega = " << omega;
@@ -113,6 +132,6 @@ namespace nsm
         context.span      = std::abs(context.far_end - (before ? context.near_end : omega));
         return point;
       }
-    no_start(context, mode, w);
+    no_start(context, mode, w, tally);
   }
 } // namespace nsm

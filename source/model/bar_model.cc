@@ -84,8 +84,13 @@ namespace nsm
     catch (const dealii::ExceptionBase &e)
       {
         std::cerr.rdbuf(cerr);
+        const std::string why = expression_.find_first_not_of(" \t") == std::string::npos ?
+                                  std::string("it is empty") :
+                                  one_line_message(e);
         throw InputError("parameter 'Bar/Cross section' = '" + printable(expression_) +
-                         "' is not a valid expression in x: " + one_line_message(e));
+                         "' is not a valid expression in x (" + why +
+                         "); allowed: a muparser expression in x, positive on [0, L], such as 1.5 - x, "
+                         "exp(-x) or x < 0.5 ? 2 : 1");
       }
     for (unsigned int i = 0; i <= section_samples; ++i)
       cross_section(length_ * i / section_samples);

@@ -359,6 +359,11 @@ def rows(executable):
              output(Directory="out", Backbone="true"), code=3,
              words=["no converged non-trivial solution", "Continuation/Search reach = 0.05",
                     "Contact/Alpha = 1e+12"]),
+        # A start that Max iterations cut short says so (it named only Alpha).
+        dict(name="no_start_iterations", scene=SMALL + section("Harmonic balance", Tolerance="1e-15",
+                                                               Max_iterations="1") +
+             output(Directory="out", Backbone="true"), code=3,
+             words=["no converged non-trivial solution", "Newton solves stopped at Harmonic balance/Max iterations = 1"]),
         dict(name="grazing_offset_beyond_reach", scene=section(
             "Continuation", Grazing_offset="1e-2", Search_reach="1e-3") +
              output(Directory="out", Backbone="true"), code=2,
