@@ -138,6 +138,15 @@ namespace nsm
       return;
     std::ostringstream s;
     s.precision(3);
+    // Below the process's own share no mesh or harmonics can fit.
+    if (resources.memory_limit > 0 && have < process_bytes)
+      {
+        s << "parameter 'Resources/Memory limit' = " << resources.memory_limit
+          << " is out of range: allowed at least " << std::ceil(process_bytes / (1 << 20))
+          << " (MiB; the process itself, its libraries loaded, needs about that much before any scene), or 0 "
+             "(the machine's available memory)";
+        throw InputError(s.str());
+      }
     s << "the scene needs about " << need.bytes / (1 << 20) << " MiB of memory (an estimate; "
       << need.largest_part / (1 << 20) << " MiB of it for " << need.drivers << "), more than the "
       << have / (1 << 20) << " MiB "

@@ -19,7 +19,8 @@ namespace nsm
                       Patterns::Double(0, 1e9),
                       "MiB a run may use; 0 = the memory the machine has available (and the process's "
                       "address-space limit). A scene whose estimated need exceeds it is refused before "
-                      "any work, naming the entries that drive the estimate.");
+                      "any work, naming the entries that drive the estimate; a limit below the process's own "
+                      "share (about 200 MiB) fits no scene and is refused.");
     prm.leave_subsection();
   }
 

@@ -238,6 +238,10 @@ def new_rows(executable):
         dict(name="fields_every_beyond_the_limit", cls=5,
              scene=BACKBONE + section("Continuation", Max_steps=1000000) + output(Fields_every=1) +
              section("Resources", Memory_limit=1000), code=2, words=["Memory limit"], before_work=True),
+        # A limit below the process's own share: no scene fits, so the limit
+        # itself is named (it said to reduce the mesh).
+        dict(name="memory_limit_below_the_process", cls=5, scene=SPECTRUM + section("Resources", Memory_limit=1),
+             code=2, words=["Resources/Memory limit' = 1", "allowed at least 200"], before_work=True),
         # ---- 6. a range the branch never reaches --------------------------------
         # old: exit 0, a header-only backbone.csv, no reason.
         dict(name="range_above_the_branch", cls=6,
