@@ -470,7 +470,12 @@ namespace nsm
 
     std::string undeclared_entry(const std::string &message, const std::string &prm_text)
     {
-      const std::string hint = " (nsm-bar --print-parameters lists them)";
+      // deal.II's messages on unbalanced sections name no parameter.
+      const bool        sections_unbalanced = message.find("'subsection' and 'end'") != std::string::npos ||
+                                       message.find("no subsection to leave") != std::string::npos;
+      const std::string hint = sections_unbalanced ? " (each 'subsection NAME' line needs one 'end' line after its "
+                                                     "entries)" :
+                                                     " (nsm-bar --print-parameters lists them)";
       std::smatch       match;
       if (prm_text.empty() ||
           !std::regex_search(message, match, std::regex(R"(Line <(\d+)>.*No entry with name <([^>]*)> was declared)")))

@@ -401,6 +401,12 @@ def rows(executable):
         # 9. accepted bad values
         dict(name="tolerance_loose", scene=section("Harmonic balance", Tolerance=1) +
              spectrum_scene(), code=2, words=["Harmonic balance/Tolerance", "1e-06"]),
+        # Unbalanced sections: deal.II's message names no entry; the hint
+        # says what balances them (it pointed at --print-parameters).
+        dict(name="section_without_end", scene="subsection Continuation\n  set Omega min = 1.5\n", code=2,
+             words=["unequal numbers of 'subsection' and 'end'", "needs one 'end' line"]),
+        dict(name="end_without_section", scene=section("Continuation", Omega_min="1.5") + "end\n", code=2,
+             words=["no subsection to leave", "needs one 'end' line"]),
         dict(name="scene_directory", scene=None, setup=scene_is_directory, code=2,
              words=["scene.prm", "is a folder"]),
         dict(name="garbage_xml", scene=None, setup=garbage("xml"), code=2,
