@@ -902,6 +902,8 @@ namespace nsm
                                "): this run replaces it");
     OutputDirectory output(scene.output.directory, default_folder_of(scene, resume));
     report.notes.push_back(memory_note(memory, scene.resources));
+    for (const std::string &line : scene.unused_entries())
+      report.notes.push_back(line);
     SceneRun        run(scene, report, resume);
     run.mesh(bar);
     if (scene.output.refine_in_time)

@@ -227,4 +227,16 @@ namespace nsm
     return output.field_time_samples != 0 ? output.field_time_samples :
                                             2 * (2 * harmonic_balance.harmonics + 1);
   }
+
+  std::vector<std::string> Scene::unused_entries() const
+  {
+    std::vector<std::string> unused;
+    if (damping.any() && !forcing.enabled())
+      unused.push_back("Damping (Modal ratio, Rayleigh alpha or beta) is set but unused: the scene drives nothing "
+                       "(Forcing/Amplitudes and Omegas are empty), and the backbone is undamped");
+    if (forcing.amplitudes.empty() && (forcing.verify_every > 0 || forcing.floquet))
+      unused.push_back("Forcing/Verify every and Floquet are set but unused: they verify the forced curves in W, and "
+                       "Forcing/Amplitudes is empty");
+    return unused;
+  }
 } // namespace nsm

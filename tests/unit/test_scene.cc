@@ -301,3 +301,22 @@ TEST(Scene, TheMemoryEstimateCountsThePointsAndTheFrequencies)
   EXPECT_GT(nsm::estimated_memory(spectrum).bytes - nsm::estimated_memory(nsm::Scene()).bytes, 1e6 * 166);
   EXPECT_EQ(nsm::estimated_memory(spectrum).drivers, "Output/Receptance frequencies");
 }
+
+// A scene says which entries it sets but never uses: damping without a drive,
+// the forced verification without a curve in W. Set where they act, or left
+// at their defaults, nothing is said.
+TEST(Scene, EntriesSetButUnusedAreSaid)
+{
+  nsm::Scene scene;
+  EXPECT_TRUE(scene.unused_entries().empty());
+  scene.damping.modal_ratio = 0.01;
+  ASSERT_EQ(scene.unused_entries().size(), 1u);
+  EXPECT_NE(scene.unused_entries()[0].find("Damping"), std::string::npos);
+  scene.forcing.verify_every = 5;
+  ASSERT_EQ(scene.unused_entries().size(), 2u);
+  EXPECT_NE(scene.unused_entries()[1].find("Forcing/Verify every"), std::string::npos);
+  scene.forcing.omegas = {1.9};
+  ASSERT_EQ(scene.unused_entries().size(), 1u); // curves in F use the damping, not the verification
+  scene.forcing.amplitudes = {1e-5};
+  EXPECT_TRUE(scene.unused_entries().empty());
+}

@@ -83,6 +83,12 @@ namespace nsm
     /// Discretisation/Cells = 0 is chosen (model/band_cells.h).
     void check_consistency(bool is_study) const;
 
+    /// Entries set away from their defaults that this scene never uses
+    /// (damping without a drive, the forced verification without a curve
+    /// to verify), one line each for the run summary: the run simulates only
+    /// what the scene calls for, and says what it left unused.
+    std::vector<std::string> unused_entries() const;
+
   private:
     /// The checks of a scene with Forcing/Amplitudes.
     void check_forcing() const;
