@@ -262,11 +262,14 @@ namespace nsm
 
   namespace
   {
-    /// label_branches on one side of the accumulation point; with `only`,
+    /// Labels every point (label_sides' `only`).
+    constexpr std::size_t every_point = std::numeric_limits<std::size_t>::max();
+
+    /// label_branches on one side of the accumulation point; with `only` a point's index,
     /// the tongue runs other than the one holding that point are left
     /// unnamed (their names cost a spectrum each).
     void label_side(HarmonicBalance &hb, const BranchParameters &params, std::vector<BackbonePoint> &points,
-                    const std::optional<std::size_t> only)
+                    const std::size_t only)
     {
       const auto             &c         = params.continuation;
       const double            direction = branch_direction(params.contact);
@@ -283,7 +286,7 @@ namespace nsm
           std::size_t end = first;
           while (end < points.size() && family[end] && !on[end])
             ++end;
-          if (!only || (first <= *only && *only < end))
+          if (only == every_point || (first <= only && only < end))
             label_run(hb, c.mode, points, first, end);
           else
             for (std::size_t i = first; i < end; ++i)
@@ -303,9 +306,10 @@ namespace nsm
 
   namespace
   {
-    /// label_branches; with `only`, named as label_side says.
+    /// label_branches; with `only` a point's index (not every_point), named as
+    /// label_side says.
     void label_sides(HarmonicBalance &hb, const BranchParameters &params, std::vector<BackbonePoint> &points,
-                     const std::optional<std::size_t> only)
+                     const std::size_t only)
     {
       // The two sides of the accumulation point are labelled apart: nothing on
       // one side vetoes a family on the other (doc/method.md, "The
@@ -315,16 +319,19 @@ namespace nsm
         {
           std::vector<std::size_t>   side;
           std::vector<BackbonePoint> part;
-          std::optional<std::size_t> only_here;
+          // The point's index on this side; every_point if it lies on the other.
+          std::size_t only_here = every_point;
           for (std::size_t i = 0; i < points.size(); ++i)
             if (beyond(points[i].omega, direction, passed) == side_beyond)
               {
-                if (only && *only == i)
+                if (only == i)
                   only_here = side.size();
                 side.push_back(i), part.push_back(std::move(points[i]));
               }
-          if (!only || only_here)
-            label_side(hb, params, part, only ? only_here : std::nullopt);
+          if (only == every_point)
+            label_side(hb, params, part, every_point);
+          else if (only_here != every_point)
+            label_side(hb, params, part, only_here);
           for (std::size_t k = 0; k < side.size(); ++k)
             points[side[k]] = std::move(part[k]);
         }
@@ -333,7 +340,7 @@ namespace nsm
 
   void label_branches(HarmonicBalance &hb, const BranchParameters &params, std::vector<BackbonePoint> &points)
   {
-    label_sides(hb, params, points, std::nullopt);
+    label_sides(hb, params, points, every_point);
   }
 
   double accumulation_passed(const BranchParameters &params)

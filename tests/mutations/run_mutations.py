@@ -216,7 +216,7 @@ MUTATIONS = [
     ("fields always labelled main", "source/continuation/main_branch.cc",
      "point.branch    = with[at].branch;", "point.branch    = Branch::main;"),
     ("a point labelled alone: the tongue run holding it left unnamed", "source/continuation/main_branch.cc",
-     "if (!only || (first <= *only && *only < end))", "if (!only)"),
+     "if (only == every_point || (first <= only && only < end))", "if (only == every_point)"),
     ("a point labelled alone at the backbone's end, not where it lies", "source/continuation/main_branch.cc",
      "const std::size_t          at   = position ? std::min(*position, with.size()) : with.size();",
      "const std::size_t          at   = with.size();"),
