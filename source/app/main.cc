@@ -142,12 +142,14 @@ namespace
         nsm::RunReport report = nsm::run_study(path, file);
         if (root)
           {
-            // The study's record, as a run's: summary.txt in its folder.
+            // The study's record, as a run's: summary.txt in its folder,
+            // written after the summary is printed (a failure to write it
+            // leaves the printed summary).
             const std::string summary = file.scene.output.directory + "/summary.txt";
             report.files.push_back(summary);
-            nsm::write_summary(summary, command_line, report);
             std::cout << "nsm-bar: study " << path << overrides_note() << '\n';
             nsm::print_report(report, std::cout);
+            nsm::write_summary(summary, command_line, report);
           }
         if (report.stopped_by == 0)
           return root ? plot_failure_code(report) : 0;

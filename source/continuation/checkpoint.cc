@@ -5,6 +5,8 @@
 #include <nsm/harmonic_balance/harmonic_balance.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <filesystem>
 #include <sstream>
 
@@ -139,7 +141,9 @@ namespace nsm
     for (const GapSearch &g : c.gap_searches)
       out << exact(g.from) << ' ' << exact(g.to) << ' ' << g.starts << ' ' << g.other_family << ' '
           << g.other_harmonic << ' ' << g.tongue
-          << ' ' << g.above_energy_max << ' ' << exact(g.most_contact) << ' ' << exact(g.contact_before) << ' '
+          << ' ' << g.above_energy_max << ' ' << exact(g.most_contact) << ' '
+          // No contact of the mode before a gap from the range's near end.
+          << (std::isfinite(g.contact_before) ? exact(g.contact_before) : std::string("-")) << ' '
           << (g.landed ? exact(*g.landed) : std::string("-")) << '\n';
     out << "points " << c.points.size() << '\n';
     for (const BackbonePoint &p : c.points)
@@ -212,7 +216,16 @@ namespace nsm
         g.tongue         = reader.count(line, 1000 * max_points);
         g.above_energy_max = reader.count(line, 1000 * max_points);
         g.most_contact   = reader.number(line);
-        g.contact_before = reader.number(line);
+        std::string before;
+        if (!(line >> before))
+          reader.damaged("a gap search's contact before it or '-' expected");
+        if (before == "-")
+          g.contact_before = -std::numeric_limits<double>::infinity();
+        else
+          {
+            std::istringstream value(before);
+            g.contact_before = reader.number(value);
+          }
         std::string landed;
         if (!(line >> landed))
           reader.damaged("a gap search's landing or '-' expected");

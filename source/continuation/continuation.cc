@@ -223,8 +223,9 @@ namespace nsm
       label_point(hb, params, p, point, position);
       return point;
     };
+    // Segments run in the direction of continuation (falling Omega with eq. (5)).
     const auto beside = [&](const BackbonePoint &q) {
-      return static_cast<std::size_t>(&q - p.data()) + (q.omega < omega ? 1 : 0);
+      return static_cast<std::size_t>(&q - p.data()) + (context.beyond(omega, q.omega) ? 1 : 0);
     };
     // Between two points of one segment, the solution must continue the branch
     // from both, as a step would; Newton from their interpolation can land on

@@ -105,6 +105,9 @@ namespace nsm
         text += ", traced from both ends of the range, the two traces meeting at Omega " +
                 significant(far->stopped, 6) + ", a corner neither goes on from (" + counted(far->points, "point") +
                 " from Omega max = " + significant(value(*high), 6) + ", segments of their own)";
+      else if (!curve.finished && far && far->points == 0)
+        text += ", stopped before the range's end at Omega " + significant(far->stopped, 6) +
+                " (no step, restart or leap went on); traced again from Omega max, no point converged there";
       else if (!curve.finished && far)
         text += ", stopped before the range's end at Omega " + significant(far->stopped, 6) +
                 " (no step, restart or leap went on), then traced again from Omega max = " +

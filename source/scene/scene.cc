@@ -235,8 +235,11 @@ namespace nsm
       unused.push_back("Damping (Modal ratio, Rayleigh alpha or beta) is set but unused: the scene drives nothing "
                        "(Forcing/Amplitudes and Omegas are empty), and the backbone is undamped");
     if (forcing.amplitudes.empty() && (forcing.verify_every > 0 || forcing.floquet))
-      unused.push_back("Forcing/Verify every and Floquet are set but unused: they verify the forced curves in W, and "
-                       "Forcing/Amplitudes is empty");
+      unused.push_back(std::string(forcing.verify_every > 0 && forcing.floquet ? "Forcing/Verify every and Floquet are" :
+                                   forcing.floquet                             ? "Forcing/Floquet is" :
+                                                                                 "Forcing/Verify every is") +
+                       " set but unused: the forced verification checks the curves in W, and Forcing/Amplitudes is "
+                       "empty");
     return unused;
   }
 } // namespace nsm

@@ -116,8 +116,22 @@ namespace nsm
                          "(study.scene differs); allowed: a new or empty directory, or this study's");
       const CsvTable table = read_csv(directory + "/study.csv");
       if (!table.columns.empty() && table.columns != columns)
-        throw InputError("parameter 'Output/Directory' = " + directory +
-                         ": its study.csv has other columns; allowed: a new or empty directory");
+        {
+          // Name one column that differs: a study.csv of another sweep, or of
+          // another version of nsm-bar.
+          std::string differs;
+          for (const std::string &c : columns)
+            if (differs.empty() && std::find(table.columns.begin(), table.columns.end(), c) == table.columns.end())
+              differs = "it lacks '" + c + "'";
+          for (const std::string &c : table.columns)
+            if (differs.empty() && std::find(columns.begin(), columns.end(), c) == columns.end())
+              differs = "it has '" + printable(c) + "', which this study does not write";
+          if (differs.empty())
+            differs = "its columns come in another order";
+          throw InputError("parameter 'Output/Directory' = " + directory + ": its study.csv has other columns (" +
+                           differs + ": another sweep, or another version of nsm-bar); allowed: a new or empty "
+                           "directory");
+        }
       // The shared errors (the last columns) are computed anew from all rows.
       const std::size_t own = columns.size() - shared_error_columns().size();
       for (const auto &row : table.rows)
@@ -191,7 +205,7 @@ namespace nsm
       std::vector<std::string> notes;
       for (const auto &row : table.rows)
         {
-          if (text_cell(row, distance).empty())
+          if (text_cell(row, column_of(table, "forced_curves")).empty())
             continue;
           std::ostringstream note;
           note.precision(2);
@@ -201,11 +215,14 @@ namespace nsm
                << " of " << curves << " peaks compared"
                << (whole != curves ? " (" + std::to_string(std::stoi(curves) - std::stoi(whole)) +
                                        " not traced whole: a stretch neither trace reached may hold the peak)" :
-                                     std::string())
-               << ", the largest "
-               << 100 * std::stod(text_cell(row, distance)) << " % from the main branch in energy; phase lag "
-               << significant(std::stod(text_cell(row, column_of(table, "forced_peak_phase_min"))), 3) << " to "
-               << significant(std::stod(text_cell(row, column_of(table, "forced_peak_phase_max"))), 3);
+                                     std::string());
+          if (text_cell(row, distance).empty())
+            note << ": no peak to compare";
+          else
+            note << ", the largest " << 100 * std::stod(text_cell(row, distance))
+                 << " % from the main branch in energy; phase lag "
+                 << significant(std::stod(text_cell(row, column_of(table, "forced_peak_phase_min"))), 3) << " to "
+                 << significant(std::stod(text_cell(row, column_of(table, "forced_peak_phase_max"))), 3);
           notes.push_back(note.str());
         }
       if (!notes.empty())
@@ -361,15 +378,27 @@ namespace nsm
         std::vector<std::string> written = own_columns_;
         written.insert(written.end(), shared_error_columns().begin(), shared_error_columns().end());
         EarlierRows earlier = earlier_rows(directory(), scene_text_, written, key_size_);
-        rows_               = std::move(earlier.by_key);
+        // An earlier row is a combination's where every value is the same,
+        // however spelt (0.002 and 2e-3): it takes the combination's key.
+        // The rows of an earlier sweep that this one's lists leave out stay.
+        for (std::vector<std::string> &key : earlier.order)
+          {
+            std::vector<CsvCell> &row = earlier.by_key.at(key);
+            const auto same = std::find_if(combinations_.begin(), combinations_.end(), [&](const StudyCombination &c) {
+              return std::equal(c.key.begin(), c.key.end(), key.begin(), key.end(), same_study_value);
+            });
+            if (same == combinations_.end())
+              {
+                rows_[key] = std::move(row);
+                kept_.push_back(std::move(key));
+                continue;
+              }
+            std::copy(same->key.begin(), same->key.end(), row.begin());
+            rows_[same->key] = std::move(row);
+          }
         for (std::size_t i = 0; i < combinations_.size(); ++i)
           if (rows_.count(combinations_[i].key) == 0)
             missing_.push_back(i);
-        // The rows of an earlier sweep that this one's lists leave out stay.
-        for (std::vector<std::string> &key : earlier.order)
-          if (std::none_of(combinations_.begin(), combinations_.end(),
-                           [&](const StudyCombination &c) { return c.key == key; }))
-            kept_.push_back(std::move(key));
         in_combination_order();
       }
 

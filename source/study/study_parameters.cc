@@ -39,18 +39,6 @@ namespace nsm
       {"Harmonic balance", "Time samples", "Time samples", "time_samples", "integration", "sampled"},
       {"Damping", "Modal ratio", "Damping ratios", "modal_ratio"}};
 
-    /// Two spellings of one value: the same text, or the same number ("2"
-    /// and "02", "0.5" and "5e-1").
-    bool same_value(const std::string &a, const std::string &b)
-    {
-      const auto number = [](const std::string &text, double &value) {
-        char *end = nullptr;
-        value     = std::strtod(text.c_str(), &end);
-        return !text.empty() && end == text.c_str() + text.size();
-      };
-      double x, y;
-      return a == b || (number(a, x) && number(b, y) && x == y);
-    }
 
     /// The comma-separated values of Study/`entry`, trimmed. An empty value
     /// (a stray comma) or one listed twice is most likely a typo, and would
@@ -72,7 +60,7 @@ namespace nsm
             refuse("an empty value");
           item = item.substr(first, item.find_last_not_of(" \t") - first + 1);
           for (const std::string &earlier : items)
-            if (same_value(earlier, item))
+            if (same_study_value(earlier, item))
               refuse("'" + item + "' is listed twice" + (earlier == item ? "" : " (as '" + earlier + "')"));
           items.push_back(item);
         }
@@ -330,5 +318,16 @@ namespace nsm
                              "frequencies in [Omega min, Omega max] = [" + format_value(c.omega_min) + ", " +
                                format_value(c.omega_max) + "], with Contact/Enabled = true",
                              format_value(w));
+  }
+
+  bool same_study_value(const std::string &a, const std::string &b)
+  {
+    const auto number = [](const std::string &text, double &value) {
+      char *end = nullptr;
+      value     = std::strtod(text.c_str(), &end);
+      return !text.empty() && end == text.c_str() + text.size();
+    };
+    double x, y;
+    return a == b || (number(a, x) && number(b, y) && x == y);
   }
 } // namespace nsm

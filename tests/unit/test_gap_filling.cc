@@ -128,20 +128,23 @@ TEST(GapFilling, FillsTheMainBranchWhereNewtonFindsItAndKeepsTheTracedPoints)
 
 // A gap search's record goes through an interrupted run's checkpoint whole,
 // the other families led by a harmonic k > 1 counted apart from those of less
-// contact.
+// contact, and a gap from the range's near end without the mode's contact
+// before it (written '-': the reader takes no non-finite number).
 TEST(GapFilling, ASearchsRecordGoesThroughTheCheckpoint)
 {
   testing_helpers::HbModel model(testing_helpers::seed_scene(nsm::ForceSign::physical, 1.5, 2.2));
   nsm::ContinuationCheckpoint written;
   written.points       = {model.backbone().points.front()};
-  written.gap_searches = {{2.06, 2.11, 51, 7, 3, 2, 1, 0.14, 0.24, 2.0875}, {2.15, 2.2, 9, 2, 2, 0, 0, 0, 0.3, {}}};
+  // The third: a gap from the range's near end, with no contact of the mode before it.
+  written.gap_searches = {{2.06, 2.11, 51, 7, 3, 2, 1, 0.14, 0.24, 2.0875}, {2.15, 2.2, 9, 2, 2, 0, 0, 0, 0.3, {}},
+                          {1.5, 1.52, 0, 0, 0, 0, 0, 0, -std::numeric_limits<double>::infinity(), 1.51}};
   const std::string path = ::testing::TempDir() + "gap_search.resume";
   nsm::write_checksummed(path, [&](std::ostream &out) {
     nsm::write_checkpoint(out, written, model.branch.computation_entries, model.hb);
   });
   const nsm::ContinuationCheckpoint read = nsm::read_checkpoint(path, model.branch, model.hb);
-  ASSERT_EQ(read.gap_searches.size(), 2u);
-  for (std::size_t i = 0; i < 2; ++i)
+  ASSERT_EQ(read.gap_searches.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i)
     {
       const nsm::GapSearch &a = written.gap_searches[i], &b = read.gap_searches[i];
       EXPECT_EQ(std::vector<double>({a.from, a.to, a.most_contact, a.contact_before}),

@@ -63,7 +63,7 @@ namespace nsm
     struct FromFarEnd
     {
       double       stopped;  ///< the swept parameter where the trace from the near end stopped
-      double       reached;  ///< where the trace from the far end stopped
+      double       reached;  ///< where the trace from the far end stopped (NaN: it wrote no point)
       unsigned int points;   ///< the points it wrote
       /// The two traces' last points lie within Initial step of each
       /// other and within the step's guard: the curve is whole, and both
@@ -73,9 +73,9 @@ namespace nsm
     std::optional<FromFarEnd> from_far_end;
 
     /// Traced over its whole range: to its far end, or from both ends to a
-    /// meeting. A curve with a stretch neither trace reached may have its
-    /// peak there.
-    bool whole() const { return finished || (from_far_end && from_far_end->met); }
+    /// meeting, and with no leap (which jumps over a stretch). A curve with a
+    /// stretch no trace reached may have its peak there.
+    bool whole() const { return (finished && leaps == 0) || (from_far_end && from_far_end->met && leaps == 0); }
   };
 
   /// The curve of amplitude `forcing` over [omega_min, omega_max], from the

@@ -87,4 +87,8 @@ namespace nsm
     /// Checks between the Study subsection and the scene.
     void check_consistency() const;
   };
+
+  /// Two spellings of one swept value: the same text, or the same number
+  /// ("2" and "02", "0.002" and "2e-3").
+  bool same_study_value(const std::string &a, const std::string &b);
 } // namespace nsm
