@@ -183,12 +183,17 @@ namespace
   /// `nsm-bar DIR --resume`: the scene is the run record's DIR/parameters.prm
   /// (every entry as the stopped run read it, its --set values included),
   /// into DIR itself; other --set values may follow it.
-  CommandLine resumed_from_record(CommandLine line)
+  CommandLine resumed_from_record(CommandLine line, const bool output_given)
   {
     std::error_code error;
     if (!line.resume || !std::filesystem::is_directory(line.scene, error))
       return line;
     const std::string directory = line.scene;
+    // The run goes on in its own folder; another would hold no checkpoint.
+    if (output_given)
+      throw nsm::InputError("command line: --output with --resume '" + nsm::printable(directory) +
+                            "': the stopped run goes on in its own folder; allowed: nsm-bar " +
+                            nsm::printable(directory) + " --resume without --output");
     line.scene                  = directory + "/parameters.prm";
     if (!std::filesystem::is_regular_file(line.scene, error))
       throw nsm::InputError("command line: --resume '" + nsm::printable(directory) +
@@ -241,7 +246,7 @@ namespace
       }
     if (line.scene.empty())
       throw nsm::InputError("command line: no scene given");
-    return resumed_from_record(line);
+    return resumed_from_record(line, output_given);
   }
 
 } // namespace

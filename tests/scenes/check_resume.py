@@ -135,6 +135,14 @@ def refusals(executable, failures):
             failures.append(f"--resume with {what} changed the output directory")
         if any(n.startswith(".") for n in os.listdir(".")):
             failures.append(f"--resume with {what} left a staging directory behind")
+    # A stopped run's folder resumes in place: another --output would hold no
+    # checkpoint, so it is refused, naming both.
+    r = subprocess.run([executable, "refused", "--resume", "--output", "elsewhere"], capture_output=True, text=True,
+                       timeout=600)
+    message = r.stderr.strip().splitlines()
+    if r.returncode != 2 or len(message) != 1 or "--output with --resume 'refused'" not in message[0] or \
+            os.path.exists("elsewhere"):
+        failures.append(f"DIR --resume --output: exit {r.returncode}, {r.stderr[-300:]!r}")
 
 
 def main():
