@@ -208,6 +208,13 @@ namespace nsm
 namespace nsm
 {
 
+  std::size_t position_beside(const std::vector<BackbonePoint> &points, const std::size_t index, const double omega,
+                              const double direction)
+  {
+    // Segments run in the direction of continuation (falling Omega with eq. (5)).
+    return index + (direction * (omega - points[index].omega) > 0 ? 1 : 0);
+  }
+
   BackbonePoint solve_on_branch(HarmonicBalance        &hb,
                                 const BranchParameters &params,
                                 const Backbone         &backbone,
@@ -223,9 +230,8 @@ namespace nsm
       label_point(hb, params, p, point, position);
       return point;
     };
-    // Segments run in the direction of continuation (falling Omega with eq. (5)).
     const auto beside = [&](const BackbonePoint &q) {
-      return static_cast<std::size_t>(&q - p.data()) + (context.beyond(omega, q.omega) ? 1 : 0);
+      return position_beside(p, static_cast<std::size_t>(&q - p.data()), omega, context.direction);
     };
     // Between two points of one segment, the solution must continue the branch
     // from both, as a step would; Newton from their interpolation can land on

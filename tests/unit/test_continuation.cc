@@ -589,3 +589,23 @@ TEST(Backbone, SolvesInTheGapALeapLeft)
   // Studies ask for the main branch between main points only.
   EXPECT_THROW(nsm::solve_on_branch(model.hb, model.branch, backbone, omega, true), nsm::NumericalError);
 }
+
+// A point solved beside a backbone point goes where it lies along the
+// segment's direction of continuation: rising Omega (the physical sign), or
+// falling (eq. (5)), so that it is neither behind its segment's front nor
+// puts the point it continues behind it.
+TEST(Backbone, APointSolvedBesideAnotherGoesWhereItLiesAlongTheSegment)
+{
+  const auto at = [](std::vector<double> omegas) {
+    std::vector<nsm::BackbonePoint> points(omegas.size());
+    for (std::size_t i = 0; i < omegas.size(); ++i)
+      points[i].omega = omegas[i];
+    return points;
+  };
+  const auto rising = at({1.98, 1.99, 2.00}), falling = at({2.00, 1.99, 1.98});
+  EXPECT_EQ(nsm::position_beside(rising, 1, 1.995, 1.0), 2u);  // after 1.99
+  EXPECT_EQ(nsm::position_beside(rising, 2, 1.995, 1.0), 2u);  // before 2.00
+  EXPECT_EQ(nsm::position_beside(falling, 1, 1.995, -1.0), 1u); // before 1.99
+  EXPECT_EQ(nsm::position_beside(falling, 0, 1.995, -1.0), 1u); // after 2.00
+  EXPECT_EQ(nsm::position_beside(falling, 2, 1.975, -1.0), 3u); // beyond the segment's end
+}

@@ -32,6 +32,12 @@ namespace nsm
                             const std::vector<InternalResonance> &resonances,
                             const ContinuationCheckpoint         *resume = nullptr);
 
+  /// Where a point at `omega` solved from points[index] goes among `points`
+  /// (segments in the direction of continuation, `direction`): after it if
+  /// omega lies beyond it, else before it.
+  std::size_t position_beside(const std::vector<BackbonePoint> &points, std::size_t index, double omega,
+                              double direction);
+
   /// The solution at exactly `omega` on the computed branch: Newton from the
   /// interpolation of two backbone points of one segment that bracket it
   /// (each such pair in turn, pairs of main points first; only those if
