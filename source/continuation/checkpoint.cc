@@ -6,8 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <filesystem>
+#include <limits>
+#include <optional>
 #include <sstream>
 
 namespace nsm
@@ -166,6 +167,22 @@ namespace nsm
     file << out.str() << "model " << fingerprint(out.str(), points_hash) << "\nend\n";
   }
 
+  namespace
+  {
+    /// The next field of `line`: a number, or '-' for none (`what` names it
+    /// where it is missing).
+    std::optional<double> number_or_none(CheckpointReader &reader, std::istringstream &line, const std::string &what)
+    {
+      std::string field;
+      if (!(line >> field))
+        reader.damaged(what + " or '-' expected");
+      if (field == "-")
+        return std::nullopt;
+      std::istringstream value(field);
+      return reader.number(value);
+    }
+  } // namespace
+
   ContinuationCheckpoint read_checkpoint(const std::string &path, const BranchParameters &params, HarmonicBalance &hb)
   {
     CheckpointReader reader(path);
@@ -216,24 +233,10 @@ namespace nsm
         g.tongue         = reader.count(line, 1000 * max_points);
         g.above_energy_max = reader.count(line, 1000 * max_points);
         g.most_contact   = reader.number(line);
-        std::string before;
-        if (!(line >> before))
-          reader.damaged("a gap search's contact before it or '-' expected");
-        if (before == "-")
-          g.contact_before = -std::numeric_limits<double>::infinity();
-        else
-          {
-            std::istringstream value(before);
-            g.contact_before = reader.number(value);
-          }
-        std::string landed;
-        if (!(line >> landed))
-          reader.damaged("a gap search's landing or '-' expected");
-        if (landed != "-")
-          {
-            std::istringstream value(landed);
-            g.landed = reader.number(value);
-          }
+        // No contact of the mode before a gap from the range's near end.
+        g.contact_before = number_or_none(reader, line, "a gap search's contact before it")
+                             .value_or(-std::numeric_limits<double>::infinity());
+        g.landed         = number_or_none(reader, line, "a gap search's landing");
       }
     std::uint64_t points_hash = fnv1a(nullptr, 0);
     c.points                  = read_points(reader, hb, max_points, points_hash);

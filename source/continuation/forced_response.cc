@@ -384,8 +384,9 @@ namespace nsm
         const std::size_t before  = curve_.points.size();
         run_on({high_, std::vector<double>(hb_.n_unknowns(), 0.0), -continuation_.initial_step, steps_left(), true,
                 stopped.segment + 1});
-        curve_.finished = false;
-        // Its own restarts need two points of its own (the direction they leave).
+        // Its own restarts need two points of its own (the direction they
+        // leave); one reaching Omega min does not make the first trace's
+        // `finished`.
         if (curve_.points.size() >= before + 2)
           go_on_at_stalls();
         curve_.finished = false;

@@ -67,9 +67,11 @@ namespace nsm
     void check_study_directory(const std::string &directory)
     {
       const auto refuse = [&](const std::string &why) {
+        std::string files;
+        for (const std::string &f : study_files)
+          files += (files.empty() ? "" : ", ") + f;
         throw InputError("parameter 'Output/Directory' = '" + printable(directory) + "' is not allowed: " + why +
-                         "; allowed: a new or empty directory, or this study's (study.scene, study.csv, "
-                         "reference.csv, study.png, study_forced.png, plots.log, summary.txt)");
+                         "; allowed: a new or empty directory, or this study's (" + files + ")");
       };
       std::error_code       error;
       const fs::file_status status = fs::symlink_status(directory, error);

@@ -308,6 +308,21 @@ def check_curve(force, curve, main):
     return float(peak["energy"])
 
 
+def forced_run(name, sets, what):
+    """SCENE run into the folder NAME with the `--set` entries `sets`: the
+    folder, stdout and frc.csv's rows; None where it failed (the failure
+    recorded as `what`'s)."""
+    out = os.path.abspath(name)
+    shutil.rmtree(out, ignore_errors=True)
+    run = subprocess.run([EXE, SCENE, "--output", out] + [a for entry in sets for a in ("--set", entry)],
+                         capture_output=True, text=True)
+    check(run.returncode == 0, f"{what}'s run exited {run.returncode}: {run.stderr.strip()}")
+    if run.returncode != 0:
+        return None
+    with open(os.path.join(out, "frc.csv")) as f:
+        return out, run.stdout, list(csv.DictReader(f))
+
+
 def check_uniform_load():
     """The same bar driven by F cos(W t) per unit length (Forcing/Shape =
     uniform), F = 1e-5 and 4e-5: each curve over the whole range (F = 4e-5
@@ -321,16 +336,11 @@ def check_uniform_load():
     within 2 %: the M = 40 truncation, which the run's 2M check puts at a
     median 4.3 % in energy on this bar, so about 2 % in amplitude (measured
     up to 1.07 %, on the climb at 1.9925)."""
-    out = os.path.abspath("forced-uniform")
-    shutil.rmtree(out, ignore_errors=True)
-    run = subprocess.run([EXE, SCENE, "--output", out, "--set", "Forcing/Shape=uniform",
-                          "--set", "Forcing/Amplitudes=1e-5, 4e-5", "--set", "Forcing/Omegas=",
-                          "--set", "Output/Plots=false"], capture_output=True, text=True)
-    check(run.returncode == 0, f"the uniform load's run exited {run.returncode}: {run.stderr.strip()}")
-    if run.returncode != 0:
+    ran = forced_run("forced-uniform", ["Forcing/Shape=uniform", "Forcing/Amplitudes=1e-5, 4e-5", "Forcing/Omegas=",
+                                        "Output/Plots=false"], "the uniform load")
+    if not ran:
         return
-    with open(os.path.join(out, "frc.csv")) as f:
-        rows = list(csv.DictReader(f))
+    out, _, rows = ran
     main = main_branch(out)
     forces = sorted({float(r["forcing"]) for r in rows})
     check(forces == [1e-5, 4e-5], f"uniform load: curves {forces}, expected 1e-5, 4e-5")
@@ -356,17 +366,12 @@ def check_from_both_ends():
     9e-6, 1e-5 and 2e-4); together they cover [1.5, 2.2] (the first from
     1.5 to 2.038, the second from 1.985 to 2.2); continuous, and the fold
     test's verdicts as on every curve (check_stability)."""
-    out = os.path.abspath("forced-both-ends")
-    shutil.rmtree(out, ignore_errors=True)
-    run = subprocess.run([EXE, SCENE, "--output", out, "--set", "Damping/Modal ratio=0.005",
-                          "--set", "Forcing/Amplitudes=1e-4", "--set", "Forcing/Omegas=",
-                          "--set", "Forcing/Verify every=0", "--set", "Output/Backbone=false",
-                          "--set", "Output/Plots=false"], capture_output=True, text=True)
-    check(run.returncode == 0, f"the run from both ends exited {run.returncode}: {run.stderr.strip()}")
-    if run.returncode != 0:
+    ran = forced_run("forced-both-ends", ["Damping/Modal ratio=0.005", "Forcing/Amplitudes=1e-4", "Forcing/Omegas=",
+                                          "Forcing/Verify every=0", "Output/Backbone=false", "Output/Plots=false"],
+                     "the run from both ends")
+    if not ran:
         return
-    with open(os.path.join(out, "frc.csv")) as f:
-        rows = list(csv.DictReader(f))
+    _, stdout, rows = ran
     last_segment = max(rows, key=lambda r: int(r["segment"]))["segment"]
     first = next(i for i, r in enumerate(rows) if r["segment"] == last_segment)
     check(first > 0 and all(r["segment"] == last_segment for r in rows[first:]),
@@ -377,7 +382,7 @@ def check_from_both_ends():
     check(float(start["Omega"]) == 2.2 and float(start["contact_fraction"]) == 0 and start["stable"] == "1"
           and float(start["phase"]) > math.pi / 2,
           f"the second trace starts at {start['Omega']} (contact {start['contact_fraction']}, lag {start['phase']})")
-    line = next((l for l in run.stdout.split("\n") if "forced response F = 0.0001" in l), "")
+    line = next((l for l in stdout.split("\n") if "forced response F = 0.0001" in l), "")
     said = f"traced from both ends of the range, the two traces meeting at Omega {float(stopped['Omega']):.6g}"
     check(said in line, f"the Result line does not say '{said}': {line[:200]}")
     check(abs(float(reached["Omega"]) - float(stopped["Omega"])) <= 1e-3
@@ -399,7 +404,6 @@ def main():
     run = subprocess.run([EXE, SCENE, "--output", OUT], capture_output=True, text=True)
     if run.returncode != 0:
         sys.exit(f"nsm-bar {SCENE} exited {run.returncode}: {run.stderr.strip()}")
-    main_stdout = run.stdout
     with open(os.path.join(OUT, "frc.csv")) as f:
         rows = list(csv.DictReader(f))
     main = main_branch(OUT)
@@ -415,17 +419,12 @@ def main():
     with open(os.path.join(OUT, "force_response.csv")) as f:
         force_rows = list(csv.DictReader(f))
     check_force_curves(rows, force_rows)
-    light = os.path.abspath("forced-light")
-    shutil.rmtree(light, ignore_errors=True)
-    run = subprocess.run([EXE, SCENE, "--output", light, "--set", "Damping/Modal ratio=0.001",
-                          "--set", "Forcing/Amplitudes=5e-6", "--set", "Continuation/Omega min=1.85",
-                          "--set", "Continuation/Omega max=2.0", "--set", "Output/Backbone=false",
-                          "--set", "Forcing/Verify every=0",
-                          "--set", "Output/Plots=false"], capture_output=True, text=True)
-    check(run.returncode == 0, f"the light damping's run exited {run.returncode}: {run.stderr.strip()}")
-    if run.returncode == 0:
-        with open(os.path.join(light, "frc.csv")) as f:
-            light_rows = list(csv.DictReader(f))
+    light = forced_run("forced-light", ["Damping/Modal ratio=0.001", "Forcing/Amplitudes=5e-6",
+                                        "Continuation/Omega min=1.85", "Continuation/Omega max=2.0",
+                                        "Output/Backbone=false", "Forcing/Verify every=0", "Output/Plots=false"],
+                       "the light damping")
+    if light:
+        light_rows = light[2]
         check(max(float(r["contact_fraction"]) for r in light_rows) > 0, "F = 5e-6 at damping 0.001 never meets the wall")
         omegas = [float(r["Omega"]) for r in light_rows]
         check(min(omegas) == 1.85 and abs(max(omegas) - 2.0) < 1e-9,
@@ -437,7 +436,7 @@ def main():
     check(os.path.exists(os.path.join(OUT, "frc.png")), "frc.png not drawn")
     # The plots read the drive's shape (and the gap) from parameters.prm:
     # it is written before them (files written, in order).
-    written = [line.strip() for line in main_stdout.split("\n") if line.startswith("    ")]
+    written = [line.strip() for line in run.stdout.split("\n") if line.startswith("    ")]
     names = [os.path.basename(w) for w in written]
     check("parameters.prm" in names and "frc.png" in names and names.index("parameters.prm") < names.index("frc.png"),
           f"parameters.prm not written before the plots: {names}")

@@ -81,20 +81,30 @@ FORCED = SCENE.replace("subsection Output\n", "subsection Damping\n  set Modal r
     .replace("set Backbone = true", "set Backbone = false").replace("set Directory = whole", "set Directory = forced-whole")
 
 
+def whole_then_stopped(executable, name, text, what, room_pages=0):
+    """Writes `text` to NAME.prm (its Directory NAME-whole), runs it whole,
+    then again into NAME-stopped with SIGINT at its progress line `what`
+    (signal_when_blocked's `room_pages`). Returns the whole run's failure
+    ("" if it ran) and the stopped run's exit code, stdout and stderr."""
+    for d in (f"{name}-whole", f"{name}-stopped"):
+        shutil.rmtree(d, ignore_errors=True)
+    with open(f"{name}.prm", "w") as f:
+        f.write(text)
+    whole = subprocess.run([executable, f"{name}.prm"], capture_output=True, text=True, timeout=600)
+    if whole.returncode != 0:
+        return f"the {name} run exited {whole.returncode}: {whole.stderr.strip()[-300:]}", (None, "", "")
+    return "", signal_when_blocked([executable, f"{name}.prm", "--output", f"{name}-stopped"], signal.SIGINT, what,
+                                   room_pages=room_pages)
+
+
 def forced_stop(executable):
     """SIGINT while the forced stage announces its first curve (the first
     progress line of a run without the backbone): the run stops before the
     second, exits 130, says what it left out, and writes the first curve as
     an uninterrupted run does, byte for byte, and no curve in F."""
-    for d in ("forced-whole", "forced-stopped"):
-        shutil.rmtree(d, ignore_errors=True)
-    with open("forced.prm", "w") as f:
-        f.write(FORCED)
-    whole = subprocess.run([executable, "forced.prm"], capture_output=True, text=True, timeout=600)
-    if whole.returncode != 0:
-        return [f"the forced run exited {whole.returncode}: {whole.stderr.strip()[-300:]}"]
-    returncode, stdout, stderr = signal_when_blocked([executable, "forced.prm", "--output", "forced-stopped"],
-                                                     signal.SIGINT, "a forced curve")
+    failed, (returncode, stdout, stderr) = whole_then_stopped(executable, "forced", FORCED, "a forced curve")
+    if failed:
+        return [failed]
     failures = []
     if returncode != 128 + signal.SIGINT:
         failures.append(f"forced: exit {returncode}, not 130: {stderr[-300:]}")
@@ -128,15 +138,10 @@ def verification_stop(executable):
     table reading past them. The curves start at Omega min = 0 (the
     default): the static response there has no period, and is not
     integrated (its non-finite step made the whole run fail)."""
-    for d in ("verified-whole", "verified-stopped"):
-        shutil.rmtree(d, ignore_errors=True)
-    with open("verified.prm", "w") as f:
-        f.write(VERIFIED)
-    whole = subprocess.run([executable, "verified.prm"], capture_output=True, text=True, timeout=600)
-    if whole.returncode != 0:
-        return [f"the verified run exited {whole.returncode}: {whole.stderr.strip()[-300:]}"]
-    returncode, stdout, stderr = signal_when_blocked([executable, "verified.prm", "--output", "verified-stopped"],
-                                                     signal.SIGINT, "a verified point", room_pages=1)
+    failed, (returncode, stdout, stderr) = whole_then_stopped(executable, "verified", VERIFIED, "a verified point",
+                                                              room_pages=1)
+    if failed:
+        return [failed]
     failures = []
     if returncode != 128 + signal.SIGINT:
         return [f"verification: exit {returncode}, not 130: {stderr[-300:]}"]
