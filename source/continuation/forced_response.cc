@@ -36,6 +36,14 @@ namespace nsm
           hb.set_forcing(v * scale);
       }
 
+      /// Whether the system can be evaluated at v: an arclength corrector's
+      /// W may leave the band a distributed drive is summed over (measured:
+      /// W = -540 on the seed bar's uniform load at M = 80).
+      bool evaluable(const ForcedHarmonicBalance &hb, const double v) const
+      {
+        return kind != ForcedSweep::omega || hb.drives_at(v);
+      }
+
       /// dR / d(value) at x, the parameter set.
       std::vector<double> derivative(const ForcedHarmonicBalance &hb, const std::vector<double> &x) const
       {
@@ -69,6 +77,8 @@ namespace nsm
 
       bool computeF(NOX::LAPACK::Vector &f, const NOX::LAPACK::Vector &x) override
       {
+        if (!sweep_.evaluable(hb_, value_))
+          return not_a_number(f.length(), &f(0));
         sweep_.set(hb_, value_);
         hb_.evaluate(HbInterface::to_std(x), &scratch_, nullptr);
         return copy(scratch_, &f(0));
@@ -76,6 +86,8 @@ namespace nsm
 
       bool computeJacobian(NOX::LAPACK::Matrix<double> &jacobian, const NOX::LAPACK::Vector &x) override
       {
+        if (!sweep_.evaluable(hb_, value_))
+          return not_a_number(std::size_t(jacobian.numRows()) * jacobian.numCols(), &jacobian(0, 0));
         sweep_.set(hb_, value_);
         hb_.evaluate(HbInterface::to_std(x), nullptr, &scratch_);
         return copy(scratch_, &jacobian(0, 0));
@@ -83,6 +95,8 @@ namespace nsm
 
       bool compute_domega(NOX::LAPACK::Vector &result, const NOX::LAPACK::Vector &x) override
       {
+        if (!sweep_.evaluable(hb_, value_))
+          return not_a_number(result.length(), &result(0));
         sweep_.set(hb_, value_);
         return copy(sweep_.derivative(hb_, HbInterface::to_std(x)), &result(0));
       }
@@ -98,6 +112,15 @@ namespace nsm
       std::function<void(const std::vector<double> &, double)> on_step;
 
     private:
+      /// Where the system cannot be evaluated (Sweep::evaluable), NaN: the
+      /// Newton tests' finite-value test fails the step, which LOCA
+      /// shortens (a failed evaluation would end the run with an error).
+      static bool not_a_number(const std::size_t count, double *to)
+      {
+        std::fill(to, to + count, std::numeric_limits<double>::quiet_NaN());
+        return true;
+      }
+
       static bool copy(const std::vector<double> &from, double *to)
       {
         bool finite = true;
@@ -356,19 +379,30 @@ namespace nsm
         curve_.omega    = sweep_.kind == ForcedSweep::omega ? 0.0 : hb_.omega();
         curve_.finished = run_on({low_, std::vector<double>(hb_.n_unknowns(), 0.0), continuation_.initial_step,
                                   continuation_.max_steps, true, 0});
-        go_on_at_stalls();
-        if (!curve_.finished && sweep_.kind == ForcedSweep::omega && !curve_.points.empty() && steps_left() > 0)
-          trace_from_far_end();
+        // In W, the far side is traced from Omega max before any leap onto
+        // another motion: such a leap (onto the linear response past a
+        // stall below the peak) jumps over the stretch where the peak may
+        // lie, which the trace from the far end climbs to.
+        const bool from_both_ends = sweep_.kind == ForcedSweep::omega;
+        go_on_at_stalls(!from_both_ends);
+        if (!curve_.finished && from_both_ends && !curve_.points.empty() && steps_left() > 0)
+          {
+            trace_from_far_end();
+            if (curve_.from_far_end->points == 0)
+              go_on_at_stalls(true);
+          }
         return curve_;
       }
 
     private:
       /// Restarts at corners, entries into contact and leaps from the
-      /// curve's last point while every step fails there.
-      void go_on_at_stalls()
+      /// curve's last point while every step fails there; leaps onto
+      /// another motion only if `onto_other_motions`.
+      void go_on_at_stalls(const bool onto_other_motions)
       {
         while (!curve_.finished && curve_.restarts + curve_.leaps < continuation_constants::forced_restarts &&
-               curve_.points.size() >= 2 && steps_left() > 0 && (restart_at_corner() || enter_contact() || leap()))
+               curve_.points.size() >= 2 && steps_left() > 0 &&
+               (restart_at_corner() || enter_contact() || leap(onto_other_motions)))
           {}
       }
 
@@ -388,7 +422,7 @@ namespace nsm
         // leave); one reaching Omega min does not make the first trace's
         // `finished`.
         if (curve_.points.size() >= before + 2)
-          go_on_at_stalls();
+          go_on_at_stalls(true);
         curve_.finished = false;
         const unsigned int written = curve_.points.size() - before;
         if (written == 0)
@@ -681,9 +715,9 @@ namespace nsm
       /// reach) at distances doubling from Initial step up to Search reach,
       /// first in the direction of travel over the last steps, then the
       /// other way; a new segment from the first landing on the last point's
-      /// motion (within the step's guard), or failing that the first that
-      /// converges.
-      bool leap()
+      /// motion (within the step's guard), or failing that (if
+      /// `onto_other_motions`) the first that converges.
+      bool leap(const bool onto_other_motions)
       {
         const ForcedPoint &last    = curve_.points.back();
         // Over the last points of its own segment (a second trace's first
@@ -701,6 +735,7 @@ namespace nsm
         const auto any_motion = [&](const ForcedPoint &next) { return !retraces(next); };
         for (const bool same : {true, false})
           for (const double direction : {travel, -travel})
+            if (same || onto_other_motions)
             {
               const double here    = sweep_.value(last);
               double       reached = here;

@@ -92,6 +92,11 @@ namespace nsm
     return sum;
   }
 
+  bool DampedReceptance::drives_at(const double omega) const
+  {
+    return !load_ || receptance_.is_modal_sum(omega);
+  }
+
   DampedReceptance::Value DampedReceptance::modal_sum(const std::vector<double>   &weights,
                                                       const std::array<double, 2> &far,
                                                       const double                 omega) const

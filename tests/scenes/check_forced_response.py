@@ -66,6 +66,9 @@ damping 0.002, F = 1e-5, 2e-5, 4e-5) with its backbone, and checks (exit 0):
   verdicts against the integration;
 - a curve the trace from Omega min leaves at a corner is traced again from
   Omega max, and the two traces meet there (check_from_both_ends);
+- at M = 80 a corrector beyond a uniform load's modal band fails its step,
+  not the run, and a curve stalled below its resonance is traced from Omega
+  max up into contact rather than leaping over it (check_at_80_harmonics);
 - frc.png is drawn, after parameters.prm (which it reads the drive's shape
   from: a uniform load's legend says F per length).
 A planted error in the damping's sign, the drive's phase or the damped
@@ -399,6 +402,53 @@ def check_from_both_ends():
     check_stability(rows)
 
 
+def check_at_80_harmonics():
+    """M = 80, where the forced curves stall at more corners (FE_Q(10) x 20):
+    - the uniform load at damping 0.004, F = 2e-5: an arclength corrector's
+      W leaves the band over which the load's modal sum is taken (W = -540
+      measured), which fails that step, not the run: exit 0, every point
+      within the tolerance, the traces together over [1.5, 2.2], continuous;
+    - the drive at the contact end at damping 0.001, F = 1e-5 (Omega 1.85 to
+      2.05): the trace from Omega min stalls at 1.9323, below the resonance
+      (7.99e-7, contact fraction 0.096), where a leap would land on the linear
+      response and jump over the resonance; the curve is traced from Omega max
+      instead, and that trace (the last segment) meets the wall and climbs
+      above the stall's energy (measured 1.371e-6 at 1.98637, contact fraction
+      0.18), with no leap."""
+    ran = forced_run("forced-m80-uniform", ["Harmonic balance/Harmonics=80", "Forcing/Shape=uniform",
+                                            "Damping/Modal ratio=0.004", "Forcing/Amplitudes=2e-5",
+                                            "Forcing/Omegas=", "Forcing/Verify every=0", "Output/Backbone=false",
+                                            "Output/Plots=false"], "the uniform load at M = 80")
+    if ran:
+        rows = ran[2]
+        omegas = [float(r["Omega"]) for r in rows]
+        check(min(omegas) == 1.5 and abs(max(omegas) - 2.2) < 1e-9,
+              f"uniform load at M = 80: Omega from {min(omegas)} to {max(omegas)}")
+        check(all(float(r["residual"]) <= TOLERANCE for r in rows), "uniform load at M = 80: a point above the tolerance")
+        check_continuity(rows)
+    ran = forced_run("forced-m80-stall", ["Harmonic balance/Harmonics=80", "Damping/Modal ratio=0.001",
+                                          "Forcing/Amplitudes=1e-5", "Continuation/Omega min=1.85",
+                                          "Continuation/Omega max=2.05", "Forcing/Omegas=", "Forcing/Verify every=0",
+                                          "Output/Backbone=false", "Output/Plots=false"], "the stall at M = 80")
+    if not ran:
+        return
+    _, stdout, rows = ran
+    line = next((l for l in stdout.split("\n") if "forced response F = 1e-05" in l), "")
+    check("stopped before the range's end" in line and " 0 leaps past stalls" in line,
+          f"the stall at M = 80: {line[:300]}")
+    last = max(int(r["segment"]) for r in rows)
+    near = [r for r in rows if int(r["segment"]) < last]
+    far = [r for r in rows if int(r["segment"]) == last]
+    check(near and far and float(far[0]["Omega"]) == 2.05, "the stall at M = 80: no trace from Omega max")
+    if near and far:
+        stall = near[-1]
+        top = max(far, key=lambda r: float(r["energy"]))
+        check(float(stall["Omega"]) < 1.95 and float(top["contact_fraction"]) > 0
+              and float(top["energy"]) > float(stall["energy"]),
+              f"the stall at M = 80: the trace from Omega max reaches {top['energy']} (contact fraction "
+              f"{top['contact_fraction']}) at {top['Omega']}, the first stopped at {stall['energy']} at {stall['Omega']}")
+
+
 def main():
     shutil.rmtree(OUT, ignore_errors=True)
     run = subprocess.run([EXE, SCENE, "--output", OUT], capture_output=True, text=True)
@@ -433,6 +483,7 @@ def main():
         check_stability(light_rows)
     check_uniform_load()
     check_from_both_ends()
+    check_at_80_harmonics()
     check(os.path.exists(os.path.join(OUT, "frc.png")), "frc.png not drawn")
     # The plots read the drive's shape (and the gap) from parameters.prm:
     # it is written before them (files written, in order).

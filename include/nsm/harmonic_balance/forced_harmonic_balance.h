@@ -67,6 +67,9 @@ namespace nsm
     /// Evaluates gamma_d at k W, k = 0..M, once per distinct W.
     void   set_omega(double omega);
     double omega() const { return omega_; }
+    /// Whether set_omega() can evaluate the drive at W (a distributed
+    /// drive's only within the receptance's modal band).
+    bool drives_at(double omega) const { return receptance_.drives_at(omega); }
 
     /// Residual, and (if asked) the Jacobian (column-major n x n) and dR/dW
     /// (-G dv/dW: the active set's edges, where q = 0, add nothing).

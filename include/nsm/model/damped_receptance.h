@@ -65,6 +65,9 @@ namespace nsm
     /// Whether the drive is a load along the bar (not at the contact DoF,
     /// where drive() is value()).
     bool distributed_drive() const { return load_ != nullptr; }
+    /// Whether drive() can be evaluated at W: a distributed drive's modal
+    /// sum only within the receptance's modal band.
+    bool drives_at(double omega) const;
 
     /// The drive's terms in a first harmonic's energy and dissipation: with
     /// the contact force's P = p_cos - i p_sin at W, the period-mean energy
