@@ -735,8 +735,9 @@ namespace nsm
         const auto any_motion = [&](const ForcedPoint &next) { return !retraces(next); };
         for (const bool same : {true, false})
           for (const double direction : {travel, -travel})
-            if (same || onto_other_motions)
             {
+              if (!same && !onto_other_motions)
+                continue;
               const double here    = sweep_.value(last);
               double       reached = here;
               for (const ForcedPoint &p : curve_.points)

@@ -6,6 +6,9 @@
 #include <complex>
 #include <limits>
 #include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace nsm
 {
@@ -126,14 +129,24 @@ namespace nsm
       const auto unstable =
         std::count_if(curve.points.begin(), curve.points.end(), [](const ForcedPoint &p) { return !p.stable; });
       text += "; " + std::to_string(unstable) + " unstable by the fold test";
-      std::string changes;
+      // Where the verdict flips back and forth at one corner, its value is
+      // said once, with how many times.
+      std::vector<std::pair<std::string, unsigned int>> changes;
       for (std::size_t i = 1; i < curve.points.size(); ++i)
         if (curve.points[i].segment == curve.points[i - 1].segment &&
             curve.points[i].stable != curve.points[i - 1].stable)
-          changes += (changes.empty() ? std::string(", the verdict changing along the curve at ") + (in_omega ? "Omega " : "F ") :
-                                        std::string(", ")) +
-                     significant(value(curve.points[i]), 6);
-      return text + changes;
+          {
+            const std::string at = significant(value(curve.points[i]), 6);
+            if (!changes.empty() && changes.back().first == at)
+              ++changes.back().second;
+            else
+              changes.emplace_back(at, 1);
+          }
+      for (std::size_t c = 0; c < changes.size(); ++c)
+        text += (c == 0 ? std::string(", the verdict changing along the curve at ") + (in_omega ? "Omega " : "F ") :
+                          std::string(", ")) +
+                changes[c].first + (changes[c].second > 1 ? " (" + std::to_string(changes[c].second) + " times)" : "");
+      return text;
     }
   } // namespace
 

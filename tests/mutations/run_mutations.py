@@ -98,6 +98,8 @@ MUTATIONS = [
      "return kind != ForcedSweep::omega || hb.drives_at(v);", "return true;"),
     ("forced response: a leap onto another motion before the trace from the far end",
      "source/continuation/forced_response.cc", "go_on_at_stalls(!from_both_ends);", "go_on_at_stalls(true);"),
+    ("forced response: a verdict flipping at one corner named each time", "source/output/forced_response_table.cc",
+     "if (!changes.empty() && changes.back().first == at)", "if (false)"),
     ("forced response: starts may land on the curve already", "source/continuation/forced_response.cc",
      "bool retraces(const ForcedPoint &next) {", "bool retraces(const ForcedPoint &next) { return false;"),
     ("forced response: dR/dF's sign flipped", "source/harmonic_balance/forced_harmonic_balance.cc",

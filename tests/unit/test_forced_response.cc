@@ -8,6 +8,7 @@
 #include <nsm/model/discretisation.h>
 #include <nsm/model/load_modes.h>
 #include <nsm/model/shifted_factor.h>
+#include <nsm/output/forced_response_table.h>
 #include <nsm/verification/forced_time_verification.h>
 
 #include <gtest/gtest.h>
@@ -15,6 +16,8 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <string>
+#include <vector>
 
 #include "forced_helpers.h"
 
@@ -435,4 +438,29 @@ TEST(UniformDrive, LinearLimitMatchesClosedForm)
   expect_linear_response(
     linear_curve(nsm::ForcingShape::uniform, zeta), [&](double w) { return uniform_load_response(w, zeta); },
     [&](double w) { return uniform_load_energy_factor(w, zeta); });
+}
+
+TEST(ForcedSummary, AVerdictFlippingAtOneCornerIsNamedOnceWithHowManyTimes)
+{
+  // At a corner the restarts may flip the fold test's verdict back and forth
+  // at one Omega (the seed bar at M = 80, 1.93381 four times): the Result
+  // line names that Omega once, with its count, and the other changes as
+  // they come.
+  nsm::ForcedCurve curve;
+  curve.sweep    = nsm::ForcedSweep::omega;
+  curve.forcing  = 1e-5;
+  curve.finished = true;
+  const auto point = [](const double omega, const bool stable) {
+    nsm::ForcedPoint p{0, omega, 1e-5, {}, 0, stable, {}};
+    p.measures.energy = omega;
+    return p;
+  };
+  curve.points = {point(1.5, true),        point(1.9338060, true), point(1.9338061, false), point(1.9338062, true),
+                  point(1.9338063, false), point(1.9338064, true), point(1.95, false),      point(2.2, true)};
+  const std::vector<std::string> lines = nsm::forced_response_summary({curve}, nullptr);
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_NE(lines[0].find("; 3 unstable by the fold test, the verdict changing along the curve at Omega "
+                          "1.93381 (4 times), 1.95, 2.2; "),
+            std::string::npos)
+    << lines[0];
 }
