@@ -319,7 +319,10 @@ namespace nsm
         interface.on_step = [&](const std::vector<double> &x, const double value) {
           const bool skip = at_start && !start.keep_start;
           at_start        = false;
-          if (skip)
+          // The arclength corrector may carry the step before the range's end
+          // beyond it (up to 0.18 % of W measured); LOCA then writes the end
+          // itself, which is kept.
+          if (skip || value < low || value > high)
             return;
           sweep.set(hb, value);
           std::vector<double> residual;
@@ -402,7 +405,7 @@ namespace nsm
       {
         while (!curve_.finished && curve_.restarts + curve_.leaps < continuation_constants::forced_restarts &&
                curve_.points.size() >= 2 && steps_left() > 0 &&
-               (restart_at_corner() || enter_contact() || leap(onto_other_motions)))
+               (restart_at_corner() || enter_contact() || enter_at_grazing() || leap(onto_other_motions)))
           {}
       }
 
@@ -648,6 +651,55 @@ namespace nsm
                 const double away = sweep_.value(*p) >= sweep_.value(last) ? 1.0 : -1.0;
                 if (go_on({sweep_.value(*p), p->x, away * continuation_.initial_step, 1, true, last.segment},
                           [](const ForcedPoint &) { return true; }))
+                  {
+                    ++curve_.restarts;
+                    return true;
+                  }
+              }
+        return false;
+      }
+
+      /// Where a curve traced down its linear response meets the wall (a
+      /// light damping's trace from Omega max, at the grazing point above the
+      /// resonance), the contact branch it goes on on starts with short
+      /// impacts at the instant the end swings farthest, which neither a
+      /// restart (it lands back on the linear response) nor the contact
+      /// force's mean reaches: Newton at fixed W a little either side
+      /// (nearest first: Min step doubling to Initial step) from an impulse
+      /// train at that instant, of a period mean from grazing_impulse times
+      /// F_s down by tenths; the stepper goes on from the first landing in
+      /// contact that is new and within Max solution change of the last
+      /// point's motion (its contact fraction jumps from 0, beyond Max
+      /// contact change).
+      bool enter_at_grazing()
+      {
+        const ForcedPoint last = curve_.points.back();
+        if (last.measures.contact_fraction != 0 || sweep_.kind != ForcedSweep::omega)
+          return false;
+        sweep_.set(hb_, sweep_.value(last));
+        const std::vector<double> u = hb_.displacement(last.x);
+        // Off the wall the contact end moves with the drive alone, at W: its
+        // farthest swing is at the fundamental's phase.
+        const double       farthest = std::atan2(u[1], u[2]);
+        const unsigned int harmonics = (hb_.n_unknowns() - 1) / 2;
+        const auto         lands     = [&](const ForcedPoint &p) {
+          sweep_.set(hb_, sweep_.value(p));
+          return p.measures.contact_fraction > 0 && !retraces(p) &&
+                 relative_change(hb_.displacement(p.x), u) <= continuation_.max_solution_change;
+        };
+        for (double distance = continuation_.min_step; distance <= continuation_.initial_step; distance *= 2)
+          for (double mean = continuation_constants::grazing_impulse;
+               mean >= continuation_constants::grazing_impulse * 1e-4; mean /= 10)
+            for (const double direction : {1.0, -1.0})
+              {
+                // A unit impulse at tau*: mean 1, cos k and sin k 2 cos k tau* and 2 sin k tau*.
+                std::vector<double> x(hb_.n_unknowns());
+                x[0] = mean;
+                for (unsigned int k = 1; k <= harmonics; ++k)
+                  x[2 * k - 1] = 2 * mean * std::sin(k * farthest), x[2 * k] = 2 * mean * std::cos(k * farthest);
+                if (go_on({sweep_.value(last) + direction * distance, x, direction * continuation_.initial_step, 1,
+                           true, last.segment},
+                          lands))
                   {
                     ++curve_.restarts;
                     return true;

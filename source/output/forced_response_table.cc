@@ -46,6 +46,17 @@ namespace nsm
                                });
     }
 
+    /// Whether `peak` lies at an end of the curve's Omega extent: a curve
+    /// still climbing there has no peak inside its range.
+    bool at_range_end(const ForcedCurve &curve, const ForcedPoint &peak)
+    {
+      const auto [low, high] = std::minmax_element(curve.points.begin(), curve.points.end(),
+                                                   [](const ForcedPoint &a, const ForcedPoint &b) {
+                                                     return a.omega < b.omega;
+                                                   });
+      return peak.omega == low->omega || peak.omega == high->omega;
+    }
+
     /// "E / main - 1 = d (main points b apart)", or why there is none.
     std::string against_backbone(const Backbone *backbone, const double omega, const double energy)
     {
@@ -62,8 +73,9 @@ namespace nsm
   ForcedPeak forced_peak(const ForcedCurve &curve, const Backbone *backbone)
   {
     const ForcedPoint &peak = peak_point(curve);
-    ForcedPeak result{peak.omega, peak.measures.energy, peak.measures.phase, std::nullopt, std::nullopt};
-    if (backbone)
+    ForcedPeak         result{peak.omega, peak.measures.energy, peak.measures.phase, std::nullopt, std::nullopt,
+                      at_range_end(curve, peak)};
+    if (backbone && !result.at_range_end)
       if (const std::optional<MainEnergy> main = main_energy_at(*backbone, peak.omega))
         {
           result.distance = peak.measures.energy / main->energy - 1;
@@ -84,7 +96,9 @@ namespace nsm
         {
           const ForcedPoint &p = curve.points[i - 1], &q = curve.points[i];
           const double       a = p.measures.phase - M_PI / 2, b = q.measures.phase - M_PI / 2;
-          if (p.segment != q.segment || a * b > 0 || a == b)
+          // A lag that wraps from pi to -pi (the drive's antiphase, far
+          // above a resonance) changes sign about pi/2 without crossing it.
+          if (p.segment != q.segment || a * b > 0 || a == b || std::abs(b - a) > M_PI)
             continue;
           const double t = a / (a - b);
           found.emplace_back(p.omega + t * (q.omega - p.omega),
@@ -296,12 +310,16 @@ namespace nsm
                                                    const Backbone                 *backbone)
   {
     return curve_lines(curves, [backbone](const ForcedCurve &curve, const ForcedPoint &peak) {
-      std::string line = extent(curve) + (curve.whole() ? "; peak (most energy)" : "; the most energy of the points traced") +
+      const bool  end  = at_range_end(curve, peak);
+      std::string line = extent(curve) +
+                         (!curve.whole() ? "; the most energy of the points traced" :
+                          end            ? "; no peak inside the range: the most energy at its end" :
+                                           "; peak (most energy)") +
                          " at Omega " + significant(peak.omega, 6) +
                          ": energy " + significant(peak.measures.energy, 4) + ", phase lag " +
                          significant(peak.measures.phase, 3) + " (pi/2 at phase resonance), contact fraction " +
                          significant(peak.measures.contact_fraction, 2) +
-                         against_backbone(backbone, peak.omega, peak.measures.energy);
+                         (end ? std::string() : against_backbone(backbone, peak.omega, peak.measures.energy));
       for (const auto &[omega, energy] : quadratures(curve))
         line += "; phase lag pi/2 at Omega " + significant(omega, 6) + ", energy " + significant(energy, 4) +
                 against_backbone(backbone, omega, energy);

@@ -213,11 +213,15 @@ namespace nsm
           note.precision(2);
           const std::string curves = text_cell(row, column_of(table, "forced_curves")),
                             whole  = text_cell(row, column_of(table, "forced_curves_whole"));
-          note << " " << row_name(table, row, varying) << ": " << text_cell(row, column_of(table, "forced_peaks_compared"))
-               << " of " << curves << " peaks compared"
+          const std::string compared = text_cell(row, column_of(table, "forced_peaks_compared"));
+          const int         others   = std::stoi(whole) - std::stoi(compared);
+          note << " " << row_name(table, row, varying) << ": " << compared << " of " << curves << " peaks compared"
                << (whole != curves ? " (" + std::to_string(std::stoi(curves) - std::stoi(whole)) +
                                        " not traced whole: a stretch neither trace reached may hold the peak)" :
-                                     std::string());
+                                     std::string())
+               << (others > 0 ? " (" + std::to_string(others) +
+                                  " with the most energy at the range's end or no main point on both sides)" :
+                                std::string());
           if (text_cell(row, distance).empty())
             note << ": no peak to compare";
           else

@@ -131,6 +131,8 @@ namespace nsm
             continue;
           ++m.forced_curves_whole;
           const ForcedPeak peak = forced_peak(curve, &backbone);
+          if (peak.at_range_end)
+            continue;
           m.forced_peak_phase_min = std::min(m.forced_peak_phase_min.value_or(peak.phase), peak.phase);
           m.forced_peak_phase_max = std::max(m.forced_peak_phase_max.value_or(peak.phase), peak.phase);
           if (peak.distance)

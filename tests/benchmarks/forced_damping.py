@@ -53,7 +53,8 @@ def quadratures(curve):
     found = []
     for p, q in zip(curve, curve[1:]):
         a, b = float(p["phase"]) - math.pi / 2, float(q["phase"]) - math.pi / 2
-        if p["segment"] == q["segment"] and a * b <= 0 and a != b:
+        # A lag wrapping from pi to -pi changes sign about pi/2 without crossing it.
+        if p["segment"] == q["segment"] and a * b <= 0 and a != b and abs(b - a) <= math.pi:
             t = a / (a - b)
             found.append((float(p["Omega"]) + t * (float(q["Omega"]) - float(p["Omega"])),
                           float(p["energy"]) + t * (float(q["energy"]) - float(p["energy"]))))
@@ -86,6 +87,11 @@ def main():
                        f"{omegas[-1]:.4f}")
             peak = max(curve, key=lambda r: float(r["energy"]))
             w, e = float(peak["Omega"]), float(peak["energy"])
+            if w in (min(omegas), max(omegas)):
+                # Still climbing at the range's end: no peak inside it.
+                print(f"| {zeta} | {force:g} | {reached} | {w:.4f} (the range's end) | - | - | "
+                      f"{float(peak['phase']):.2f} | none |", flush=True)
+                continue
             crossings = "; ".join(f"{q:.4f}, {against(main, q, qe)}" for q, qe in quadratures(curve)) or "none"
             print(f"| {zeta} | {force:g} | {reached} | {w:.4f} | {against(main, w, e)} | "
                   f"{at_same_energy(main, w, e)} | {float(peak['phase']):.2f} | {crossings} |", flush=True)

@@ -66,6 +66,10 @@ damping 0.002, F = 1e-5, 2e-5, 4e-5) with its backbone, and checks (exit 0):
   verdicts against the integration;
 - a curve the trace from Omega min leaves at a corner is traced again from
   Omega max, and the two traces meet there (check_from_both_ends);
+- no point lies beyond the range's ends, in Omega or in F
+  (check_within_the_range);
+- a curve traced down its linear response from Omega max enters the
+  contact branch where it meets the wall (check_entry_at_grazing);
 - at M = 80 a corrector beyond a uniform load's modal band fails its step,
   not the run, and a curve stalled below its resonance is traced from Omega
   max up into contact rather than leaping over it (check_at_80_harmonics);
@@ -402,6 +406,70 @@ def check_from_both_ends():
     check_stability(rows)
 
 
+def check_within_the_range():
+    """Omega from 1.9 to 1.95 (the curves end on their climb, before the
+    peaks) with the curves in F at 1.97 and 2.0 up to Amplitude max =
+    1.5e-4: the arclength corrector may carry the step before a range's end
+    beyond it (1.95003, 1.95001 and 1.95011 and F = 1.50008e-4 measured),
+    and no such point is written: every Omega lies in [1.9, 1.95], every F
+    at most 1.5e-4, each curve ends at its range's end, and the Result
+    lines' extents say so."""
+    ran = forced_run("forced-range", ["Continuation/Omega min=1.9", "Continuation/Omega max=1.95",
+                                      "Forcing/Verify every=0", "Output/Backbone=false", "Output/Plots=false"],
+                     "the short range")
+    if not ran:
+        return
+    out, stdout, rows = ran
+    omegas = [float(r["Omega"]) for r in rows]
+    check(min(omegas) >= 1.9 and max(omegas) <= 1.95, f"the short range: Omega from {min(omegas)} to {max(omegas)}")
+    for force in sorted({r["forcing"] for r in rows}):
+        check(max(float(r["Omega"]) for r in rows if r["forcing"] == force) == 1.95,
+              f"the short range: F = {force} does not end at 1.95")
+    check(stdout.count("points on [1.9, 1.95]") == 3, "the short range: the Result lines' extents are not [1.9, 1.95]")
+    with open(os.path.join(out, "force_response.csv")) as f:
+        forces = [float(r["forcing"]) for r in csv.DictReader(f)]
+    check(max(forces) <= 1.5e-4, f"the short range: F up to {max(forces)} beyond Amplitude max")
+
+
+def check_entry_at_grazing():
+    """Damping 0.001, F = 2e-5 at the contact end: the trace from Omega min
+    stops at 1.9924; traced again from Omega max, the curve comes down its
+    linear response to the wall above the resonance (the contact end's
+    amplitude reaches g0 = 1e-3: within 1 %, measured 6e-6; the linear
+    response's amplitude moves 2 W dW / |w1^2 - W^2|, 7 % per Initial step
+    there), enters the contact branch there (its first contact point within
+    Initial step of W, measured 2e-6: an impulse train at the farthest
+    swing), climbs the unstable branch above the first trace's end and
+    meets it: the Result line names the meeting, and the curve is
+    continuous with the fold test's verdicts as on every curve."""
+    ran = forced_run("forced-grazing", ["Damping/Modal ratio=0.001", "Forcing/Amplitudes=2e-5", "Forcing/Omegas=",
+                                        "Forcing/Verify every=0", "Output/Backbone=false", "Output/Plots=false"],
+                     "the entry at grazing")
+    if not ran:
+        return
+    _, stdout, rows = ran
+    line = next((l for l in stdout.split("\n") if "forced response F = 2e-05" in l), "")
+    check("traced from both ends of the range, the two traces meeting at Omega " in line,
+          f"the entry at grazing: the traces do not meet: {line[:300]}")
+    last = max(int(r["segment"]) for r in rows)
+    near = [r for r in rows if int(r["segment"]) < last]
+    far = [r for r in rows if int(r["segment"]) == last]
+    entry = next((i for i, r in enumerate(far) if float(r["contact_fraction"]) > 0), None)
+    check(near and entry, "the entry at grazing: the trace from Omega max never meets the wall")
+    if not near or not entry:
+        return
+    grazing, first = far[entry - 1], far[entry]
+    check(abs(float(grazing["tip_amplitude"]) / 1e-3 - 1) <= 0.01
+          and abs(float(first["Omega"]) - float(grazing["Omega"])) <= 1e-3,
+          f"the entry at grazing: the linear response ends at {grazing['Omega']} (amplitude "
+          f"{grazing['tip_amplitude']}) and the contact branch starts at {first['Omega']}")
+    check(max(float(r["energy"]) for r in far[entry:]) > float(near[-1]["energy"])
+          and any(r["stable"] == "0" for r in far[entry:]),
+          "the entry at grazing: the trace from Omega max does not climb its unstable branch past the first's end")
+    check_continuity(rows)
+    check_stability(rows)
+
+
 def check_at_80_harmonics():
     """M = 80, where the forced curves stall at more corners (FE_Q(10) x 20):
     - the uniform load at damping 0.004, F = 2e-5: an arclength corrector's
@@ -483,6 +551,8 @@ def main():
         check_stability(light_rows)
     check_uniform_load()
     check_from_both_ends()
+    check_within_the_range()
+    check_entry_at_grazing()
     check_at_80_harmonics()
     check(os.path.exists(os.path.join(OUT, "frc.png")), "frc.png not drawn")
     # The plots read the drive's shape (and the gap) from parameters.prm:

@@ -464,3 +464,52 @@ TEST(ForcedSummary, AVerdictFlippingAtOneCornerIsNamedOnceWithHowManyTimes)
             std::string::npos)
     << lines[0];
 }
+
+TEST(ForcedSummary, APhaseLagWrappingFromPiToMinusPiIsNoPhaseResonance)
+{
+  // The lag lies in (-pi, pi]: far above a resonance it wraps from near pi to
+  // near -pi, which changes the sign of lag - pi/2 without crossing pi/2
+  // (the uniform load above the second mode, 4.0932 to 4.1032); a real
+  // crossing, 1.5 to 1.7, is named, interpolated in Omega.
+  nsm::ForcedCurve curve;
+  curve.sweep    = nsm::ForcedSweep::omega;
+  curve.forcing  = 1e-5;
+  curve.finished = true;
+  const auto point = [](const double omega, const double phase) {
+    nsm::ForcedPoint p{0, omega, 1e-5, {}, 0, true, {}};
+    p.measures.energy = 1;
+    p.measures.phase  = phase;
+    return p;
+  };
+  curve.points = {point(1.0, 1.5), point(2.0, 1.5 + 0.2), point(4.0932, 3.14154), point(4.1032, -3.14157)};
+  const std::vector<std::string> lines = nsm::forced_response_summary({curve}, nullptr);
+  ASSERT_EQ(lines.size(), 1u);
+  const std::string &line = lines[0];
+  EXPECT_NE(line.find("phase lag pi/2 at Omega 1.35398"), std::string::npos) << line;
+  EXPECT_EQ(line.find("phase lag pi/2 at Omega 4.09"), std::string::npos) << line;
+}
+
+TEST(ForcedSummary, ACurveStillClimbingAtItsRangesEndHasNoPeakInsideIt)
+{
+  // The seed bar at damping 0.01 and F = 2e-4 climbs up to Omega max = 2.2:
+  // its most energy there is no peak, and is not compared with the backbone
+  // (the study leaves it out); one that turns down before the end peaks.
+  nsm::ForcedCurve curve;
+  curve.sweep    = nsm::ForcedSweep::omega;
+  curve.forcing  = 2e-4;
+  curve.finished = true;
+  const auto point = [](const double omega, const double energy) {
+    nsm::ForcedPoint p{0, omega, 2e-4, {}, 0, true, {}};
+    p.measures.energy = energy;
+    return p;
+  };
+  curve.points = {point(1.5, 1e-9), point(2.0, 1e-6), point(2.2, 1e-5)};
+  EXPECT_TRUE(nsm::forced_peak(curve, nullptr).at_range_end);
+  std::vector<std::string> lines = nsm::forced_response_summary({curve}, nullptr);
+  EXPECT_NE(lines[0].find("; no peak inside the range: the most energy at its end at Omega 2.2: "), std::string::npos)
+    << lines[0];
+  curve.points.back().measures.energy = 1e-7;
+  EXPECT_FALSE(nsm::forced_peak(curve, nullptr).at_range_end);
+  lines = nsm::forced_response_summary({curve}, nullptr);
+  EXPECT_NE(lines[0].find("; peak (most energy) at Omega 2: "), std::string::npos) << lines[0];
+}

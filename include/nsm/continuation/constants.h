@@ -51,6 +51,12 @@ namespace nsm::continuation_constants
   /// of it): a thousandth of the force that closes the gap keeps the
   /// landing within the step's guard of a grazing point.
   constexpr double contact_share = 1e-3;
+  /// The largest impulse (its period mean over F_s) of the contact force by
+  /// which a forced curve that has come down its linear response to the wall
+  /// enters the contact branch there (then tenths of it, to 1e-4 of it):
+  /// the landings measured on four curves (prm/forced.prm, M = 40 and 80)
+  /// came from 1e-4 and 1e-5, 2e-6 to 1.6e-5 of W from the grazing point.
+  constexpr double grazing_impulse = 0.1;
   /// The spectral criterion looks at harmonics from this one up: k = 0 is
   /// the static part, 1 the fundamental, and 2 has no oscillating neighbour
   /// of its parity below it.

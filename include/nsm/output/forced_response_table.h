@@ -20,8 +20,12 @@ namespace nsm
   {
     double omega, energy, phase;
     /// E / E_main - 1, and the spacing of the main points it is read
-    /// between; empty without a backbone or a main point on both sides.
+    /// between; empty without a backbone or a main point on both sides, or
+    /// at_range_end.
     std::optional<double> distance, bracket;
+    /// The most energy lies at an end of the curve's Omega extent: the
+    /// curve is still climbing there, and has no peak inside its range.
+    bool at_range_end = false;
   };
 
   /// The peak of a curve with points; `backbone` may be null.
