@@ -388,7 +388,7 @@ namespace nsm
         // lie, which the trace from the far end climbs to.
         const bool from_both_ends = sweep_.kind == ForcedSweep::omega;
         go_on_at_stalls(!from_both_ends);
-        if (!curve_.finished && from_both_ends && !curve_.points.empty() && steps_left() > 0)
+        if (!curve_.finished && from_both_ends && steps_left() > 0)
           {
             trace_from_far_end();
             if (curve_.from_far_end->points == 0)
@@ -417,6 +417,23 @@ namespace nsm
       /// (a corner neither stepper turns: the two traces meet).
       void trace_from_far_end()
       {
+        // Where the start at the near end converged nowhere (its linear
+        // response's guess far from the curve, next to the resonance), the
+        // trace from the far end is the whole curve if it reaches the near end.
+        if (curve_.points.empty())
+          {
+            run_on({high_, std::vector<double>(hb_.n_unknowns(), 0.0), -continuation_.initial_step, steps_left(),
+                    true, 0});
+            if (curve_.points.size() >= 2)
+              go_on_at_stalls(true);
+            const bool reached_near_end = !curve_.points.empty() && curve_.points.back().omega == low_;
+            curve_.finished             = false;
+            curve_.from_far_end         = ForcedCurve::FromFarEnd{
+              std::numeric_limits<double>::quiet_NaN(),
+              curve_.points.empty() ? std::numeric_limits<double>::quiet_NaN() : curve_.points.back().omega,
+              unsigned(curve_.points.size()), reached_near_end};
+            return;
+          }
         const ForcedPoint stopped = curve_.points.back();
         const std::size_t before  = curve_.points.size();
         run_on({high_, std::vector<double>(hb_.n_unknowns(), 0.0), -continuation_.initial_step, steps_left(), true,

@@ -118,7 +118,11 @@ namespace nsm
                                                    });
       std::string text = std::to_string(curve.points.size()) + " points on " + (in_omega ? "" : "F in ") + "[" +
                          significant(value(*low), 6) + ", " + significant(value(*high), 6) + "]";
-      if (const auto &far = curve.from_far_end; !curve.finished && far && far->met)
+      if (const auto &far = curve.from_far_end; far && std::isnan(far->stopped))
+        text += std::string(", the start at Omega min converged nowhere: traced from Omega max = ") +
+                significant(value(*high), 6) +
+                (far->met ? " down to Omega min" : " until it stopped at Omega " + significant(far->reached, 6));
+      else if (!curve.finished && far && far->met)
         text += ", traced from both ends of the range, the two traces meeting at Omega " +
                 significant(far->stopped, 6) + ", a corner neither goes on from (" + counted(far->points, "point") +
                 " from Omega max = " + significant(value(*high), 6) + ", segments of their own)";

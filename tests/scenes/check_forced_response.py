@@ -68,6 +68,8 @@ damping 0.002, F = 1e-5, 2e-5, 4e-5) with its backbone, and checks (exit 0):
   Omega max, and the two traces meet there (check_from_both_ends);
 - no point lies beyond the range's ends, in Omega or in F
   (check_within_the_range);
+- a curve whose start at Omega min converges nowhere is traced from Omega
+  max (check_start_next_to_the_resonance);
 - a curve traced down its linear response from Omega max enters the
   contact branch where it meets the wall (check_entry_at_grazing);
 - at M = 80 a corrector beyond a uniform load's modal band fails its step,
@@ -431,6 +433,32 @@ def check_within_the_range():
     check(max(forces) <= 1.5e-4, f"the short range: F up to {max(forces)} beyond Amplitude max")
 
 
+def check_start_next_to_the_resonance():
+    """The uniform load from Omega 1.92 to 2.03, F = 1e-5 and 4e-5 per unit
+    length: at 1.92, next to w1 = 1.919, the linear response's guess lies far
+    from the curve and Newton converges nowhere there; each curve is traced
+    from Omega max instead, down to Omega min (the Result line says so), off
+    the wall at 2.03 and in contact at 1.92, every point within the
+    tolerance, continuous."""
+    ran = forced_run("forced-near-resonance", ["Continuation/Omega min=1.92", "Continuation/Omega max=2.03",
+                                               "Forcing/Shape=uniform", "Forcing/Amplitudes=1e-5, 4e-5",
+                                               "Forcing/Omegas=", "Forcing/Verify every=0", "Output/Backbone=false",
+                                               "Output/Plots=false"], "the start next to the resonance")
+    if not ran:
+        return
+    _, stdout, rows = ran
+    for force in ("1e-05", "4e-05"):
+        line = next((l for l in stdout.split("\n") if f"forced response F = {force}:" in l), "")
+        check("the start at Omega min converged nowhere: traced from Omega max = 2.03 down to Omega min" in line,
+              f"the start next to the resonance, F = {force}: {line[:200]}")
+        curve = [r for r in rows if math.isclose(float(r["forcing"]), float(force), rel_tol=1e-12)]
+        check(len(curve) > 10 and float(curve[0]["Omega"]) == 2.03 and float(curve[-1]["Omega"]) == 1.92
+              and float(curve[0]["contact_fraction"]) == 0 and float(curve[-1]["contact_fraction"]) > 0
+              and all(float(r["residual"]) <= TOLERANCE for r in curve),
+              f"the start next to the resonance, F = {force}: {len(curve)} points")
+    check_continuity(rows)
+
+
 def check_entry_at_grazing():
     """Damping 0.001, F = 2e-5 at the contact end: the trace from Omega min
     stops at 1.9924; traced again from Omega max, the curve comes down its
@@ -552,6 +580,7 @@ def main():
     check_uniform_load()
     check_from_both_ends()
     check_within_the_range()
+    check_start_next_to_the_resonance()
     check_entry_at_grazing()
     check_at_80_harmonics()
     check(os.path.exists(os.path.join(OUT, "frc.png")), "frc.png not drawn")

@@ -62,12 +62,13 @@ namespace nsm
     /// segment of its own (trace_forced_curve).
     struct FromFarEnd
     {
-      double       stopped;  ///< the swept parameter where the trace from the near end stopped
+      double       stopped;  ///< the swept parameter where the trace from the near end stopped (NaN: its start converged nowhere)
       double       reached;  ///< where the trace from the far end stopped (NaN: it wrote no point)
       unsigned int points;   ///< the points it wrote
       /// The two traces' last points lie within Initial step of each
       /// other and within the step's guard: the curve is whole, and both
-      /// stalled where it turns at a corner.
+      /// stalled where it turns at a corner; with no trace from the near
+      /// end, the trace from the far end reached it.
       bool met;
     };
     std::optional<FromFarEnd> from_far_end;
