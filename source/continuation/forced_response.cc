@@ -390,8 +390,10 @@ namespace nsm
         go_on_at_stalls(!from_both_ends);
         if (!curve_.finished && from_both_ends && steps_left() > 0)
           {
+            // Where that trace wrote nothing, the first trace's stall has had
+            // every other start: a leap onto another motion is left.
             trace_from_far_end();
-            if (curve_.from_far_end->points == 0)
+            if (curve_.from_far_end->points == 0 && curve_.points.size() >= 2 && leap(true))
               go_on_at_stalls(true);
           }
         return curve_;
@@ -422,11 +424,11 @@ namespace nsm
         // trace from the far end is the whole curve if it reaches the near end.
         if (curve_.points.empty())
           {
-            run_on({high_, std::vector<double>(hb_.n_unknowns(), 0.0), -continuation_.initial_step, steps_left(),
-                    true, 0});
-            if (curve_.points.size() >= 2)
-              go_on_at_stalls(true);
-            const bool reached_near_end = !curve_.points.empty() && curve_.points.back().omega == low_;
+            curve_.finished = run_on({high_, std::vector<double>(hb_.n_unknowns(), 0.0),
+                                      -continuation_.initial_step, steps_left(), true, 0});
+            go_on_at_stalls(true);
+            // LOCA writes the range's end itself where a run reaches it.
+            const bool reached_near_end = curve_.finished && curve_.points.back().omega == low_;
             curve_.finished             = false;
             curve_.from_far_end         = ForcedCurve::FromFarEnd{
               std::numeric_limits<double>::quiet_NaN(),
@@ -682,12 +684,12 @@ namespace nsm
       /// impacts at the instant the end swings farthest, which neither a
       /// restart (it lands back on the linear response) nor the contact
       /// force's mean reaches: Newton at fixed W a little either side
-      /// (nearest first: Min step doubling to Initial step) from an impulse
-      /// train at that instant, of a period mean from grazing_impulse times
-      /// F_s down by tenths; the stepper goes on from the first landing in
-      /// contact that is new and within Max solution change of the last
-      /// point's motion (its contact fraction jumps from 0, beyond Max
-      /// contact change).
+      /// (nearest first: from Min step, doubling while within Initial step)
+      /// from an impulse train at that instant, of a period mean from
+      /// grazing_impulse times F_s down by tenths; the stepper goes on from
+      /// the first landing in contact that is new and within Max solution
+      /// change of the last point's motion (its contact fraction jumps from
+      /// 0, beyond Max contact change).
       bool enter_at_grazing()
       {
         const ForcedPoint last = curve_.points.back();

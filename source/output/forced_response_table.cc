@@ -314,7 +314,7 @@ namespace nsm
                                                    const Backbone                 *backbone)
   {
     return curve_lines(curves, [backbone](const ForcedCurve &curve, const ForcedPoint &peak) {
-      const bool  end  = at_range_end(curve, peak);
+      const bool  end  = curve.whole() && at_range_end(curve, peak);
       std::string line = extent(curve) +
                          (!curve.whole() ? "; the most energy of the points traced" :
                           end            ? "; no peak inside the range: the most energy at its end" :

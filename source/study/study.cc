@@ -23,6 +23,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <vector>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -214,14 +215,16 @@ namespace nsm
           const std::string curves = text_cell(row, column_of(table, "forced_curves")),
                             whole  = text_cell(row, column_of(table, "forced_curves_whole"));
           const std::string compared = text_cell(row, column_of(table, "forced_peaks_compared"));
+          const int         open     = std::stoi(curves) - std::stoi(whole);
           const int         others   = std::stoi(whole) - std::stoi(compared);
-          note << " " << row_name(table, row, varying) << ": " << compared << " of " << curves << " peaks compared"
-               << (whole != curves ? " (" + std::to_string(std::stoi(curves) - std::stoi(whole)) +
-                                       " not traced whole: a stretch neither trace reached may hold the peak)" :
-                                     std::string())
-               << (others > 0 ? " (" + std::to_string(others) +
-                                  " with the most energy at the range's end or no main point on both sides)" :
-                                std::string());
+          std::vector<std::string> why;
+          if (open > 0)
+            why.push_back(std::to_string(open) + " not traced whole: a stretch neither trace reached may hold the peak");
+          if (others > 0)
+            why.push_back(std::to_string(others) + " with the most energy at the range's end or no main point on both sides");
+          note << " " << row_name(table, row, varying) << ": " << compared << " of " << curves << " peaks compared";
+          for (std::size_t w = 0; w < why.size(); ++w)
+            note << (w == 0 ? " (" : "; ") << why[w] << (w + 1 == why.size() ? ")" : "");
           if (text_cell(row, distance).empty())
             note << ": no peak to compare";
           else

@@ -58,8 +58,8 @@ namespace nsm
     /// turning at a corner onto the branch it came on.
     unsigned int retraced = 0;
     /// Where the trace from the range's near end stopped before its far
-    /// end: the curve traced again from the far end towards it, as a
-    /// segment of its own (trace_forced_curve).
+    /// end (or its start converged nowhere): the curve traced again from
+    /// the far end towards it, as a segment of its own (trace_forced_curve).
     struct FromFarEnd
     {
       double       stopped;  ///< the swept parameter where the trace from the near end stopped (NaN: its start converged nowhere)
@@ -84,13 +84,17 @@ namespace nsm
   /// step bounds and Max steps (points kept over all the stepper's runs;
   /// points a run retraced and dropped free their budget). Where
   /// every step fails, the stepper starts again from the last point in the
-  /// direction that leaves the point before it behind; where none does, it
-  /// leaps ahead in W, as the backbone's continuation does at a stall.
-  /// Where nothing goes on before omega_max, the curve is traced again, as
-  /// a new segment, from the linear response's guess at omega_max down
-  /// (with the same restarts and leaps): a light damping's curve can stop
-  /// at a fold the stepper does not turn, and its side above the resonance
-  /// is then traced from there.
+  /// direction that leaves the point before it behind, enters the contact
+  /// branch where the linear response meets the wall, or leaps ahead in W
+  /// onto the last point's motion, as the backbone's continuation does at a
+  /// stall. Where nothing goes on before omega_max, the curve is traced
+  /// again, as a new segment, from the linear response's guess at omega_max
+  /// down (with the same restarts, and leaps onto any motion): a light
+  /// damping's curve can stop at a fold the stepper does not turn, and its
+  /// side above the resonance is then traced from there; only where that
+  /// trace writes nothing does the first leap onto another motion. Where
+  /// the start at omega_min converges nowhere, the trace from omega_max is
+  /// the curve (segment 0).
   ForcedCurve trace_forced_curve(ForcedHarmonicBalance           &hb,
                                  const HarmonicBalanceParameters &harmonic_balance,
                                  const ContinuationParameters    &continuation,
