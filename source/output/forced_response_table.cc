@@ -46,15 +46,28 @@ namespace nsm
                                });
     }
 
-    /// Whether `peak` lies at an end of the curve's Omega extent: a curve
-    /// still climbing there has no peak inside its range.
-    bool at_range_end(const ForcedCurve &curve, const ForcedPoint &peak)
+    /// The swept parameter's value at p: W, or F on a curve in F.
+    double swept_value(const ForcedCurve &curve, const ForcedPoint &p)
+    {
+      return curve.sweep == ForcedSweep::omega ? p.omega : p.forcing;
+    }
+
+    /// The points of least and most swept value of a curve with points.
+    std::pair<const ForcedPoint &, const ForcedPoint &> extent_ends(const ForcedCurve &curve)
     {
       const auto [low, high] = std::minmax_element(curve.points.begin(), curve.points.end(),
-                                                   [](const ForcedPoint &a, const ForcedPoint &b) {
-                                                     return a.omega < b.omega;
+                                                   [&](const ForcedPoint &a, const ForcedPoint &b) {
+                                                     return swept_value(curve, a) < swept_value(curve, b);
                                                    });
-      return peak.omega == low->omega || peak.omega == high->omega;
+      return {*low, *high};
+    }
+
+    /// Whether `peak` lies at an end of the curve's extent: a curve still
+    /// climbing there has no peak inside its range.
+    bool at_range_end(const ForcedCurve &curve, const ForcedPoint &peak)
+    {
+      const auto [low, high] = extent_ends(curve);
+      return swept_value(curve, peak) == swept_value(curve, low) || swept_value(curve, peak) == swept_value(curve, high);
     }
 
     /// "E / main - 1 = d (main points b apart)", or why there is none.
@@ -111,28 +124,26 @@ namespace nsm
     std::string extent(const ForcedCurve &curve)
     {
       const bool in_omega = curve.sweep == ForcedSweep::omega;
-      const auto value    = [&](const ForcedPoint &p) { return in_omega ? p.omega : p.forcing; };
-      const auto [low, high] = std::minmax_element(curve.points.begin(), curve.points.end(),
-                                                   [&](const ForcedPoint &a, const ForcedPoint &b) {
-                                                     return value(a) < value(b);
-                                                   });
+      const auto value    = [&](const ForcedPoint &p) { return swept_value(curve, p); };
+      const auto [lowest, highest] = extent_ends(curve);
+      const double low = value(lowest), high = value(highest);
       std::string text = std::to_string(curve.points.size()) + " points on " + (in_omega ? "" : "F in ") + "[" +
-                         significant(value(*low), 6) + ", " + significant(value(*high), 6) + "]";
+                         significant(low, 6) + ", " + significant(high, 6) + "]";
       if (const auto &far = curve.from_far_end; far && std::isnan(far->stopped))
         text += std::string(", the start at Omega min converged nowhere: traced from Omega max = ") +
-                significant(value(*high), 6) +
+                significant(high, 6) +
                 (far->met ? " down to Omega min" : " until it stopped at Omega " + significant(far->reached, 6));
       else if (!curve.finished && far && far->met)
         text += ", traced from both ends of the range, the two traces meeting at Omega " +
                 significant(far->stopped, 6) + ", a corner neither goes on from (" + counted(far->points, "point") +
-                " from Omega max = " + significant(value(*high), 6) + ", segments of their own)";
+                " from Omega max = " + significant(high, 6) + ", segments of their own)";
       else if (!curve.finished && far && far->points == 0)
         text += ", stopped before the range's end at Omega " + significant(far->stopped, 6) +
                 " (no step, restart or leap went on); traced again from Omega max, no point converged there";
       else if (!curve.finished && far)
         text += ", stopped before the range's end at Omega " + significant(far->stopped, 6) +
                 " (no step, restart or leap went on), then traced again from Omega max = " +
-                significant(value(*high), 6) + " until it stopped at Omega " + significant(far->reached, 6) + " (" +
+                significant(high, 6) + " until it stopped at Omega " + significant(far->reached, 6) + " (" +
                 counted(far->points, "point") + ", segments of their own)";
       else if (!curve.finished)
         text += ", stopped before the range's end (no step, restart or leap went on)";

@@ -333,6 +333,19 @@ def forced_run(name, sets, what):
         return out, run.stdout, list(csv.DictReader(f))
 
 
+# A forced run's curves in W alone: no curves in F, no verification in time,
+# no backbone, no plots.
+CURVES_IN_W = ["Forcing/Omegas=", "Forcing/Verify every=0", "Output/Backbone=false", "Output/Plots=false"]
+
+
+def traces(rows):
+    """A curve's rows split into those before its last segment (the trace
+    from Omega min, with its restarts' segments) and the last segment's (the
+    trace from Omega max)."""
+    last = max(int(r["segment"]) for r in rows)
+    return [r for r in rows if int(r["segment"]) < last], [r for r in rows if int(r["segment"]) == last]
+
+
 def check_uniform_load():
     """The same bar driven by F cos(W t) per unit length (Forcing/Shape =
     uniform), F = 1e-5 and 4e-5: each curve over the whole range (F = 4e-5
@@ -376,19 +389,16 @@ def check_from_both_ends():
     9e-6, 1e-5 and 2e-4); together they cover [1.5, 2.2] (the first from
     1.5 to 2.038, the second from 1.985 to 2.2); continuous, and the fold
     test's verdicts as on every curve (check_stability)."""
-    ran = forced_run("forced-both-ends", ["Damping/Modal ratio=0.005", "Forcing/Amplitudes=1e-4", "Forcing/Omegas=",
-                                          "Forcing/Verify every=0", "Output/Backbone=false", "Output/Plots=false"],
+    ran = forced_run("forced-both-ends", ["Damping/Modal ratio=0.005", "Forcing/Amplitudes=1e-4"] + CURVES_IN_W,
                      "the run from both ends")
     if not ran:
         return
     _, stdout, rows = ran
-    last_segment = max(rows, key=lambda r: int(r["segment"]))["segment"]
-    first = next(i for i, r in enumerate(rows) if r["segment"] == last_segment)
-    check(first > 0 and all(r["segment"] == last_segment for r in rows[first:]),
-          "the trace from Omega max is not the last segment")
-    if first == 0:
+    near_rows, far_rows = traces(rows)
+    check(near_rows and rows[len(near_rows):] == far_rows, "the trace from Omega max is not the last segment")
+    if not near_rows:
         return
-    start, stopped, reached = rows[first], rows[first - 1], rows[-1]
+    start, stopped, reached = far_rows[0], near_rows[-1], rows[-1]
     check(float(start["Omega"]) == 2.2 and float(start["contact_fraction"]) == 0 and start["stable"] == "1"
           and float(start["phase"]) > math.pi / 2,
           f"the second trace starts at {start['Omega']} (contact {start['contact_fraction']}, lag {start['phase']})")
@@ -401,8 +411,8 @@ def check_from_both_ends():
           and abs(float(reached["contact_fraction"]) - float(stopped["contact_fraction"])) <= 0.01,
           f"the traces end apart: {[stopped[k] for k in ('Omega', 'energy', 'phase', 'contact_fraction')]} and "
           f"{[reached[k] for k in ('Omega', 'energy', 'phase', 'contact_fraction')]}")
-    near = [float(r["Omega"]) for r in rows[:first]]
-    far = [float(r["Omega"]) for r in rows[first:]]
+    near = [float(r["Omega"]) for r in near_rows]
+    far = [float(r["Omega"]) for r in far_rows]
     check(min(near) == 1.5 and max(far) == 2.2 and min(far) <= max(near),
           f"the traces cover [{min(near)}, {max(near)}] and [{min(far)}, {max(far)}], not [1.5, 2.2]")
     check_continuity(rows)
@@ -442,9 +452,8 @@ def check_start_next_to_the_resonance():
     the wall at 2.03 and in contact at 1.92, every point within the
     tolerance, continuous."""
     ran = forced_run("forced-near-resonance", ["Continuation/Omega min=1.92", "Continuation/Omega max=2.03",
-                                               "Forcing/Shape=uniform", "Forcing/Amplitudes=1e-5, 4e-5",
-                                               "Forcing/Omegas=", "Forcing/Verify every=0", "Output/Backbone=false",
-                                               "Output/Plots=false"], "the start next to the resonance")
+                                               "Forcing/Shape=uniform", "Forcing/Amplitudes=1e-5, 4e-5"]
+                     + CURVES_IN_W, "the start next to the resonance")
     if not ran:
         return
     _, stdout, rows = ran
@@ -471,8 +480,7 @@ def check_entry_at_grazing():
     swing), climbs the unstable branch above the first trace's end and
     meets it: the Result line names the meeting, and the curve is
     continuous with the fold test's verdicts as on every curve."""
-    ran = forced_run("forced-grazing", ["Damping/Modal ratio=0.001", "Forcing/Amplitudes=2e-5", "Forcing/Omegas=",
-                                        "Forcing/Verify every=0", "Output/Backbone=false", "Output/Plots=false"],
+    ran = forced_run("forced-grazing", ["Damping/Modal ratio=0.001", "Forcing/Amplitudes=2e-5"] + CURVES_IN_W,
                      "the entry at grazing")
     if not ran:
         return
@@ -480,9 +488,7 @@ def check_entry_at_grazing():
     line = next((l for l in stdout.split("\n") if "forced response F = 2e-05" in l), "")
     check("traced from both ends of the range, the two traces meeting at Omega " in line,
           f"the entry at grazing: the traces do not meet: {line[:300]}")
-    last = max(int(r["segment"]) for r in rows)
-    near = [r for r in rows if int(r["segment"]) < last]
-    far = [r for r in rows if int(r["segment"]) == last]
+    near, far = traces(rows)
     entry = next((i for i, r in enumerate(far) if float(r["contact_fraction"]) > 0), None)
     check(near and entry, "the entry at grazing: the trace from Omega max never meets the wall")
     if not near or not entry:
@@ -513,9 +519,8 @@ def check_at_80_harmonics():
       above the stall's energy (measured 1.371e-6 at 1.98637, contact fraction
       0.18), with no leap."""
     ran = forced_run("forced-m80-uniform", ["Harmonic balance/Harmonics=80", "Forcing/Shape=uniform",
-                                            "Damping/Modal ratio=0.004", "Forcing/Amplitudes=2e-5",
-                                            "Forcing/Omegas=", "Forcing/Verify every=0", "Output/Backbone=false",
-                                            "Output/Plots=false"], "the uniform load at M = 80")
+                                            "Damping/Modal ratio=0.004", "Forcing/Amplitudes=2e-5"] + CURVES_IN_W,
+                     "the uniform load at M = 80")
     if ran:
         rows = ran[2]
         omegas = [float(r["Omega"]) for r in rows]
@@ -525,17 +530,14 @@ def check_at_80_harmonics():
         check_continuity(rows)
     ran = forced_run("forced-m80-stall", ["Harmonic balance/Harmonics=80", "Damping/Modal ratio=0.001",
                                           "Forcing/Amplitudes=1e-5", "Continuation/Omega min=1.85",
-                                          "Continuation/Omega max=2.05", "Forcing/Omegas=", "Forcing/Verify every=0",
-                                          "Output/Backbone=false", "Output/Plots=false"], "the stall at M = 80")
+                                          "Continuation/Omega max=2.05"] + CURVES_IN_W, "the stall at M = 80")
     if not ran:
         return
     _, stdout, rows = ran
     line = next((l for l in stdout.split("\n") if "forced response F = 1e-05" in l), "")
     check("stopped before the range's end" in line and not re.search(r"\b[1-9][0-9]* leaps? past stalls", line),
           f"the stall at M = 80: {line[:300]}")
-    last = max(int(r["segment"]) for r in rows)
-    near = [r for r in rows if int(r["segment"]) < last]
-    far = [r for r in rows if int(r["segment"]) == last]
+    near, far = traces(rows)
     check(near and far and float(far[0]["Omega"]) == 2.05, "the stall at M = 80: no trace from Omega max")
     if near and far:
         stall = near[-1]

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <complex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "forced_helpers.h"
@@ -440,24 +441,52 @@ TEST(UniformDrive, LinearLimitMatchesClosedForm)
     [&](double w) { return uniform_load_energy_factor(w, zeta); });
 }
 
+namespace
+{
+  /// A point of a Result line's test curve: its Omega, energy, phase lag and
+  /// the fold test's verdict.
+  struct SummaryPoint
+  {
+    double omega, energy, phase;
+    bool   stable;
+  };
+
+  /// A curve in W of amplitude `forcing`, traced whole through `points`
+  /// (one segment).
+  nsm::ForcedCurve whole_curve(const double forcing, const std::vector<SummaryPoint> &points)
+  {
+    nsm::ForcedCurve curve;
+    curve.sweep    = nsm::ForcedSweep::omega;
+    curve.forcing  = forcing;
+    curve.finished = true;
+    for (const SummaryPoint &q : points)
+      {
+        nsm::ForcedPoint p{0, q.omega, forcing, {}, 0, q.stable, {}};
+        p.measures.energy = q.energy;
+        p.measures.phase  = q.phase;
+        curve.points.push_back(p);
+      }
+    return curve;
+  }
+} // namespace
+
 TEST(ForcedSummary, AVerdictFlippingAtOneCornerIsNamedOnceWithHowManyTimes)
 {
   // At a corner the restarts may flip the fold test's verdict back and forth
   // at one Omega (the seed bar at M = 80, 1.93381 four times): the Result
   // line names that Omega once, with its count, and the other changes as
   // they come.
-  nsm::ForcedCurve curve;
-  curve.sweep    = nsm::ForcedSweep::omega;
-  curve.forcing  = 1e-5;
-  curve.finished = true;
-  const auto point = [](const double omega, const bool stable) {
-    nsm::ForcedPoint p{0, omega, 1e-5, {}, 0, stable, {}};
-    p.measures.energy = omega;
-    return p;
-  };
-  curve.points = {point(1.5, true),        point(1.9338060, true), point(1.9338061, false), point(1.9338062, true),
-                  point(1.9338063, false), point(1.9338064, true), point(1.95, false),      point(2.2, true)};
-  const std::vector<std::string> lines = nsm::forced_response_summary({curve}, nullptr);
+  std::vector<SummaryPoint> points;
+  for (const auto &[omega, stable] : std::vector<std::pair<double, bool>>{{1.5, true},
+                                                                          {1.9338060, true},
+                                                                          {1.9338061, false},
+                                                                          {1.9338062, true},
+                                                                          {1.9338063, false},
+                                                                          {1.9338064, true},
+                                                                          {1.95, false},
+                                                                          {2.2, true}})
+    points.push_back({omega, omega, 0, stable});
+  const std::vector<std::string> lines = nsm::forced_response_summary({whole_curve(1e-5, points)}, nullptr);
   ASSERT_EQ(lines.size(), 1u);
   EXPECT_NE(lines[0].find("; 3 unstable by the fold test, the verdict changing along the curve at Omega "
                           "1.93381 (4 times), 1.95, 2.2; "),
@@ -471,17 +500,8 @@ TEST(ForcedSummary, APhaseLagWrappingFromPiToMinusPiIsNoPhaseResonance)
   // near -pi, which changes the sign of lag - pi/2 without crossing pi/2
   // (the uniform load above the second mode, 4.0932 to 4.1032); a real
   // crossing, 1.5 to 1.7, is named, interpolated in Omega.
-  nsm::ForcedCurve curve;
-  curve.sweep    = nsm::ForcedSweep::omega;
-  curve.forcing  = 1e-5;
-  curve.finished = true;
-  const auto point = [](const double omega, const double phase) {
-    nsm::ForcedPoint p{0, omega, 1e-5, {}, 0, true, {}};
-    p.measures.energy = 1;
-    p.measures.phase  = phase;
-    return p;
-  };
-  curve.points = {point(1.0, 1.5), point(2.0, 1.5 + 0.2), point(4.0932, 3.14154), point(4.1032, -3.14157)};
+  const nsm::ForcedCurve curve = whole_curve(
+    1e-5, {{1.0, 1, 1.5, true}, {2.0, 1, 1.5 + 0.2, true}, {4.0932, 1, 3.14154, true}, {4.1032, 1, -3.14157, true}});
   const std::vector<std::string> lines = nsm::forced_response_summary({curve}, nullptr);
   ASSERT_EQ(lines.size(), 1u);
   const std::string &line = lines[0];
@@ -494,16 +514,7 @@ TEST(ForcedSummary, ACurveStillClimbingAtItsRangesEndHasNoPeakInsideIt)
   // The seed bar at damping 0.01 and F = 2e-4 climbs up to Omega max = 2.2:
   // its most energy there is no peak, and is not compared with the backbone
   // (the study leaves it out); one that turns down before the end peaks.
-  nsm::ForcedCurve curve;
-  curve.sweep    = nsm::ForcedSweep::omega;
-  curve.forcing  = 2e-4;
-  curve.finished = true;
-  const auto point = [](const double omega, const double energy) {
-    nsm::ForcedPoint p{0, omega, 2e-4, {}, 0, true, {}};
-    p.measures.energy = energy;
-    return p;
-  };
-  curve.points = {point(1.5, 1e-9), point(2.0, 1e-6), point(2.2, 1e-5)};
+  nsm::ForcedCurve curve = whole_curve(2e-4, {{1.5, 1e-9, 0, true}, {2.0, 1e-6, 0, true}, {2.2, 1e-5, 0, true}});
   EXPECT_TRUE(nsm::forced_peak(curve, nullptr).at_range_end);
   std::vector<std::string> lines = nsm::forced_response_summary({curve}, nullptr);
   EXPECT_NE(lines[0].find("; no peak inside the range: the most energy at its end at Omega 2.2: "), std::string::npos)
