@@ -514,6 +514,8 @@ namespace nsm
           lines.push_back(counted(fewer, "row") + " measured fewer than Study/Spectrum modes = " +
                           std::to_string(base_.study.spectrum_modes) +
                           ": their meshes have fewer modes (spectrum_modes_measured)");
+        for (std::string &line : off_branch_notes())
+          lines.push_back(std::move(line));
         if (ranks_ > 1 && ran_ > 0)
           lines.push_back("timings: the rows ran on " + counted(ranks_, "rank") + " sharing " +
                           counted(std::thread::hardware_concurrency(), "core") +
@@ -543,6 +545,33 @@ namespace nsm
           const std::string &cell = text_cell(row, c);
           return !cell.empty() && std::stoul(cell) < base_.study.spectrum_modes;
         });
+      }
+
+      /// Per Backbone omega that lies on no main-branch segment in some
+      /// finished rows (a tongue or a gap of the branch there), a line saying
+      /// why its energy_at_ column is empty in those rows.
+      std::vector<std::string> off_branch_notes() const
+      {
+        std::vector<std::string> lines;
+        const std::size_t        status = column_of(table_, "status");
+        for (std::size_t c = 0; c < table_.columns.size(); ++c)
+          if (table_.columns[c].rfind("energy_at_", 0) == 0)
+            {
+              std::size_t ok = 0, empty = 0;
+              for (const std::vector<CsvCell> &row : table_.rows)
+                if (text_cell(row, status) == "ok")
+                  {
+                    ++ok;
+                    empty += text_cell(row, c).empty();
+                  }
+              if (empty > 0)
+                lines.push_back("Study/Backbone omegas: W = " + table_.columns[c].substr(10) +
+                                " lies on no main-branch segment (a tongue, a gap, or past where the backbone ended) in " +
+                                std::to_string(empty) + " of " + counted(ok, "finished row") + ": its " +
+                                table_.columns[c] + " column is empty there; an Omega inside a main segment of "
+                                "backbone.csv gives a value");
+            }
+        return lines;
       }
 
       /// The rows of study.csv, earlier runs' too, whose continuation ended

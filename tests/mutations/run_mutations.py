@@ -209,6 +209,8 @@ MUTATIONS = [
     ("exact taper reference with the end force's sign flipped", "source/model/exact_references.cc",
      "const double f   = -sign * young_ * section_L_ * k;",
      "const double f   = sign * young_ * section_L_ * k;"),
+    ("study: a Backbone omega off the main branch counted empty where it has a value",
+     "source/study/study.cc", "empty += text_cell(row, c).empty();", "empty += !text_cell(row, c).empty();"),
     ("study deals each round's row to every rank", "source/study/study.cc",
      "const std::size_t mine = round + rank_;",
      "const std::size_t mine = round;"),

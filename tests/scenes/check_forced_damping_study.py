@@ -25,6 +25,11 @@ Runs the study (the seed bar's three forced curves at modal damping 0.01,
   0.001), and only whole curves' peaks are compared;
 - study_forced.png is drawn, and summary.txt holds the command and the
   summary as printed;
+- a Backbone omega on a tongue between main segments (1.95: backbone.csv of
+  a single run has no two consecutive main points of one segment around it)
+  leaves its energy_at_ column empty and the summary names it; one inside a
+  main segment (1.96) gives the main energy there (within 1e-3 of the line
+  between backbone.csv's main points around it) and no such line;
 - a rerun into the study's folder takes its four rows from it and leaves
   study.csv as it was; one with a shorter sweep (0.002 alone) keeps the
   three rows it leaves out, and says so.
@@ -71,6 +76,41 @@ def single_run(ratio, amplitudes):
         if reference:
             distances.append(abs(float(peak["energy"]) / reference - 1))
     return max(distances)
+
+
+def inside_main_segment(directory, omega):
+    """The energy on the line between two consecutive main points of one
+    segment of backbone.csv around omega; None where there are none."""
+    with open(os.path.join(directory, "backbone.csv")) as f:
+        points = list(csv.DictReader(f))
+    for p, q in zip(points, points[1:]):
+        w0, w1 = sorted((float(p["Omega"]), float(q["Omega"])))
+        if p["segment"] == q["segment"] and p["branch"] == q["branch"] == "main" and w0 <= omega <= w1 and w0 < w1:
+            e0, e1 = (float(r["energy"]) for r in sorted((p, q), key=lambda r: float(r["Omega"])))
+            return e0 + (e1 - e0) * (omega - w0) / (w1 - w0)
+    return None
+
+
+def check_backbone_omegas():
+    """A Backbone omega on a tongue gets an empty column and a summary line
+    naming it; one inside a main segment gets its main energy."""
+    out = os.path.abspath("study-omegas")
+    shutil.rmtree(out, ignore_errors=True)
+    run = subprocess.run([EXE, STUDY, "--output", out, "--set", "Study/Damping ratios=0.01",
+                          "--set", "Study/Backbone omegas=1.95, 1.96", "--set", "Output/Plots=false"],
+                         capture_output=True, text=True)
+    if run.returncode != 0:
+        sys.exit(f"nsm-bar {STUDY} (Backbone omegas) exited {run.returncode}: {run.stderr.strip()}")
+    with open(os.path.join(out, "study.csv")) as f:
+        row = next(csv.DictReader(f))
+    for omega in (1.95, 1.96):
+        reference = inside_main_segment(os.path.abspath("single-0.002"), omega)
+        cell, named = row[f"energy_at_{omega}"], f"W = {omega} lies on no main-branch segment" in run.stdout
+        check((reference is None) == (omega == 1.95), f"{omega}: backbone.csv's main segments around it {reference}")
+        check((cell == "") == (reference is None) and named == (reference is None),
+              f"{omega}: energy_at_ '{cell}', named in the summary {named}, the main segment's energy {reference}")
+        if reference is not None and cell:
+            check(abs(float(cell) / reference - 1) <= 1e-3, f"{omega}: energy_at_ {cell}, backbone.csv {reference}")
 
 
 def main():
@@ -120,6 +160,7 @@ def main():
               f"stops {stopped_curves}")
         check(int(r["forced_peaks_compared"]) <= int(r["forced_curves_whole"]),
               f"{ratio}: {r['forced_peaks_compared']} peaks compared of {r['forced_curves_whole']} whole curves")
+    check_backbone_omegas()
     check(os.path.exists(os.path.join(out, "study_forced.png")), "study_forced.png not drawn")
     # The study's record: summary.txt opens with the command and holds the
     # summary as printed.
