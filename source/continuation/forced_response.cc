@@ -11,6 +11,7 @@
 #include <Teuchos_oblackholestream.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -60,14 +61,22 @@ namespace nsm
       }
     };
 
-    /// The forced system at the parameter LOCA sets, with its derivative.
+    /// The forced system at the parameter LOCA sets, with its derivative,
+    /// evaluated only within `reach` of the parameter (the range and a
+    /// Max step beyond each end): no point beyond is written, and a
+    /// corrector that wanders farther (to W = -9 and 2.3 on the seed bar,
+    /// where every harmonic beyond the receptance's band costs a direct
+    /// solve) diverges. Newton's finite-value test then fails the step at
+    /// once instead of after its iterations, and LOCA shortens it.
     class ForcedInterface : public LocaSystem
     {
     public:
-      ForcedInterface(ForcedHarmonicBalance &hb, const Sweep &sweep, const std::vector<double> &guess)
+      ForcedInterface(ForcedHarmonicBalance &hb, const Sweep &sweep, const std::vector<double> &guess,
+                      const std::array<double, 2> &reach)
         : hb_(hb)
         , sweep_(sweep)
         , guess_(hb.n_unknowns())
+        , reach_(reach)
       {
         for (unsigned int i = 0; i < guess.size(); ++i)
           guess_(i) = guess[i];
@@ -77,7 +86,7 @@ namespace nsm
 
       bool computeF(NOX::LAPACK::Vector &f, const NOX::LAPACK::Vector &x) override
       {
-        if (!sweep_.evaluable(hb_, value_))
+        if (!evaluable())
           return not_a_number(f.length(), &f(0));
         sweep_.set(hb_, value_);
         hb_.evaluate(HbInterface::to_std(x), &scratch_, nullptr);
@@ -86,7 +95,7 @@ namespace nsm
 
       bool computeJacobian(NOX::LAPACK::Matrix<double> &jacobian, const NOX::LAPACK::Vector &x) override
       {
-        if (!sweep_.evaluable(hb_, value_))
+        if (!evaluable())
           return not_a_number(std::size_t(jacobian.numRows()) * jacobian.numCols(), &jacobian(0, 0));
         sweep_.set(hb_, value_);
         hb_.evaluate(HbInterface::to_std(x), nullptr, &scratch_);
@@ -95,7 +104,7 @@ namespace nsm
 
       bool compute_domega(NOX::LAPACK::Vector &result, const NOX::LAPACK::Vector &x) override
       {
-        if (!sweep_.evaluable(hb_, value_))
+        if (!evaluable())
           return not_a_number(result.length(), &result(0));
         sweep_.set(hb_, value_);
         return copy(sweep_.derivative(hb_, HbInterface::to_std(x)), &result(0));
@@ -112,7 +121,9 @@ namespace nsm
       std::function<void(const std::vector<double> &, double)> on_step;
 
     private:
-      /// Where the system cannot be evaluated (Sweep::evaluable), NaN: the
+      bool evaluable() const { return value_ >= reach_[0] && value_ <= reach_[1] && sweep_.evaluable(hb_, value_); }
+
+      /// Where the system is not evaluated (evaluable()), NaN: the
       /// Newton tests' finite-value test fails the step, which LOCA
       /// shortens (a failed evaluation would end the run with an error).
       static bool not_a_number(const std::size_t count, double *to)
@@ -132,6 +143,7 @@ namespace nsm
       ForcedHarmonicBalance &hb_;
       const Sweep           &sweep_;
       NOX::LAPACK::Vector    guess_;
+      std::array<double, 2>  reach_;
       double                 value_ = 0;
       std::vector<double>    scratch_;
     };
@@ -310,7 +322,7 @@ namespace nsm
         last = last_point(hb, sweep, start.value, start.x);
       bool       finished      = false;
       {
-        ForcedInterface interface(hb, sweep, start.x);
+        ForcedInterface interface(hb, sweep, start.x, {{low - continuation.max_step, high + continuation.max_step}});
         auto            group = Teuchos::rcp(new DenseLuGroup(data, interface));
         LOCA::ParameterVector parameters;
         parameters.addParameter("Omega", start.value);

@@ -188,15 +188,25 @@ namespace nsm
     double       low = (best - 1.0) * spacing, high = (best + 1.0) * spacing;
     const double ratio = (std::sqrt(5.0) - 1) / 2;
     double       c = high - ratio * (high - low), d = low + ratio * (high - low);
+    double       size_c = size(c), size_d = size(d);
+    // Each step keeps one inner point and its size, and evaluates one new.
     for (unsigned int step = 0; step < refinement_steps; ++step)
-      {
-        if (size(c) > size(d))
-          high = d;
-        else
-          low = c;
-        c = high - ratio * (high - low);
-        d = low + ratio * (high - low);
-      }
+      if (size_c > size_d)
+        {
+          high   = d;
+          d      = c;
+          size_d = size_c;
+          c      = high - ratio * (high - low);
+          size_c = size(c);
+        }
+      else
+        {
+          low    = c;
+          c      = d;
+          size_c = size_d;
+          d      = low + ratio * (high - low);
+          size_d = size(d);
+        }
     return std::max(std::abs(samples[best]), size((low + high) / 2));
   }
 

@@ -33,7 +33,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 # re-wrapping the code it plants into keeps the mutation.
 MUTATIONS = [
     ("forced response: the damping's sign flipped", "source/model/damped_receptance.cc",
-     "b = damping[j] * omega;", "b = -damping[j] * omega;"),
+     "r = residues[j], a = eigenvalues[j] - sigma, b = damping[j] * omega;",
+     "r = residues[j], a = eigenvalues[j] - sigma, b = -damping[j] * omega;"),
     ("forced response: the drive as a sine", "source/harmonic_balance/forced_harmonic_balance.cc",
      "u[2] += f * h.real();\n    u[1] -= f * h.imag();", "u[1] += f * h.real();\n    u[2] += f * h.imag();"),
     ("uniform load: the cross weights' sign flipped", "source/model/load_modes.cc",
@@ -41,7 +42,7 @@ MUTATIONS = [
     ("uniform load: the self weights as b_j, not b_j^2", "source/model/load_modes.cc",
      "result.self.push_back(b * b);", "result.self.push_back(std::abs(b));"),
     ("uniform load: the far modes' first order left out", "source/model/damped_receptance.cc",
-     "std::complex<double> gamma = far[0] + far[1] * sigma,", "std::complex<double> gamma = far[0] + 0 * far[1] * sigma,"),
+     "{far[0] + far[1] * omega * omega,", "{far[0] + 0 * far[1] * omega * omega,"),
     ("uniform load: the drive's cross term in the energy left out", "source/harmonic_balance/forced_harmonic_balance.cc",
      "m.energy += 0.25 * (cross * energy.cross + f * f * energy.self);", "m.energy += 0.25 * (f * f * energy.self);"),
     ("uniform load: the drive's own share of its power left out", "source/harmonic_balance/forced_harmonic_balance.cc",
