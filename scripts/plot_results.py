@@ -353,7 +353,8 @@ def frc_plot(directory):
     per_length = drive_per_length(directory)
     curve_plot(directory, figure, top, bottom, "frc", fixed="forcing", along="Omega",
                label="F per length" if per_length else "F", xlabel="Omega (rad/s)",
-               title="Forced response: frequency-response curves over the backbone" +
+               title="Forced response: frequency-response curves" +
+               (" over the backbone" if os.path.exists(backbone_path) else " (no backbone.csv in this folder)") +
                (" (drive per unit length along the bar)" if per_length else ""))
 
 

@@ -201,7 +201,11 @@ namespace nsm
       BranchParameters branch() const { return BranchParameters(scene_); }
 
       /// The run follows the branch: for the backbone or for fields.
-      bool traces_branch() const { return scene_.output.backbone || scene_.output.fields(); }
+      bool traces_branch() const { return (scene_.output.backbone || scene_.output.fields()) && !backbone_failed_; }
+
+      /// Whether the backbone's continuation failed beside forced curves
+      /// (harmonic_balance_beside_forcing).
+      bool backbone_failed() const { return backbone_failed_; }
 
       /// The run uses the Omega range: for the branch or the forced curves.
       bool resolves_range() const { return traces_branch() || scene_.forcing.enabled(); }
@@ -248,6 +252,25 @@ namespace nsm
             !why.empty())
           throw InputError(why);
         report_.result = backbone_result(backbone(), *bar_, scene_.contact, scene_.continuation);
+      }
+
+      /// The backbone of a scene that also drives the bar: a numerical
+      /// failure of its continuation (a grazing start that converges nowhere)
+      /// is recorded, the run exits 3 after writing the rest, and the forced
+      /// curves, which do not need it, are traced without it.
+      void harmonic_balance_beside_forcing()
+      {
+        try
+          {
+            harmonic_balance();
+          }
+        catch (const NumericalError &e)
+          {
+            backbone_failed_ = true;
+            report_.failure += (report_.failure.empty() ? "" : "; ") +
+                               std::string("the backbone (backbone.csv, its checks and fields; the forced curves "
+                                           "are traced without it): ") + e.what();
+          }
       }
 
       /// Writes the continuation's checkpoint and the points verified and refined so far
@@ -799,6 +822,7 @@ namespace nsm
       std::unique_ptr<SpaceReference> space_;     ///< the band check's model (Output/Error estimate)
       bool cut_short_ = false; ///< a stop signal ended a stage before its last point
       std::string                     forced_left_out_; ///< the forced work a stop signal left out
+      bool                            backbone_failed_ = false;
       std::vector<PeriodicField>      fields_;
       CheckpointCompanions            companions_; ///< of the checkpoint resumed from
     };
@@ -917,8 +941,11 @@ namespace nsm
     const bool estimates = scene.output.backbone && scene.output.error_estimate;
     if (estimates)
       run.set_up_band_check();
-    if (needs_backbone)
+    if (needs_backbone && needs_forced)
+      run.harmonic_balance_beside_forcing();
+    else if (needs_backbone)
       run.harmonic_balance();
+    const bool has_backbone = needs_backbone && !run.backbone_failed();
     // A stop asked for (SIGINT, SIGTERM) ends the continuation, the
     // verification or the refinement at its next point (the fields at the
     // end of their stage); the stages after it are left out, and what was
@@ -932,16 +959,16 @@ namespace nsm
       else
         work();
     };
-    stage(estimates, "error estimate", [&] { run.estimate_errors(); });
-    stage(scene.output.verify_in_time, "verification in time", [&] { run.verify_in_time(); });
-    stage(scene.output.refine_in_time, "refinement in time", [&] { run.refine_in_time(); });
-    stage(scene.output.bar_amplitude, "bar amplitude", [&] { run.bar_amplitudes(); });
-    if (scene.output.backbone)
+    stage(estimates && has_backbone, "error estimate", [&] { run.estimate_errors(); });
+    stage(scene.output.verify_in_time && has_backbone, "verification in time", [&] { run.verify_in_time(); });
+    stage(scene.output.refine_in_time && has_backbone, "refinement in time", [&] { run.refine_in_time(); });
+    stage(scene.output.bar_amplitude && has_backbone, "bar amplitude", [&] { run.bar_amplitudes(); });
+    if (scene.output.backbone && has_backbone)
       run.backbone_tables();
     stage(needs_forced, "forced response", [&] { run.forced_response(); });
     if (!run.forced_left_out().empty())
       skipped.push_back(run.forced_left_out());
-    stage(needs_fields, "fields", [&] { run.fields(); });
+    stage(needs_fields && has_backbone, "fields", [&] { run.fields(); });
     run.write(output.staging());
     write_parameters(scene, output, report);
     // The plots are an output like the others, drawn also after a stop: a

@@ -212,6 +212,8 @@ MUTATIONS = [
      "const double f   = sign * young_ * section_L_ * k;"),
     ("study: a Backbone omega off the main branch counted empty where it has a value",
      "source/study/study.cc", "empty += text_cell(row, c).empty();", "empty += !text_cell(row, c).empty();"),
+    ("a backbone's failure beside forced curves ends the run", "source/app/pipeline.cc",
+     "run.harmonic_balance_beside_forcing();", "run.harmonic_balance();"),
     ("study deals each round's row to every rank", "source/study/study.cc",
      "const std::size_t mine = round + rank_;",
      "const std::size_t mine = round;"),

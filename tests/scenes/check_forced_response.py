@@ -75,6 +75,9 @@ damping 0.002, F = 1e-5, 2e-5, 4e-5) with its backbone, and checks (exit 0):
 - at M = 80 a corrector beyond a uniform load's modal band fails its step,
   not the run, and a curve stalled below its resonance is traced from Omega
   max up into contact rather than leaping over it (check_at_80_harmonics);
+- where the backbone's grazing start fails (a stiff compliant wall at M =
+  80), the forced curve is traced all the same, as without a backbone, and
+  the run exits 3 naming the backbone (check_backbone_failure_beside_forcing);
 - frc.png is drawn, after parameters.prm (which it reads the drive's shape
   from: a uniform load's legend says F per length).
 A planted error in the damping's sign, the drive's phase or the damped
@@ -548,6 +551,38 @@ def check_at_80_harmonics():
               f"{top['contact_fraction']}) at {top['Omega']}, the first stopped at {stall['energy']} at {stall['Omega']}")
 
 
+def check_backbone_failure_beside_forcing():
+    """A stiff compliant wall (stiffness 100, 110 times the bar's end
+    stiffness) at M = 80: the backbone's grazing start converges nowhere
+    within Search reach. The run still traces the forced curve, exits 3
+    naming the backbone's failure in one line, writes no backbone.csv, and
+    its frc.csv is byte for byte the one of the same scene with Output/Backbone
+    = false (the curves do not need the backbone); the Result line compares
+    no peak with a backbone."""
+    wall = ["Contact/Wall=compliant", "Contact/Wall stiffness=100", "Harmonic balance/Harmonics=80",
+            "Forcing/Amplitudes=2e-5"]
+    out = os.path.abspath("forced-backbone-fails")
+    shutil.rmtree(out, ignore_errors=True)
+    sets = wall + [e for e in CURVES_IN_W if e != "Output/Backbone=false"]
+    run = subprocess.run([EXE, SCENE, "--output", out] + [a for entry in sets for a in ("--set", entry)],
+                         capture_output=True, text=True)
+    errors = [line for line in run.stderr.strip().split("\n") if "numerical failure" in line]
+    check(run.returncode == 3 and len(errors) == 1 and "the backbone" in errors[0] and "Search reach" in errors[0],
+          f"the backbone's failure beside forcing: exit {run.returncode}, stderr {run.stderr.strip()[-300:]}")
+    check(not os.path.exists(os.path.join(out, "backbone.csv")), "the failed backbone wrote backbone.csv")
+    check("not written: the backbone" in run.stdout and "against the backbone" not in run.stdout,
+          "the failed backbone's summary: " + run.stdout[-600:])
+    alone = forced_run("forced-without-backbone", wall + CURVES_IN_W, "the stiff wall without a backbone")
+    if alone and os.path.exists(os.path.join(out, "frc.csv")):
+        with open(os.path.join(out, "frc.csv"), "rb") as a, open(os.path.join(alone[0], "frc.csv"), "rb") as b:
+            first, second = a.read(), b.read()
+        lines = first.count(b"\n")
+        check(first == second and lines > 100,
+              f"frc.csv beside the failed backbone ({lines} lines) differs from the one without it")
+    else:
+        check(False, "the failed backbone's run wrote no frc.csv")
+
+
 def main():
     shutil.rmtree(OUT, ignore_errors=True)
     run = subprocess.run([EXE, SCENE, "--output", OUT], capture_output=True, text=True)
@@ -586,6 +621,7 @@ def main():
     check_start_next_to_the_resonance()
     check_entry_at_grazing()
     check_at_80_harmonics()
+    check_backbone_failure_beside_forcing()
     check(os.path.exists(os.path.join(OUT, "frc.png")), "frc.png not drawn")
     # The plots read the drive's shape (and the gap) from parameters.prm:
     # it is written before them (files written, in order).
