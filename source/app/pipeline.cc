@@ -268,8 +268,8 @@ namespace nsm
           {
             backbone_failed_ = true;
             report_.failure += (report_.failure.empty() ? "" : "; ") +
-                               std::string("the backbone (backbone.csv, its checks and fields; the forced curves "
-                                           "are traced without it): ") + e.what();
+                               std::string("the backbone (its points, checks, tables and fields; the forced "
+                                           "curves are traced without it): ") + e.what();
           }
       }
 
@@ -518,6 +518,11 @@ namespace nsm
                        std::to_string(curves.back().points.size()) + " points";
               });
             }
+          // A curve asked for that has no point is a failure: the run
+          // writes the rest and exits 3, naming it.
+          for (const ForcedCurve &curve : curves)
+            if (curve.points.empty())
+              report_.failure += (report_.failure.empty() ? "" : "; ") + curve_name(curve) + ": " + no_point(curve);
           const ForcedVerifications verifications = verify_forced_curves(forced, curves);
           if (!curves.empty())
             tables_.push_back(forced_response_table(curves, verifications));
@@ -533,6 +538,9 @@ namespace nsm
           for (std::string &line : forced_response_summary(curves, traces_branch() ? &backbone() : nullptr))
             report_.result.push_back(std::move(line));
           std::vector<ForcedCurve> force_curves = force_response(forced);
+          for (const ForcedCurve &curve : force_curves)
+            if (curve.points.empty())
+              report_.failure += (report_.failure.empty() ? "" : "; ") + curve_name(curve) + ": " + no_point(curve);
           if (!force_curves.empty())
             tables_.push_back(forced_response_table(force_curves, {}, "force_response.csv"));
           for (std::string &line : force_response_summary(force_curves))

@@ -408,6 +408,7 @@ namespace nsm
             if (curve_.from_far_end->points == 0 && curve_.points.size() >= 2 && leap(true))
               go_on_at_stalls(true);
           }
+        curve_.out_of_steps = !curve_.whole() && steps_left() == 0;
         return curve_;
       }
 

@@ -113,6 +113,12 @@ namespace nsm
           // above a resonance) changes sign about pi/2 without crossing it.
           if (p.segment != q.segment || a * b > 0 || a == b || std::abs(b - a) > M_PI)
             continue;
+          // On the linear response a lag that falls through pi/2 as W rises
+          // is an anti-resonance (the contact end's amplitude at its least,
+          // between two modes), not a phase resonance.
+          if (p.measures.contact_fraction == 0 && q.measures.contact_fraction == 0 &&
+              (b - a) * (q.omega - p.omega) < 0)
+            continue;
           const double t = a / (a - b);
           found.emplace_back(p.omega + t * (q.omega - p.omega),
                              p.measures.energy + t * (q.measures.energy - p.measures.energy));
@@ -129,7 +135,10 @@ namespace nsm
       const double low = value(lowest), high = value(highest);
       std::string text = std::to_string(curve.points.size()) + " points on " + (in_omega ? "" : "F in ") + "[" +
                          significant(low, 6) + ", " + significant(high, 6) + "]";
-      if (const auto &far = curve.from_far_end; far && std::isnan(far->stopped))
+      if (curve.out_of_steps)
+        text += ", stopped before the range's end: Continuation/Max steps reached (" +
+                counted(curve.points.size(), "point") + " written; raise it to go on)";
+      else if (const auto &far = curve.from_far_end; far && std::isnan(far->stopped))
         text += std::string(", the start at Omega min converged nowhere: traced from Omega max = ") +
                 significant(high, 6) +
                 (far->met ? " down to Omega min" : " until it stopped at Omega " + significant(far->reached, 6));
@@ -296,6 +305,15 @@ namespace nsm
     return events;
   }
 
+  std::string no_point(const ForcedCurve &curve)
+  {
+    return curve.sweep == ForcedSweep::omega ?
+             std::string("no point: neither the start at Omega min nor the one at Omega max converged (the linear "
+                         "response's guess; a smaller Forcing/Amplitudes value, or a range that starts farther "
+                         "from the resonance, starts off the wall)") :
+             std::string("no point: the start at F = 0 did not converge");
+  }
+
   namespace
   {
     /// A Result line per curve: its name, then `describe(curve, peak)` with
@@ -306,7 +324,7 @@ namespace nsm
       std::vector<std::string> lines;
       for (const ForcedCurve &curve : curves)
         lines.push_back(curve_name(curve) + ": " +
-                        (curve.points.empty() ? std::string("no point (the start did not converge)") :
+                        (curve.points.empty() ? no_point(curve) :
                                                 describe(curve, peak_point(curve))));
       return lines;
     }
@@ -334,7 +352,10 @@ namespace nsm
                          ": energy " + significant(peak.measures.energy, 4) + ", phase lag " +
                          significant(peak.measures.phase, 3) + " (pi/2 at phase resonance), contact fraction " +
                          significant(peak.measures.contact_fraction, 2) +
-                         (end ? std::string() : against_backbone(backbone, peak.omega, peak.measures.energy));
+                         (end || !backbone ? std::string() :
+                          peak.measures.contact_fraction == 0 ?
+                                std::string(", never touching the wall: the linear response, not compared with the backbone") :
+                                against_backbone(backbone, peak.omega, peak.measures.energy));
       for (const auto &[omega, energy] : quadratures(curve))
         line += "; phase lag pi/2 at Omega " + significant(omega, 6) + ", energy " + significant(energy, 4) +
                 against_backbone(backbone, omega, energy);

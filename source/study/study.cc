@@ -566,7 +566,7 @@ namespace nsm
                   }
               if (empty > 0)
                 lines.push_back("Study/Backbone omegas: W = " + table_.columns[c].substr(10) +
-                                " lies on no main-branch segment (a tongue, a gap, or past where the backbone ended) in " +
+                                " lies on no main-branch segment (outside the branch's extent, on a tongue or in a gap) in " +
                                 std::to_string(empty) + " of " + counted(ok, "finished row") + ": its " +
                                 table_.columns[c] + " column is empty there; an Omega inside a main segment of "
                                 "backbone.csv gives a value");

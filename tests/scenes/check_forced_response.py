@@ -75,6 +75,8 @@ damping 0.002, F = 1e-5, 2e-5, 4e-5) with its backbone, and checks (exit 0):
 - at M = 80 a corrector beyond a uniform load's modal band fails its step,
   not the run, and a curve stalled below its resonance is traced from Omega
   max up into contact rather than leaping over it (check_at_80_harmonics);
+- a curve cut by Max steps names it, and one with no point at all makes the
+  run exit 3 after writing the others (check_max_steps_and_no_point);
 - where the backbone's grazing start fails (a stiff compliant wall at M =
   80), the forced curve is traced all the same, as without a backbone, and
   the run exits 3 naming the backbone (check_backbone_failure_beside_forcing);
@@ -583,6 +585,31 @@ def check_backbone_failure_beside_forcing():
         check(False, "the failed backbone's run wrote no frc.csv")
 
 
+def check_max_steps_and_no_point():
+    """A curve cut by Continuation/Max steps (50) names it and is not traced
+    again from Omega max (no stall); a curve with no point at all (F = 1:
+    the linear guess lies a thousand gaps beyond the wall at both ends) is a
+    failure: the other curve is written, and the run exits 3 naming F = 1."""
+    ran = forced_run("forced-max-steps", CURVES_IN_W + ["Forcing/Amplitudes=1e-5", "Continuation/Max steps=50"],
+                     "Max steps = 50")
+    if ran:
+        _, stdout, rows = ran
+        line = next((l for l in stdout.split("\n") if "forced response F = 1e-05" in l), "")
+        check(len(rows) == 50 and "Continuation/Max steps reached (50 points written" in line
+              and "traced again from Omega max" not in line, f"Max steps = 50: {len(rows)} rows, '{line[:300]}'")
+    out = os.path.abspath("forced-no-point")
+    shutil.rmtree(out, ignore_errors=True)
+    sets = CURVES_IN_W + ["Forcing/Amplitudes=1e-5, 1"]
+    run = subprocess.run([EXE, SCENE, "--output", out] + [a for entry in sets for a in ("--set", entry)],
+                         capture_output=True, text=True)
+    errors = [line for line in run.stderr.strip().split("\n") if "numerical failure" in line]
+    check(run.returncode == 3 and len(errors) == 1 and "forced response F = 1: no point" in errors[0],
+          f"a curve with no point: exit {run.returncode}, stderr {run.stderr.strip()[-300:]}")
+    path = os.path.join(out, "frc.csv")
+    forces = {r["forcing"] for r in csv.DictReader(open(path))} if os.path.exists(path) else set()
+    check(len(forces) == 1 and float(forces.pop()) == 1e-5, "a curve with no point: frc.csv's curves")
+
+
 def main():
     shutil.rmtree(OUT, ignore_errors=True)
     run = subprocess.run([EXE, SCENE, "--output", OUT], capture_output=True, text=True)
@@ -622,6 +649,7 @@ def main():
     check_entry_at_grazing()
     check_at_80_harmonics()
     check_backbone_failure_beside_forcing()
+    check_max_steps_and_no_point()
     check(os.path.exists(os.path.join(OUT, "frc.png")), "frc.png not drawn")
     # The plots read the drive's shape (and the gap) from parameters.prm:
     # it is written before them (files written, in order).

@@ -449,6 +449,7 @@ namespace
   {
     double omega, energy, phase;
     bool   stable;
+    double contact = 0;
   };
 
   /// A curve in W of amplitude `forcing`, traced whole through `points`
@@ -462,8 +463,9 @@ namespace
     for (const SummaryPoint &q : points)
       {
         nsm::ForcedPoint p{0, q.omega, forcing, {}, 0, q.stable, {}};
-        p.measures.energy = q.energy;
-        p.measures.phase  = q.phase;
+        p.measures.energy           = q.energy;
+        p.measures.phase            = q.phase;
+        p.measures.contact_fraction = q.contact;
         curve.points.push_back(p);
       }
     return curve;
@@ -523,4 +525,40 @@ TEST(ForcedSummary, ACurveStillClimbingAtItsRangesEndHasNoPeakInsideIt)
   EXPECT_FALSE(nsm::forced_peak(curve, nullptr).at_range_end);
   lines = nsm::forced_response_summary({curve}, nullptr);
   EXPECT_NE(lines[0].find("; peak (most energy) at Omega 2: "), std::string::npos) << lines[0];
+}
+
+TEST(ForcedSummary, ALagFallingThroughPiOverTwoOnTheLinearResponseIsAnAntiResonance)
+{
+  // Between two modes the contact end's linear response passes its least
+  // amplitude and its lag falls through pi/2 as W rises (prm/forced.prm up
+  // to Omega max 3.5: 3.0969 on every curve): no phase resonance. The same
+  // fall with contact, and a rise on the linear response, are named.
+  const auto line_of = [](const double contact, const double first_lag, const double second_lag) {
+    return nsm::forced_response_summary(
+      {whole_curve(1e-5, {{3.0, 1e-9, first_lag, true, contact}, {3.2, 1e-9, second_lag, true, contact}})},
+      nullptr)[0];
+  };
+  EXPECT_EQ(line_of(0, 2.0, 1.0).find("phase lag pi/2 at Omega"), std::string::npos) << line_of(0, 2.0, 1.0);
+  EXPECT_NE(line_of(0.1, 2.0, 1.0).find("phase lag pi/2 at Omega 3.08584"), std::string::npos)
+    << line_of(0.1, 2.0, 1.0);
+  EXPECT_NE(line_of(0, 1.0, 2.0).find("phase lag pi/2 at Omega 3.11416"), std::string::npos) << line_of(0, 1.0, 2.0);
+}
+
+TEST(ForcedSummary, ACurveStoppedByMaxStepsSaysSo)
+{
+  // A curve that wrote Continuation/Max steps points before the range's end
+  // names the parameter (a small Max step: 2001 points up to 1.7), not a
+  // stall; one that stopped with steps left says it stalled.
+  nsm::ForcedCurve curve = whole_curve(1e-5, {{1.5, 1e-9, 0, true}, {1.7, 2e-9, 0, true}});
+  curve.finished         = false;
+  curve.out_of_steps     = true;
+  std::string line       = nsm::forced_response_summary({curve}, nullptr)[0];
+  EXPECT_NE(line.find("stopped before the range's end: Continuation/Max steps reached (2 points written; raise it "
+                      "to go on)"),
+            std::string::npos)
+    << line;
+  curve.out_of_steps = false;
+  line               = nsm::forced_response_summary({curve}, nullptr)[0];
+  EXPECT_NE(line.find("stopped before the range's end (no step, restart or leap went on)"), std::string::npos) << line;
+  EXPECT_EQ(line.find("Max steps"), std::string::npos) << line;
 }

@@ -57,6 +57,8 @@ namespace nsm
     /// Points dropped where the stepper came back along the curve after
     /// turning at a corner onto the branch it came on.
     unsigned int retraced = 0;
+    /// Not traced whole because Continuation/Max steps points were written.
+    bool         out_of_steps = false;
     /// Where the trace from the range's near end stopped before its far
     /// end (or its start converged nowhere): the curve traced again from
     /// the far end towards it, as a segment of its own (trace_forced_curve).

@@ -44,6 +44,9 @@ namespace nsm
   /// Result lines and events name a curve.
   std::string curve_name(const ForcedCurve &curve);
 
+  /// Why a curve has no point, for its Result line and the run's failure.
+  std::string no_point(const ForcedCurve &curve);
+
   /// The verification's Result line: points and periods; of the points
   /// stable by the fold test, the medians and largest of |A_t / A - 1| (tip
   /// amplitude), |E_t / E - 1| (energy) and the last period's drift, and how
