@@ -208,10 +208,16 @@ namespace nsm
       std::vector<std::string> notes;
       for (const auto &row : table.rows)
         {
-          if (text_cell(row, column_of(table, "forced_curves")).empty())
-            continue;
           std::ostringstream note;
           note.precision(2);
+          if (text_cell(row, column_of(table, "status")) != "ok")
+            {
+              notes.push_back(" " + row_name(table, row, varying) + ": the row failed, no peak compared (its status "
+                              "in study.csv says why)");
+              continue;
+            }
+          if (text_cell(row, column_of(table, "forced_curves")).empty())
+            continue;
           const std::string curves = text_cell(row, column_of(table, "forced_curves")),
                             whole  = text_cell(row, column_of(table, "forced_curves_whole"));
           const std::string compared = text_cell(row, column_of(table, "forced_peaks_compared"));
