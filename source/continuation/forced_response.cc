@@ -38,8 +38,11 @@ namespace nsm
       }
 
       /// Whether the system can be evaluated at v: an arclength corrector's
-      /// W may leave the band a distributed drive is summed over (measured:
-      /// W = -540 on the seed bar's uniform load at M = 80).
+      /// W may leave the band a distributed drive is summed over: with one
+      /// harmonic the band ends at Omega max itself, and a corrector past the
+      /// range's end (W = 2.2032 on the seed bar's uniform load) lies beyond
+      /// it (farther correctors, W = -540 at M = 80, lie beyond the
+      /// interface's reach too).
       bool evaluable(const ForcedHarmonicBalance &hb, const double v) const
       {
         return kind != ForcedSweep::omega || hb.drives_at(v);

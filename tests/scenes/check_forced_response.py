@@ -75,6 +75,8 @@ damping 0.002, F = 1e-5, 2e-5, 4e-5) with its backbone, and checks (exit 0):
 - at M = 80 a corrector beyond a uniform load's modal band fails its step,
   not the run, and a curve stalled below its resonance is traced from Omega
   max up into contact rather than leaping over it (check_at_80_harmonics);
+- with one harmonic a uniform load's corrector beyond Omega max (the band's
+  end) fails its step, not the run (check_uniform_load_one_harmonic);
 - a curve cut by Max steps names it, and one with no point at all makes the
   run exit 3 after writing the others (check_max_steps_and_no_point);
 - where the backbone's grazing start fails (a stiff compliant wall at M =
@@ -585,6 +587,20 @@ def check_backbone_failure_beside_forcing():
         check(False, "the failed backbone's run wrote no frc.csv")
 
 
+def check_uniform_load_one_harmonic():
+    """With one harmonic the receptance's band is Omega max itself, so an
+    arclength corrector past the range's end (W = 2.2032) leaves the band the
+    uniform load's modal sum is taken over: that step fails, not the run
+    (measured: exit 3 without the band test), and every curve reaches 2.2."""
+    ran = forced_run("forced-uniform-m1", CURVES_IN_W + ["Forcing/Shape=uniform", "Harmonic balance/Harmonics=1"],
+                     "the uniform load at M = 1")
+    if ran:
+        rows = ran[2]
+        for force in sorted({r["forcing"] for r in rows}):
+            top = max(float(r["Omega"]) for r in rows if r["forcing"] == force)
+            check(top == 2.2, f"the uniform load at M = 1, F = {force}: reaches Omega {top}")
+
+
 def check_max_steps_and_no_point():
     """A curve cut by Continuation/Max steps (50) names it and is not traced
     again from Omega max (no stall); a curve with no point at all (F = 1:
@@ -650,6 +666,7 @@ def main():
     check_at_80_harmonics()
     check_backbone_failure_beside_forcing()
     check_max_steps_and_no_point()
+    check_uniform_load_one_harmonic()
     check(os.path.exists(os.path.join(OUT, "frc.png")), "frc.png not drawn")
     # The plots read the drive's shape (and the gap) from parameters.prm:
     # it is written before them (files written, in order).
