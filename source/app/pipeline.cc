@@ -267,10 +267,24 @@ namespace nsm
         catch (const NumericalError &e)
           {
             backbone_failed_ = true;
-            report_.failure += (report_.failure.empty() ? "" : "; ") +
-                               std::string("the backbone (its points, checks, tables and fields; the forced "
-                                           "curves are traced without it): ") + e.what();
+            record_failure(std::string("the backbone (its points, checks, tables and fields; the forced curves "
+                                       "are traced without it): ") + e.what());
           }
+      }
+
+      /// A request the run could not meet: it writes the rest and exits 3,
+      /// naming each (stderr, summary, manifest).
+      void record_failure(const std::string &what)
+      {
+        report_.failure += (report_.failure.empty() ? "" : "; ") + what;
+      }
+
+      /// A curve asked for that has no point is a failure.
+      void record_empty(const std::vector<ForcedCurve> &curves)
+      {
+        for (const ForcedCurve &curve : curves)
+          if (curve.points.empty())
+            record_failure(curve_name(curve) + ": " + no_point(curve));
       }
 
       /// Writes the continuation's checkpoint and the points verified and refined so far
@@ -518,11 +532,7 @@ namespace nsm
                        std::to_string(curves.back().points.size()) + " points";
               });
             }
-          // A curve asked for that has no point is a failure: the run
-          // writes the rest and exits 3, naming it.
-          for (const ForcedCurve &curve : curves)
-            if (curve.points.empty())
-              report_.failure += (report_.failure.empty() ? "" : "; ") + curve_name(curve) + ": " + no_point(curve);
+          record_empty(curves);
           const ForcedVerifications verifications = verify_forced_curves(forced, curves);
           if (!curves.empty())
             tables_.push_back(forced_response_table(curves, verifications));
@@ -538,9 +548,7 @@ namespace nsm
           for (std::string &line : forced_response_summary(curves, traces_branch() ? &backbone() : nullptr))
             report_.result.push_back(std::move(line));
           std::vector<ForcedCurve> force_curves = force_response(forced);
-          for (const ForcedCurve &curve : force_curves)
-            if (curve.points.empty())
-              report_.failure += (report_.failure.empty() ? "" : "; ") + curve_name(curve) + ": " + no_point(curve);
+          record_empty(force_curves);
           if (!force_curves.empty())
             tables_.push_back(forced_response_table(force_curves, {}, "force_response.csv"));
           for (std::string &line : force_response_summary(force_curves))
@@ -767,7 +775,7 @@ namespace nsm
           << ", and no main point within Continuation/Search reach = " << scene_.continuation.search_reach
           << "; nearest main points: " << (below ? std::to_string(below->omega) : std::string("none"))
           << " below, " << (above ? std::to_string(above->omega) : std::string("none")) << " above";
-        report_.failure += (report_.failure.empty() ? "" : "; ") + s.str();
+        record_failure(s.str());
         return std::nullopt;
       }
 
@@ -830,7 +838,7 @@ namespace nsm
       std::unique_ptr<SpaceReference> space_;     ///< the band check's model (Output/Error estimate)
       bool cut_short_ = false; ///< a stop signal ended a stage before its last point
       std::string                     forced_left_out_; ///< the forced work a stop signal left out
-      bool                            backbone_failed_ = false;
+      bool                            backbone_failed_ = false; ///< harmonic_balance_beside_forcing failed
       std::vector<PeriodicField>      fields_;
       CheckpointCompanions            companions_; ///< of the checkpoint resumed from
     };
