@@ -325,14 +325,22 @@ def check_curve(force, curve, main):
     return float(peak["energy"])
 
 
-def forced_run(name, sets, what):
-    """SCENE run into the folder NAME with the `--set` entries `sets`: the
-    folder, stdout and frc.csv's rows; None where it failed (the failure
-    recorded as `what`'s)."""
+def run_into(name, sets):
+    """SCENE run into the new folder NAME with the `--set` entries `sets`:
+    the folder, the finished process, and its stderr's `numerical failure`
+    lines."""
     out = os.path.abspath(name)
     shutil.rmtree(out, ignore_errors=True)
     run = subprocess.run([EXE, SCENE, "--output", out] + [a for entry in sets for a in ("--set", entry)],
                          capture_output=True, text=True)
+    return out, run, [line for line in run.stderr.strip().split("\n") if "numerical failure" in line]
+
+
+def forced_run(name, sets, what):
+    """SCENE run into the folder NAME with the `--set` entries `sets`: the
+    folder, stdout and frc.csv's rows; None where it failed (the failure
+    recorded as `what`'s)."""
+    out, run, _ = run_into(name, sets)
     check(run.returncode == 0, f"{what}'s run exited {run.returncode}: {run.stderr.strip()}")
     if run.returncode != 0:
         return None
@@ -565,12 +573,7 @@ def check_backbone_failure_beside_forcing():
     no peak with a backbone."""
     wall = ["Contact/Wall=compliant", "Contact/Wall stiffness=100", "Harmonic balance/Harmonics=80",
             "Forcing/Amplitudes=2e-5"]
-    out = os.path.abspath("forced-backbone-fails")
-    shutil.rmtree(out, ignore_errors=True)
-    sets = wall + [e for e in CURVES_IN_W if e != "Output/Backbone=false"]
-    run = subprocess.run([EXE, SCENE, "--output", out] + [a for entry in sets for a in ("--set", entry)],
-                         capture_output=True, text=True)
-    errors = [line for line in run.stderr.strip().split("\n") if "numerical failure" in line]
+    out, run, errors = run_into("forced-backbone-fails", wall + [e for e in CURVES_IN_W if e != "Output/Backbone=false"])
     check(run.returncode == 3 and len(errors) == 1 and "the backbone" in errors[0] and "Search reach" in errors[0],
           f"the backbone's failure beside forcing: exit {run.returncode}, stderr {run.stderr.strip()[-300:]}")
     check(not os.path.exists(os.path.join(out, "backbone.csv")), "the failed backbone wrote backbone.csv")
@@ -613,12 +616,7 @@ def check_max_steps_and_no_point():
         line = next((l for l in stdout.split("\n") if "forced response F = 1e-05" in l), "")
         check(len(rows) == 50 and "Continuation/Max steps reached (50 points written" in line
               and "traced again from Omega max" not in line, f"Max steps = 50: {len(rows)} rows, '{line[:300]}'")
-    out = os.path.abspath("forced-no-point")
-    shutil.rmtree(out, ignore_errors=True)
-    sets = CURVES_IN_W + ["Forcing/Amplitudes=1e-5, 1"]
-    run = subprocess.run([EXE, SCENE, "--output", out] + [a for entry in sets for a in ("--set", entry)],
-                         capture_output=True, text=True)
-    errors = [line for line in run.stderr.strip().split("\n") if "numerical failure" in line]
+    out, run, errors = run_into("forced-no-point", CURVES_IN_W + ["Forcing/Amplitudes=1e-5, 1"])
     check(run.returncode == 3 and len(errors) == 1 and "forced response F = 1: no point" in errors[0],
           f"a curve with no point: exit {run.returncode}, stderr {run.stderr.strip()[-300:]}")
     path = os.path.join(out, "frc.csv")
