@@ -83,17 +83,35 @@ namespace nsm
     }
   } // namespace
 
+  namespace
+  {
+    /// Why the peak of a curve with points is not compared, before the
+    /// backbone is read (none if nothing but the backbone can stop it).
+    PeakLeftOut left_out_by_curve(const ForcedCurve &curve, const ForcedPoint &peak)
+    {
+      if (!curve.whole())
+        return PeakLeftOut::not_whole;
+      if (at_range_end(curve, peak))
+        return PeakLeftOut::at_range_end;
+      if (peak.measures.contact_fraction == 0)
+        return PeakLeftOut::linear;
+      return PeakLeftOut::none;
+    }
+  } // namespace
+
   ForcedPeak forced_peak(const ForcedCurve &curve, const Backbone *backbone)
   {
     const ForcedPoint &peak = peak_point(curve);
-    ForcedPeak         result{peak.omega, peak.measures.energy, peak.measures.phase, std::nullopt, std::nullopt,
-                      at_range_end(curve, peak)};
-    if (backbone && !result.at_range_end)
-      if (const std::optional<MainEnergy> main = main_energy_at(*backbone, peak.omega))
-        {
-          result.distance = peak.measures.energy / main->energy - 1;
-          result.bracket  = main->bracket;
-        }
+    ForcedPeak         result{peak.omega,   peak.measures.energy, peak.measures.phase, peak.measures.contact_fraction,
+                      std::nullopt, std::nullopt,          left_out_by_curve(curve, peak)};
+    if (result.left_out != PeakLeftOut::none)
+      return result;
+    if (!backbone)
+      result.left_out = PeakLeftOut::no_backbone;
+    else if (const std::optional<MainEnergy> main = main_energy_at(*backbone, peak.omega))
+      result.distance = peak.measures.energy / main->energy - 1, result.bracket = main->bracket;
+    else
+      result.left_out = PeakLeftOut::no_main_bracket;
     return result;
   }
 
@@ -339,23 +357,55 @@ namespace nsm
     });
   }
 
+  namespace
+  {
+    /// What the Result line calls a curve's point of most energy.
+    std::string peak_name(const PeakLeftOut left_out)
+    {
+      switch (left_out)
+        {
+          case PeakLeftOut::not_whole:
+            return "; the most energy of the points traced";
+          case PeakLeftOut::at_range_end:
+            return "; no peak inside the range: the most energy at its end";
+          default:
+            return "; peak (most energy)";
+        }
+    }
+
+    /// The peak against the backbone's main branch, or why it is not
+    /// compared; nothing without a backbone, nor at the range's end (the
+    /// peak's name says why).
+    std::string against_backbone(const ForcedPeak &peak, const bool with_backbone)
+    {
+      if (!with_backbone)
+        return "";
+      switch (peak.left_out)
+        {
+          case PeakLeftOut::none:
+            return ", against the backbone's main branch " + significant(100 * *peak.distance, 3) +
+                   " % (its main points " + significant(*peak.bracket, 2) + " apart there)";
+          case PeakLeftOut::no_main_bracket:
+            return ", no main backbone point on both sides";
+          case PeakLeftOut::linear:
+            return ", never touching the wall: the linear response, not compared with the backbone";
+          case PeakLeftOut::not_whole:
+            return ", not compared with the backbone: a stretch neither trace reached may hold the peak";
+          default:
+            return "";
+        }
+    }
+  } // namespace
+
   std::vector<std::string> forced_response_summary(const std::vector<ForcedCurve> &curves,
                                                    const Backbone                 *backbone)
   {
-    return curve_lines(curves, [backbone](const ForcedCurve &curve, const ForcedPoint &peak) {
-      const bool  end  = curve.whole() && at_range_end(curve, peak);
-      std::string line = extent(curve) +
-                         (!curve.whole() ? "; the most energy of the points traced" :
-                          end            ? "; no peak inside the range: the most energy at its end" :
-                                           "; peak (most energy)") +
-                         " at Omega " + significant(peak.omega, 6) +
-                         ": energy " + significant(peak.measures.energy, 4) + ", phase lag " +
-                         significant(peak.measures.phase, 3) + " (pi/2 at phase resonance), contact fraction " +
-                         significant(peak.measures.contact_fraction, 2) +
-                         (end || !backbone ? std::string() :
-                          peak.measures.contact_fraction == 0 ?
-                                std::string(", never touching the wall: the linear response, not compared with the backbone") :
-                                against_backbone(backbone, peak.omega, peak.measures.energy));
+    return curve_lines(curves, [backbone](const ForcedCurve &curve, const ForcedPoint &) {
+      const ForcedPeak peak = forced_peak(curve, backbone);
+      std::string      line = extent(curve) + peak_name(peak.left_out) + " at Omega " + significant(peak.omega, 6) +
+                         ": energy " + significant(peak.energy, 4) + ", phase lag " + significant(peak.phase, 3) +
+                         " (pi/2 at phase resonance), contact fraction " + significant(peak.contact_fraction, 2) +
+                         against_backbone(peak, backbone != nullptr);
       for (const auto &[omega, energy] : quadratures(curve))
         line += "; phase lag pi/2 at Omega " + significant(omega, 6) + ", energy " + significant(energy, 4) +
                 against_backbone(backbone, omega, energy);

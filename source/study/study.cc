@@ -227,7 +227,8 @@ namespace nsm
           if (open > 0)
             why.push_back(std::to_string(open) + " not traced whole: a stretch neither trace reached may hold the peak");
           if (others > 0)
-            why.push_back(std::to_string(others) + " with the most energy at the range's end or no main point on both sides");
+            why.push_back(std::to_string(others) + " with the most energy at the range's end, never touching the wall (the "
+                                                               "linear response) or with no main point on both sides");
           note << " " << row_name(table, row, varying) << ": " << compared << " of " << curves << " peaks compared";
           for (std::size_t w = 0; w < why.size(); ++w)
             note << (w == 0 ? " (" : "; ") << why[w] << (w + 1 == why.size() ? ")" : "");

@@ -126,12 +126,10 @@ namespace nsm
           if (curve.points.empty())
             continue;
           ++m.forced_curves;
-          // A curve with a stretch neither trace reached may peak there.
-          if (!curve.whole())
-            continue;
-          ++m.forced_curves_whole;
+          m.forced_curves_whole += curve.whole();
+          // The Result line's verdict (forced_peak): a peak compared, or why not.
           const ForcedPeak peak = forced_peak(curve, &backbone);
-          if (peak.at_range_end)
+          if (!peak.nonlinear_peak())
             continue;
           m.forced_peak_phase_min = std::min(m.forced_peak_phase_min.value_or(peak.phase), peak.phase);
           m.forced_peak_phase_max = std::max(m.forced_peak_phase_max.value_or(peak.phase), peak.phase);

@@ -516,15 +516,74 @@ TEST(ForcedSummary, ACurveStillClimbingAtItsRangesEndHasNoPeakInsideIt)
   // The seed bar at damping 0.01 and F = 2e-4 climbs up to Omega max = 2.2:
   // its most energy there is no peak, and is not compared with the backbone
   // (the study leaves it out); one that turns down before the end peaks.
-  nsm::ForcedCurve curve = whole_curve(2e-4, {{1.5, 1e-9, 0, true}, {2.0, 1e-6, 0, true}, {2.2, 1e-5, 0, true}});
-  EXPECT_TRUE(nsm::forced_peak(curve, nullptr).at_range_end);
+  nsm::ForcedCurve curve =
+    whole_curve(2e-4, {{1.5, 1e-9, 0, true, 0.1}, {2.0, 1e-6, 0, true, 0.1}, {2.2, 1e-5, 0, true, 0.1}});
+  EXPECT_EQ(nsm::forced_peak(curve, nullptr).left_out, nsm::PeakLeftOut::at_range_end);
   std::vector<std::string> lines = nsm::forced_response_summary({curve}, nullptr);
   EXPECT_NE(lines[0].find("; no peak inside the range: the most energy at its end at Omega 2.2: "), std::string::npos)
     << lines[0];
   curve.points.back().measures.energy = 1e-7;
-  EXPECT_FALSE(nsm::forced_peak(curve, nullptr).at_range_end);
+  EXPECT_EQ(nsm::forced_peak(curve, nullptr).left_out, nsm::PeakLeftOut::no_backbone);
   lines = nsm::forced_response_summary({curve}, nullptr);
   EXPECT_NE(lines[0].find("; peak (most energy) at Omega 2: "), std::string::npos) << lines[0];
+}
+
+TEST(ForcedPeak, OneVerdictDecidesWhetherAPeakIsComparedForTheResultLineAndTheStudy)
+{
+  // A backbone whose main branch runs 1.8 to 2.2 at energy 1e-6: a peak of
+  // 1.1e-6 at 2.0 with contact lies 10 % above it. The same peak never
+  // touching the wall is the linear response; on a curve not traced whole a
+  // stretch neither trace reached may hold the peak; beyond the main points
+  // nothing brackets it. Each is left out by forced_peak, which the study
+  // reads (its distance unset), and the Result line says why.
+  nsm::Backbone backbone;
+  for (const double omega : {1.8, 2.2})
+    {
+      nsm::BackbonePoint p{};
+      p.omega           = omega;
+      p.measures.energy = 1e-6;
+      p.branch          = nsm::Branch::main;
+      backbone.points.push_back(p);
+    }
+  const auto curve_with = [](const double contact, const double peak_omega) {
+    return whole_curve(1e-5, {{1.5, 1e-9, 0, true, contact}, {peak_omega, 1.1e-6, 1.5, true, contact},
+                              {2.5, 1e-9, 1.55, true, contact}});
+  };
+  const auto line_of = [&](const nsm::ForcedCurve &curve) {
+    return nsm::forced_response_summary({curve}, &backbone)[0];
+  };
+
+  nsm::ForcedCurve       touching = curve_with(0.2, 2.0);
+  const nsm::ForcedPeak compared = nsm::forced_peak(touching, &backbone);
+  EXPECT_EQ(compared.left_out, nsm::PeakLeftOut::none);
+  ASSERT_TRUE(compared.distance);
+  EXPECT_NEAR(*compared.distance, 0.1, 1e-12);
+  EXPECT_NEAR(*compared.bracket, 0.4, 1e-12);
+  EXPECT_TRUE(compared.nonlinear_peak());
+  EXPECT_NE(line_of(touching).find("against the backbone's main branch 10 %"), std::string::npos)
+    << line_of(touching);
+
+  const nsm::ForcedCurve linear = curve_with(0, 2.0);
+  EXPECT_EQ(nsm::forced_peak(linear, &backbone).left_out, nsm::PeakLeftOut::linear);
+  EXPECT_FALSE(nsm::forced_peak(linear, &backbone).distance);
+  EXPECT_FALSE(nsm::forced_peak(linear, &backbone).nonlinear_peak());
+  EXPECT_NE(line_of(linear).find("never touching the wall: the linear response, not compared"), std::string::npos)
+    << line_of(linear);
+
+  touching.finished = false;
+  EXPECT_EQ(nsm::forced_peak(touching, &backbone).left_out, nsm::PeakLeftOut::not_whole);
+  EXPECT_FALSE(nsm::forced_peak(touching, &backbone).distance);
+  EXPECT_NE(line_of(touching).find("; the most energy of the points traced at Omega 2: "), std::string::npos)
+    << line_of(touching);
+  EXPECT_NE(line_of(touching).find("not compared with the backbone: a stretch neither trace reached"),
+            std::string::npos)
+    << line_of(touching);
+  EXPECT_EQ(line_of(touching).find("against the backbone's main branch"), std::string::npos) << line_of(touching);
+
+  const nsm::ForcedCurve beyond = curve_with(0.2, 2.3);
+  EXPECT_EQ(nsm::forced_peak(beyond, &backbone).left_out, nsm::PeakLeftOut::no_main_bracket);
+  EXPECT_TRUE(nsm::forced_peak(beyond, &backbone).nonlinear_peak());
+  EXPECT_NE(line_of(beyond).find("no main backbone point on both sides"), std::string::npos) << line_of(beyond);
 }
 
 TEST(ForcedSummary, ALagFallingThroughPiOverTwoOnTheLinearResponseIsAnAntiResonance)

@@ -14,18 +14,43 @@
 
 namespace nsm
 {
+  /// Why a curve's peak is not compared with the backbone's main branch
+  /// (none: it is).
+  enum class PeakLeftOut
+  {
+    none,
+    /// A stretch neither trace reached may hold the peak (ForcedCurve::whole).
+    not_whole,
+    /// The most energy lies at an end of the curve's extent: the curve is
+    /// still climbing there, and has no peak inside its range.
+    at_range_end,
+    /// The peak never touches the wall: the linear response, which the
+    /// backbone does not describe.
+    linear,
+    no_backbone,
+    /// No main point of the backbone on one side of the peak's Omega.
+    no_main_bracket
+  };
+
   /// A curve's peak (its point of most energy) against the backbone's main
-  /// branch, read between the main points that bracket its Omega.
+  /// branch, read between the main points that bracket its Omega. The one
+  /// place that decides whether a peak is compared: the Result line and the
+  /// study both read it.
   struct ForcedPeak
   {
-    double omega, energy, phase;
+    double omega, energy, phase, contact_fraction;
     /// E / E_main - 1, and the spacing of the main points it is read
-    /// between; empty without a backbone or a main point on both sides, or
-    /// at_range_end.
+    /// between; set exactly when left_out is none.
     std::optional<double> distance, bracket;
-    /// The most energy lies at an end of the curve's Omega extent: the
-    /// curve is still climbing there, and has no peak inside its range.
-    bool at_range_end = false;
+    PeakLeftOut           left_out;
+
+    /// A peak inside the range of a curve traced whole, touching the wall:
+    /// the motion whose phase lag the backbone check reads.
+    bool nonlinear_peak() const
+    {
+      return left_out == PeakLeftOut::none || left_out == PeakLeftOut::no_backbone ||
+             left_out == PeakLeftOut::no_main_bracket;
+    }
   };
 
   /// The peak of a curve with points; `backbone` may be null.
