@@ -4,6 +4,7 @@
 #include <nsm/app/exit_codes.h>
 #include <nsm/app/pipeline.h>
 #include <nsm/app/run_record.h>
+#include <nsm/continuation/checkpoint.h>
 #include <nsm/scene/scene.h>
 #include <nsm/base/interruption.h>
 #include <nsm/base/threads.h>
@@ -108,7 +109,9 @@ namespace
               {
                 std::cerr << "nsm-bar: stopped by " << nsm::stop_signal_name(report.stopped_by)
                           << "; the output holds what was computed before"
-                          << (report.resumable ? " (nsm-bar " + nsm::printable(path) + " --resume goes on from it, with the same --set and --output)" : "")
+                          << (report.resumable ? " (nsm-bar " + nsm::printable(path) + " --resume goes on from it, with the same --set and --output)" :
+                                                 " (no backbone was traced to go on from, so it leaves no " +
+                                                   std::string(nsm::checkpoint_file) + ": run the scene again to finish it)")
                           << '\n';
                 return nsm::stop_exit_code(report.stopped_by);
               }

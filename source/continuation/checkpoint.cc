@@ -192,7 +192,8 @@ namespace nsm
                        " in Output/Directory, and '" + printable(path) +
                        (std::filesystem::exists(path, error) ?
                           "' cannot be read" :
-                          "' does not exist (a run leaves one only where a stop signal ended it before its end)") +
+                          "' does not exist (a run leaves one only where a stop signal ended it before its end and it "
+                          "had traced a backbone to go on from)") +
                        ": run the scene without --resume");
     reader.expect(format_line);
     check_entries(reader, params.computation_entries);

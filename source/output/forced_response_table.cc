@@ -144,6 +144,17 @@ namespace nsm
       return found;
     }
 
+    /// How the trace from Omega max, the curve's last `far_points` points,
+    /// is split: "a segment of its own" or "N segments of their own".
+    std::string far_segments(const ForcedCurve &curve, const std::size_t far_points)
+    {
+      std::size_t segments = 0;
+      for (std::size_t i = curve.points.size() - std::min(far_points, curve.points.size()); i < curve.points.size();
+           ++i)
+        segments += i == 0 || curve.points[i].segment != curve.points[i - 1].segment;
+      return segments == 1 ? "a segment of its own" : std::to_string(segments) + " segments of their own";
+    }
+
     /// The curve's points, Omega extent, and how its tracing went.
     std::string extent(const ForcedCurve &curve)
     {
@@ -163,7 +174,7 @@ namespace nsm
       else if (!curve.finished && far && far->met)
         text += ", traced from both ends of the range, the two traces meeting at Omega " +
                 significant(far->stopped, 6) + ", a corner neither goes on from (" + counted(far->points, "point") +
-                " from Omega max = " + significant(high, 6) + ", segments of their own)";
+                " from Omega max = " + significant(high, 6) + ", " + far_segments(curve, far->points) + ")";
       else if (!curve.finished && far && far->points == 0)
         text += ", stopped before the range's end at Omega " + significant(far->stopped, 6) +
                 " (no step, restart or leap went on); traced again from Omega max, no point converged there";
@@ -171,7 +182,7 @@ namespace nsm
         text += ", stopped before the range's end at Omega " + significant(far->stopped, 6) +
                 " (no step, restart or leap went on), then traced again from Omega max = " +
                 significant(high, 6) + " until it stopped at Omega " + significant(far->reached, 6) + " (" +
-                counted(far->points, "point") + ", segments of their own)";
+                counted(far->points, "point") + ", " + far_segments(curve, far->points) + ")";
       else if (!curve.finished)
         text += ", stopped before the range's end (no step, restart or leap went on)";
       if (curve.restarts + curve.leaps > 0)

@@ -10,9 +10,11 @@ load (no timer races the run). The stopped run must exit 130, say so on
 stderr, in the summary and in its manifest, and write a backbone.csv whose
 rows are the first rows of an uninterrupted run's, byte for byte, and fewer
 (but for the error estimate's last column, which the stopped run leaves out).
+The stop points to --resume and leaves continuation.resume.
 Then the same for the forced stage, in a run without the backbone: SIGINT at
 its first progress line, after its first curve, leaves the second curve and
-the curve in F out, and the first curve as an uninterrupted run writes it; and SIGINT while it
+the curve in F out, and the first curve as an uninterrupted run writes it,
+and says it leaves no resume file (no backbone to go on from); and SIGINT while it
 verifies the first curve's points in time leaves both curves written and
 the verification's rest out.
 Standard library only.
@@ -49,6 +51,9 @@ def main():
         failures.append(f"exit {returncode}, not 130: {stderr[-300:]}")
     if not stderr.strip().splitlines()[-1].startswith("nsm-bar: stopped by SIGINT"):
         failures.append(f"stderr does not end with the stop: {stderr[-300:]!r}")
+    elif "--resume goes on from it" not in stderr.strip().splitlines()[-1] or \
+            not os.path.exists("stopped/continuation.resume"):
+        failures.append(f"the stop does not point to --resume, or left no continuation.resume: {stderr[-300:]!r}")
     if "interrupted by SIGINT" not in stdout:
         failures.append("the summary does not say the run was interrupted")
     with open("stopped/nsm-bar.manifest") as f:
@@ -108,6 +113,12 @@ def forced_stop(executable):
     failures = []
     if returncode != 128 + signal.SIGINT:
         failures.append(f"forced: exit {returncode}, not 130: {stderr[-300:]}")
+    # Without a backbone there is no continuation to go on from: the stop
+    # says so, and leaves no resume file.
+    last = stderr.strip().splitlines()[-1] if stderr.strip() else ""
+    if "no backbone was traced to go on from, so it leaves no continuation.resume" not in last or \
+            "--resume" in last or os.path.exists("forced-stopped/continuation.resume"):
+        failures.append(f"forced: the stop's line or resume file: {last!r}")
     if "left out: forced response's curves from F = 2e-05 on" not in stdout:
         failures.append(f"forced: the summary does not say the second curve was left out: {stdout[-500:]}")
     with open("forced-whole/frc.csv") as f:

@@ -603,6 +603,23 @@ TEST(ForcedSummary, ALagFallingThroughPiOverTwoOnTheLinearResponseIsAnAntiResona
   EXPECT_NE(line_of(0, 1.0, 2.0).find("phase lag pi/2 at Omega 3.11416"), std::string::npos) << line_of(0, 1.0, 2.0);
 }
 
+TEST(ForcedSummary, TheTraceFromOmegaMaxCountsItsSegments)
+{
+  // A curve traced from both ends: its last points are the trace from Omega
+  // max, one segment, or two where a restart at a corner split it.
+  nsm::ForcedCurve curve = whole_curve(1e-5, {{1.5, 1e-9, 0, true}, {1.6, 2e-9, 0, true}, {1.8, 2e-9, 0, true},
+                                              {1.7, 2e-9, 0, true}, {1.65, 2e-9, 0, true}});
+  curve.finished     = false;
+  curve.from_far_end = nsm::ForcedCurve::FromFarEnd{1.6, 1.65, 3, true};
+  for (std::size_t i = 2; i < 5; ++i)
+    curve.points[i].segment = 1;
+  std::string line = nsm::forced_response_summary({curve}, nullptr)[0];
+  EXPECT_NE(line.find("(3 points from Omega max = 1.8, a segment of its own)"), std::string::npos) << line;
+  curve.points[4].segment = 2;
+  line                    = nsm::forced_response_summary({curve}, nullptr)[0];
+  EXPECT_NE(line.find("(3 points from Omega max = 1.8, 2 segments of their own)"), std::string::npos) << line;
+}
+
 TEST(ForcedSummary, ACurveStoppedByMaxStepsSaysSo)
 {
   // A curve that wrote Continuation/Max steps points before the range's end
