@@ -264,6 +264,12 @@ namespace nsm
           {
             harmonic_balance();
           }
+        catch (const RangeOutsideBranch &e)
+          {
+            throw InputError(std::string(e.what()) +
+                             "; the forced curves need no backbone: with Output/Backbone = false they are traced "
+                             "over this range alone");
+          }
         catch (const NumericalError &e)
           {
             backbone_failed_ = true;

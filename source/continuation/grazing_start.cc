@@ -25,7 +25,7 @@ namespace nsm
         << " is out of range: allowed " << (up ? "above" : "below") << " Omega = " << start
         << ", where the branch of clamped-free mode " << mode << " (w = " << w << ") leaves grazing "
         << (up ? "upwards (Contact/Force sign = physical)" : "downwards (Contact/Force sign = seed-eq5)");
-      throw InputError(s.str());
+      throw RangeOutsideBranch(s.str());
     }
 
     /// Steps are absolute: one of Min step must move Omega near w by more

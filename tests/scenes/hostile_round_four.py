@@ -250,6 +250,14 @@ def new_rows(executable):
         dict(name="range_far_above", cls=6,
              scene=SMALL + section("Continuation", Omega_min=1e99, Omega_max=1e100) + output(Backbone="true"),
              code=2, words=["Continuation/Omega min"]),
+        # A forced scene whose range lies below grazing: the backbone's range
+        # error says the curves need no backbone (they are traced alone with
+        # Output/Backbone = false).
+        dict(name="forced_range_below_the_branch", cls=6,
+             scene=SMALL + section("Continuation", Omega_min=1, Omega_max=1.5) +
+             section("Damping", Modal_ratio=0.01) + section("Forcing", Amplitudes="1e-5") +
+             output(Backbone="true"),
+             code=2, words=["Continuation/Omega max", "Output/Backbone = false"]),
         # ---- 7. the band's cells (Cells = 0) ------------------------------------
         # old: exit 3 "asked for 1 eigenvalues of a pencil with 0 finite ones".
         dict(name="cells_0_defaults", cls=7, scene=section("Discretisation", Cells=0) +

@@ -20,6 +20,15 @@ namespace nsm
     using std::runtime_error::runtime_error;
   };
 
+  /// Bad input of one kind: the Omega range holds none of the backbone's
+  /// branch (it leaves grazing beyond the range's far end). A forced scene
+  /// says that its curves need no backbone (app/pipeline.cc).
+  class RangeOutsideBranch : public InputError
+  {
+  public:
+    using InputError::InputError;
+  };
+
   /// A file could not be written whole (disk full, file size limit, ...).
   class OutputError : public std::runtime_error
   {
