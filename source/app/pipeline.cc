@@ -412,8 +412,8 @@ namespace nsm
       /// or a per-point stage, ended before its last point.
       bool cut_short() const { return cut_short_ || backbone().end == BackboneEnd::interrupted; }
 
-      /// The forced work (curves, verification) a stop signal left out ("" if none).
-      const std::string &forced_left_out() const { return forced_left_out_; }
+      /// The forced work (curves, verification, curves in F) a stop signal left out, a line per stage.
+      const std::vector<std::string> &forced_left_out() const { return forced_left_out_; }
 
       /// The band the backbone used: M times its highest Omega (its points
       /// lie in the range; M Omega max if it has none).
@@ -527,7 +527,7 @@ namespace nsm
             {
               if (point_stop_signal() != 0)
                 {
-                  forced_left_out_ = "forced response's curves from F = " + significant(amplitude, 4) + " on";
+                  forced_left_out_.push_back("forced response's curves from F = " + significant(amplitude, 4) + " on");
                   break;
                 }
               curves.push_back(trace_forced_curve(forced, scene_.harmonic_balance, scene_.continuation,
@@ -575,8 +575,7 @@ namespace nsm
           {
             if (point_stop_signal() != 0)
               {
-                if (forced_left_out_.empty())
-                  forced_left_out_ = "force response's curves from Omega = " + significant(omega, 6) + " on";
+                forced_left_out_.push_back("force response's curves from Omega = " + significant(omega, 6) + " on");
                 break;
               }
             curves.push_back(trace_force_curve(forced, scene_.harmonic_balance, scene_.continuation, omega,
@@ -616,10 +615,9 @@ namespace nsm
                   continue;
                 if (point_stop_signal() != 0)
                   {
-                    if (forced_left_out_.empty())
-                      forced_left_out_ = "the forced response's verification in time from F = " +
-                                         significant(curve.forcing, 4) + ", Omega = " +
-                                         significant(curve.points[i].omega, 6) + " on";
+                    forced_left_out_.push_back("the forced response's verification in time from F = " +
+                                               significant(curve.forcing, 4) + ", Omega = " +
+                                               significant(curve.points[i].omega, 6) + " on");
                     return verifications;
                   }
                 forced.set_omega(curve.points[i].omega);
@@ -843,7 +841,7 @@ namespace nsm
       std::vector<double>             estimates_; ///< per point; empty without Output/Error estimate
       std::unique_ptr<SpaceReference> space_;     ///< the band check's model (Output/Error estimate)
       bool cut_short_ = false; ///< a stop signal ended a stage before its last point
-      std::string                     forced_left_out_; ///< the forced work a stop signal left out
+      std::vector<std::string>        forced_left_out_; ///< the forced work a stop signal left out, per stage
       bool                            backbone_failed_ = false; ///< harmonic_balance_beside_forcing failed
       std::vector<PeriodicField>      fields_;
       CheckpointCompanions            companions_; ///< of the checkpoint resumed from
@@ -988,8 +986,7 @@ namespace nsm
     if (scene.output.backbone && has_backbone)
       run.backbone_tables();
     stage(needs_forced, "forced response", [&] { run.forced_response(); });
-    if (!run.forced_left_out().empty())
-      skipped.push_back(run.forced_left_out());
+    skipped.insert(skipped.end(), run.forced_left_out().begin(), run.forced_left_out().end());
     stage(needs_fields && has_backbone, "fields", [&] { run.fields(); });
     run.write(output.staging());
     write_parameters(scene, output, report);
@@ -1008,7 +1005,8 @@ namespace nsm
     const int stop = point_stop_signal();
     if (stop != 0 && skipped.empty() && !(needs_backbone && run.cut_short()))
       report.notes.push_back(std::string("a stop (") + stop_signal_name(stop) +
-                             ") came after the last point of every stage: the run is complete, nothing left out");
+                             ") came after the last point of every stage, or in a stage's last curve (curves end "
+                             "whole): the run is complete, nothing left out");
     else if ((report.stopped_by = stop) != 0)
       {
         std::string text = std::string("interrupted by ") + stop_signal_name(report.stopped_by) +

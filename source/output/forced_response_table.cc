@@ -118,11 +118,18 @@ namespace nsm
   namespace
   {
 
-    /// Where the fundamental's phase lag crosses pi / 2 between two points
-    /// of a segment: Omega and energy, linear between them.
-    std::vector<std::pair<double, double>> quadratures(const ForcedCurve &curve)
+    /// A crossing of the fundamental's phase lag through pi / 2: Omega and
+    /// energy, linear between two points of a segment; `linear` where
+    /// neither point touches the wall (the linear response's resonance).
+    struct Quadrature
     {
-      std::vector<std::pair<double, double>> found;
+      double omega, energy;
+      bool   linear;
+    };
+
+    std::vector<Quadrature> quadratures(const ForcedCurve &curve)
+    {
+      std::vector<Quadrature> found;
       for (std::size_t i = 1; i < curve.points.size(); ++i)
         {
           const ForcedPoint &p = curve.points[i - 1], &q = curve.points[i];
@@ -134,12 +141,12 @@ namespace nsm
           // On the linear response a lag that falls through pi/2 as W rises
           // is an anti-resonance (the contact end's amplitude at its least,
           // between two modes), not a phase resonance.
-          if (p.measures.contact_fraction == 0 && q.measures.contact_fraction == 0 &&
-              (b - a) * (q.omega - p.omega) < 0)
+          const bool linear = p.measures.contact_fraction == 0 && q.measures.contact_fraction == 0;
+          if (linear && (b - a) * (q.omega - p.omega) < 0)
             continue;
           const double t = a / (a - b);
-          found.emplace_back(p.omega + t * (q.omega - p.omega),
-                             p.measures.energy + t * (q.measures.energy - p.measures.energy));
+          found.push_back({p.omega + t * (q.omega - p.omega),
+                           p.measures.energy + t * (q.measures.energy - p.measures.energy), linear});
         }
       return found;
     }
@@ -417,9 +424,11 @@ namespace nsm
                          ": energy " + significant(peak.energy, 4) + ", phase lag " + significant(peak.phase, 3) +
                          " (pi/2 at phase resonance), contact fraction " + significant(peak.contact_fraction, 2) +
                          against_backbone(peak, backbone != nullptr);
-      for (const auto &[omega, energy] : quadratures(curve))
-        line += "; phase lag pi/2 at Omega " + significant(omega, 6) + ", energy " + significant(energy, 4) +
-                against_backbone(backbone, omega, energy);
+      for (const Quadrature &q : quadratures(curve))
+        line += "; phase lag pi/2 at Omega " + significant(q.omega, 6) + ", energy " + significant(q.energy, 4) +
+                (q.linear && backbone ? std::string(", never touching the wall: the linear response's resonance, "
+                                                    "not compared with the backbone") :
+                                        against_backbone(backbone, q.omega, q.energy));
       return line;
     });
   }

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 
-
 namespace nsm
 {
   namespace
@@ -15,7 +14,7 @@ namespace nsm
     const Options<ForcingShape> shapes = {{"tip", ForcingShape::tip}, {"uniform", ForcingShape::uniform}};
 
     /// The comma list of Forcing/`entry`, one curve per value: each in
-    /// (0, 1e20], at most ForcingParameters::max_amplitudes of them.
+    /// (0, 1e20], no two equal, at most ForcingParameters::max_amplitudes of them.
     std::vector<double> curve_values(ParameterHandler &prm, const std::string &entry)
     {
       const std::string   name = "Forcing/" + entry;
@@ -24,6 +23,10 @@ namespace nsm
         {
           const double v = parse_double(item, name);
           require(v > 0 && v <= magnitude_limit, name, "numbers in (0, 1e20]", item);
+          // Two equal values would write two identical curves that frc.csv's
+          // columns cannot tell apart.
+          require(std::find(values.begin(), values.end(), v) == values.end(), name,
+                  "distinct numbers (one curve each; this one is listed twice)", item);
           values.push_back(v);
           require(values.size() <= ForcingParameters::max_amplitudes, name,
                   "at most " + std::to_string(ForcingParameters::max_amplitudes) + " numbers (one curve each)",
@@ -40,13 +43,13 @@ namespace nsm
                       "",
                       Patterns::Anything(),
                       "Force levels F of the drive F cos(W t) (at the contact end or per unit length: Shape; "
-                      "along +x, towards the wall), comma-separated, at most 100, each in (0, 1e20]: one frequency-response curve each, "
+                      "along +x, towards the wall), comma-separated, at most 100, distinct, each in (0, 1e20]: one frequency-response curve each, "
                       "written to frc.csv over Continuation's Omega range; needs damping (Damping). Empty: "
                       "no frequency-response curve.");
     prm.declare_entry("Omegas",
                       "",
                       Patterns::Anything(),
-                      "Drive frequencies W, comma-separated, at most 100, each in (0, 1e20]: one force-response "
+                      "Drive frequencies W, comma-separated, at most 100, distinct, each in (0, 1e20]: one force-response "
                       "curve each, traced in F up to Amplitude max (through its folds: the jumps of a slow sweep "
                       "in force) with Continuation's steps as shares of its Omega range, written to "
                       "force_response.csv; needs damping. Empty: none.");

@@ -222,13 +222,18 @@ namespace nsm
                             whole  = text_cell(row, column_of(table, "forced_curves_whole"));
           const std::string compared = text_cell(row, column_of(table, "forced_peaks_compared"));
           const int         open     = std::stoi(curves) - std::stoi(whole);
-          const int         others   = std::stoi(whole) - std::stoi(compared);
+          const int at_end = std::stoi(text_cell(row, column_of(table, "forced_peaks_at_range_end")));
+          const int linear = std::stoi(text_cell(row, column_of(table, "forced_peaks_linear")));
+          const int unbracketed = std::stoi(whole) - std::stoi(compared) - at_end - linear;
           std::vector<std::string> why;
           if (open > 0)
             why.push_back(std::to_string(open) + " not traced whole: a stretch neither trace reached may hold the peak");
-          if (others > 0)
-            why.push_back(std::to_string(others) + " with the most energy at the range's end, never touching the wall (the "
-                                                               "linear response) or with no main point on both sides");
+          if (at_end > 0)
+            why.push_back(std::to_string(at_end) + " with the most energy at the range's end (still climbing there)");
+          if (linear > 0)
+            why.push_back(std::to_string(linear) + " never touching the wall (the linear response)");
+          if (unbracketed > 0)
+            why.push_back(std::to_string(unbracketed) + " with no main point on both sides");
           note << " " << row_name(table, row, varying) << ": " << compared << " of " << curves << " peaks compared";
           for (std::size_t w = 0; w < why.size(); ++w)
             note << (w == 0 ? " (" : "; ") << why[w] << (w + 1 == why.size() ? ")" : "");

@@ -129,6 +129,8 @@ namespace nsm
           m.forced_curves_whole += curve.whole();
           // The Result line's verdict (forced_peak): a peak compared, or why not.
           const ForcedPeak peak = forced_peak(curve, &backbone);
+          m.forced_peaks_at_range_end += peak.left_out == PeakLeftOut::at_range_end;
+          m.forced_peaks_linear += peak.left_out == PeakLeftOut::linear;
           if (!peak.nonlinear_peak())
             continue;
           m.forced_peak_phase_min = std::min(m.forced_peak_phase_min.value_or(peak.phase), peak.phase);

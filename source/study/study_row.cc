@@ -115,7 +115,8 @@ namespace nsm
                                         "main_time_defect_max", "energy_points",
                                         "main_points", "newton_iterations", "failed_solves",
                                         "backbone_end", "omega_reached", "energy_error_partial",
-                                        "forced_curves", "forced_curves_whole", "forced_peaks_compared", "forced_peak_distance_max",
+                                        "forced_curves", "forced_curves_whole", "forced_peaks_compared",
+                                        "forced_peaks_at_range_end", "forced_peaks_linear", "forced_peak_distance_max",
                                         "forced_peak_phase_min", "forced_peak_phase_max",
                                         "peak_memory_mib", "wall_total_min", "wall_total_median",
                                         "wall_total_max", "cpu_total_median"};
@@ -178,6 +179,8 @@ namespace nsm
                                     run.study.forced_peaks ? std::to_string(m.forced_curves) : "",
                                     run.study.forced_peaks ? std::to_string(m.forced_curves_whole) : "",
                                     run.study.forced_peaks ? std::to_string(m.forced_peaks_compared) : "",
+                                    run.study.forced_peaks ? std::to_string(m.forced_peaks_at_range_end) : "",
+                                    run.study.forced_peaks ? std::to_string(m.forced_peaks_linear) : "",
                                     text(m.forced_peak_distance_max),
                                     text(m.forced_peak_phase_min),
                                     text(m.forced_peak_phase_max),

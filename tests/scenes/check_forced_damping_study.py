@@ -128,22 +128,30 @@ def main():
         check(0 < low <= high < math.pi, f"{ratio}: phase lags at the peaks from {low} to {high}")
         print(f"modal ratio {ratio}: largest |peak / main - 1| {float(r['forced_peak_distance_max']):.4f} over "
               f"{r['forced_peaks_compared']} peaks, phase lags {low:.2f} to {high:.2f}")
-    # The run summary gives each row's peaks as study.csv holds them.
-    # A whole curve not compared has its most energy at the range's end (at
-    # 0.01, F = 2e-4 climbs up to Omega max: 2 of 3 compared) or no main
-    # point on both sides of it.
+    # The run summary gives each row's peaks as study.csv holds them, and
+    # why each one left out is: not traced whole, its most energy at the
+    # range's end (at 0.01, F = 2e-4 climbs up to Omega max: 2 of 3
+    # compared), never touching the wall, or no main point on both sides.
     for ratio, r in rows.items():
         open_curves = int(r["forced_curves"]) - int(r["forced_curves_whole"])
-        others = int(r["forced_curves_whole"]) - int(r["forced_peaks_compared"])
+        at_end, linear = int(r["forced_peaks_at_range_end"]), int(r["forced_peaks_linear"])
+        others = int(r["forced_curves_whole"]) - int(r["forced_peaks_compared"]) - at_end - linear
+        check(others >= 0, f"{ratio}: more whole curves left out by a reason than not compared: {r}")
+        reasons = ([f"{open_curves} not traced whole"] if open_curves else []) + \
+            ([f"{at_end} with the most energy at the range's end (still climbing there)"] if at_end else []) + \
+            ([f"{linear} never touching the wall"] if linear else []) + \
+            ([f"{others} with no main point on both sides"] if others else [])
         line = (f"modal_ratio {ratio:g}: {r['forced_peaks_compared']} of {r['forced_curves']} peaks compared"
-                + (f" ({open_curves} not traced whole" if open_curves else "")
-                + (f" ({others} with the most energy at the range's end" if others and not open_curves else "")
-                + ("" if open_curves or others else f", the largest {100 * float(r['forced_peak_distance_max']):.2g} % "
-                                                    "from the main branch"))
+                + (f" ({reasons[0]}" if reasons else "")
+                + ("" if reasons else f", the largest {100 * float(r['forced_peak_distance_max']):.2g} % "
+                                      "from the main branch"))
         check(line in run.stdout, f"{ratio}: the run summary does not say '{line}'")
-    check(int(rows[0.01]["forced_curves_whole"]) - int(rows[0.01]["forced_peaks_compared"]) == 1,
+        for reason in reasons[1:]:
+            check(f"; {reason}" in run.stdout, f"{ratio}: the run summary does not give '{reason}'")
+    check(rows[0.01]["forced_peaks_at_range_end"] == "1" and rows[0.01]["forced_peaks_linear"] == "0" and
+          int(rows[0.01]["forced_curves_whole"]) - int(rows[0.01]["forced_peaks_compared"]) == 1,
           f"0.01: {rows[0.01]['forced_peaks_compared']} of {rows[0.01]['forced_curves_whole']} whole curves compared, "
-          "the one still climbing at Omega max among them")
+          f"{rows[0.01]['forced_peaks_at_range_end']} at the range's end: the one still climbing at Omega max")
     check(float(rows[0.002]["forced_peak_distance_max"]) <= 0.05,
           f"at 0.002 a peak lies {rows[0.002]['forced_peak_distance_max']} from the main branch")
     for ratio, amplitudes in ((0.004, "2e-5, 4e-5, 8e-5"), (0.002, "1e-5, 2e-5, 4e-5")):

@@ -16,7 +16,7 @@ its first progress line, after its first curve, leaves the second curve and
 the curve in F out, and the first curve as an uninterrupted run writes it,
 and says it leaves no resume file (no backbone to go on from); and SIGINT while it
 verifies the first curve's points in time leaves both curves written and
-the verification's rest out.
+the verification's rest and the curve in F out, both named.
 Standard library only.
 """
 import os
@@ -158,6 +158,10 @@ def verification_stop(executable):
         return [f"verification: exit {returncode}, not 130: {stderr[-300:]}"]
     if "left out: the forced response's verification in time from F = 1e-05, Omega = " not in stdout:
         failures.append(f"verification: the summary does not say where it stopped: {stdout[-500:]}")
+    # The curve in F after it is left out too, and said so.
+    if ", force response's curves from Omega = 1.97 on" not in stdout or \
+            os.path.exists("verified-stopped/force_response.csv"):
+        failures.append(f"verification: the curve in F after the stop is not named left out: {stdout[-500:]}")
     with open("verified-whole/frc.csv") as f:
         whole_lines = f.read().splitlines()
     whole_rows = [line.split(",")[:12] for line in whole_lines]

@@ -258,6 +258,15 @@ def new_rows(executable):
              section("Damping", Modal_ratio=0.01) + section("Forcing", Amplitudes="1e-5") +
              output(Backbone="true"),
              code=2, words=["Continuation/Omega max", "Output/Backbone = false"]),
+        # A force level or drive frequency listed twice wrote two identical
+        # curves that frc.csv cannot tell apart.
+        dict(name="forced_amplitude_twice", cls=6,
+             scene=SMALL + section("Damping", Modal_ratio=0.01) + section("Forcing", Amplitudes="2e-5, 2e-5"),
+             code=2, words=["Forcing/Amplitudes' = 2e-5", "listed twice"], before_work=True),
+        dict(name="forced_omega_twice", cls=6,
+             scene=SMALL + section("Damping", Modal_ratio=0.01) +
+             section("Forcing", Omegas="1.97, 2, 1.97", Amplitude_max="1e-4"),
+             code=2, words=["Forcing/Omegas' = 1.97", "listed twice"], before_work=True),
         # ---- 7. the band's cells (Cells = 0) ------------------------------------
         # old: exit 3 "asked for 1 eigenvalues of a pencil with 0 finite ones".
         dict(name="cells_0_defaults", cls=7, scene=section("Discretisation", Cells=0) +

@@ -586,6 +586,39 @@ TEST(ForcedPeak, OneVerdictDecidesWhetherAPeakIsComparedForTheResultLineAndTheSt
   EXPECT_NE(line_of(beyond).find("no main backbone point on both sides"), std::string::npos) << line_of(beyond);
 }
 
+TEST(ForcedSummary, APhaseResonanceOfTheLinearResponseIsNotComparedWithTheBackbone)
+{
+  // A curve that never touches the wall crosses pi/2 at the linear
+  // resonance (the seed bar's 1.91914 at F = 1e-7): that crossing is the
+  // linear response's, not compared with the backbone's main branch; the
+  // same crossing with contact is.
+  nsm::Backbone backbone;
+  for (const double omega : {1.8, 2.2})
+    {
+      nsm::BackbonePoint p{};
+      p.omega           = omega;
+      p.measures.energy = 1e-6;
+      p.branch          = nsm::Branch::main;
+      backbone.points.push_back(p);
+    }
+  const auto line_of = [&](const double contact) {
+    return nsm::forced_response_summary(
+      {whole_curve(1e-7, {{1.5, 1e-9, 0.1, true, contact}, {1.9, 2e-6, 1.5, true, contact},
+                          {2.1, 1.1e-6, 1.7, true, contact}, {2.5, 1e-9, 3, true, contact}})},
+      &backbone)[0];
+  };
+  const std::string linear = line_of(0);
+  EXPECT_NE(linear.find("phase lag pi/2 at Omega 1.9708, energy 1.681e-06, never touching the wall: the linear "
+                        "response's resonance, not compared with the backbone"),
+            std::string::npos)
+    << linear;
+  EXPECT_EQ(linear.find("against the backbone"), std::string::npos) << linear;
+  const std::string touching = line_of(0.1);
+  EXPECT_NE(touching.find("phase lag pi/2 at Omega 1.9708, energy 1.681e-06, against the backbone's main branch 68.1 %"),
+            std::string::npos)
+    << touching;
+}
+
 TEST(ForcedSummary, ALagFallingThroughPiOverTwoOnTheLinearResponseIsAnAntiResonance)
 {
   // Between two modes the contact end's linear response passes its least

@@ -42,6 +42,10 @@ namespace nsm
     /// on both sides, the largest |E_peak / E_main - 1| among these, and the
     /// peaks' phase lags' extremes.
     unsigned int          forced_curves = 0, forced_curves_whole = 0, forced_peaks_compared = 0;
+    /// Of the whole curves' peaks not compared: at the range's end, and
+    /// never touching the wall (forced_peak's reasons; the rest have no main
+    /// point on both sides).
+    unsigned int forced_peaks_at_range_end = 0, forced_peaks_linear = 0;
     std::optional<double> forced_peak_distance_max, forced_peak_phase_min, forced_peak_phase_max;
     std::vector<std::optional<MainBranchPoint>> points; ///< at each Backbone omega on the main branch
     std::vector<BackbonePoint>                  solved; ///< those found, for the verification in time
