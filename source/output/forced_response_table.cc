@@ -162,6 +162,18 @@ namespace nsm
       return segments == 1 ? "a segment of its own" : std::to_string(segments) + " segments of their own";
     }
 
+    /// " (after turning at Omega w)" where the trace from Omega max (the
+    /// curve's last `far_points` points) went below where it stopped: down
+    /// the linear response and back up another branch.
+    std::string far_turn(const ForcedCurve &curve, const std::size_t far_points, const double reached)
+    {
+      double lowest = reached;
+      for (std::size_t i = curve.points.size() - std::min(far_points, curve.points.size()); i < curve.points.size();
+           ++i)
+        lowest = std::min(lowest, curve.points[i].omega);
+      return lowest < reached ? " (after turning at Omega " + significant(lowest, 6) + ")" : "";
+    }
+
     /// The curve's points, Omega extent, and how its tracing went.
     std::string extent(const ForcedCurve &curve)
     {
@@ -188,8 +200,9 @@ namespace nsm
       else if (!curve.finished && far)
         text += ", stopped before the range's end at Omega " + significant(far->stopped, 6) +
                 " (no step, restart or leap went on), then traced again from Omega max = " +
-                significant(high, 6) + " until it stopped at Omega " + significant(far->reached, 6) + " (" +
-                counted(far->points, "point") + ", " + far_segments(curve, far->points) + ")";
+                significant(high, 6) + " until it stopped at Omega " + significant(far->reached, 6) +
+                far_turn(curve, far->points, far->reached) + " (" + counted(far->points, "point") + ", " +
+                far_segments(curve, far->points) + ")";
       else if (!curve.finished)
         text += ", stopped before the range's end (no step, restart or leap went on)";
       if (curve.restarts + curve.leaps > 0)

@@ -653,6 +653,26 @@ TEST(ForcedSummary, TheTraceFromOmegaMaxCountsItsSegments)
   EXPECT_NE(line.find("(3 points from Omega max = 1.8, 2 segments of their own)"), std::string::npos) << line;
 }
 
+TEST(ForcedSummary, ATraceFromOmegaMaxThatTurnedSaysWhere)
+{
+  // Traced again from Omega max = 1.99, the curve went down the linear
+  // response to 1.93286 and back up its unstable branch to where it stopped
+  // (prm/forced.prm from 1.92 to 1.99): the line gives the turn, which a
+  // trace that only descended has not.
+  nsm::ForcedCurve curve = whole_curve(2e-5, {{1.92, 1e-9, 0, true}, {1.95, 2e-9, 0, true}, {1.99, 2e-9, 0, true},
+                                              {1.93286, 2e-9, 0, true}, {1.985, 2e-9, 0, false}});
+  curve.finished     = false;
+  curve.from_far_end = nsm::ForcedCurve::FromFarEnd{1.95, 1.985, 3, false};
+  for (std::size_t i = 2; i < 5; ++i)
+    curve.points[i].segment = 1;
+  std::string line = nsm::forced_response_summary({curve}, nullptr)[0];
+  EXPECT_NE(line.find("until it stopped at Omega 1.985 (after turning at Omega 1.93286) (3 points"), std::string::npos)
+    << line;
+  curve.points[3].omega = 1.988;
+  line                  = nsm::forced_response_summary({curve}, nullptr)[0];
+  EXPECT_NE(line.find("until it stopped at Omega 1.985 (3 points"), std::string::npos) << line;
+}
+
 TEST(ForcedSummary, ACurveStoppedByMaxStepsSaysSo)
 {
   // A curve that wrote Continuation/Max steps points before the range's end
