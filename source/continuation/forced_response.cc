@@ -421,10 +421,42 @@ namespace nsm
       /// another motion only if `onto_other_motions`.
       void go_on_at_stalls(const bool onto_other_motions)
       {
+        set_aside_.clear();
+        std::vector<std::size_t> kept;
         while (!curve_.finished && curve_.restarts + curve_.leaps < continuation_constants::forced_restarts &&
                curve_.points.size() >= 2 && steps_left() > 0 &&
-               (restart_at_corner() || enter_contact() || enter_at_grazing() || leap(onto_other_motions)))
+               (restart_at_corner() || enter_contact() || enter_at_grazing() || leap(onto_other_motions) ||
+                (refine_min_step() && (kept.push_back(curve_.points.size()), true))))
           {}
+        // The points refine_min_step set aside, back where nothing went on
+        // from where it left the curve.
+        for (std::size_t i = set_aside_.size(); i-- > 0;)
+          if (curve_.points.size() == kept[i])
+            curve_.points.insert(curve_.points.end(), set_aside_[i].begin(), set_aside_[i].end());
+      }
+
+      /// Where nothing else goes on, the stall may be a fold sharper than
+      /// Min step resolves: Min step a tenth (at most
+      /// forced_min_step_refinements times), and the curve's last
+      /// travel_points points within the segment set aside, for the restarts
+      /// to approach the fold again with the finer step (go_on_at_stalls puts
+      /// them back where nothing went on).
+      bool refine_min_step()
+      {
+        if (refinements_ == continuation_constants::forced_min_step_refinements)
+          return false;
+        ++refinements_;
+        ++curve_.min_step_refinements;
+        continuation_.min_step /= 10;
+        origins_.clear();
+        const unsigned int segment = curve_.points.back().segment;
+        std::size_t        back    = 0;
+        while (back < travel_points && curve_.points.size() - back > 2 &&
+               curve_.points[curve_.points.size() - back - 2].segment == segment)
+          ++back;
+        set_aside_.emplace_back(curve_.points.end() - back, curve_.points.end());
+        curve_.points.erase(curve_.points.end() - back, curve_.points.end());
+        return true;
       }
 
       /// The curve from the linear response's guess at the range's far end
@@ -848,10 +880,13 @@ namespace nsm
       ForcedHarmonicBalance           &hb_;
       const Sweep                      sweep_;
       const HarmonicBalanceParameters &harmonic_balance_;
-      const ContinuationParameters    &continuation_;
+      /// The scene's, but for Min step, which refine_min_step() divides.
+      ContinuationParameters           continuation_;
       double                           low_, high_;
       ForcedCurve                      curve_;
       std::vector<double>              origins_; ///< the parameter at every restart
+      unsigned int                     refinements_ = 0; ///< of Min step (refine_min_step)
+      std::vector<std::vector<ForcedPoint>> set_aside_; ///< by refine_min_step, in go_on_at_stalls
     };
   } // namespace
 

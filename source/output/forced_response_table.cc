@@ -208,6 +208,9 @@ namespace nsm
       if (curve.restarts + curve.leaps > 0)
         text += ", " + counted(curve.restarts, "restart") + " at corners, " + counted(curve.leaps, "leap") +
                 " past stalls";
+      if (curve.min_step_refinements > 0)
+        text += ", Continuation/Min step made a tenth at " + counted(curve.min_step_refinements, "stall") +
+                " (a fold sharper than it resolves)";
       if (curve.rejected > 0)
         text += ", " + counted(curve.rejected, "step") + " above the tolerance not written";
       if (curve.retraced > 0)

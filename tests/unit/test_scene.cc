@@ -56,12 +56,12 @@ namespace
       {"force_curve_no_range", "subsection Damping\n set Modal ratio = 0.01\nend\nsubsection Forcing\n set Omegas = 1.9\nend\n", "Forcing/Amplitude max", "> 0, or Forcing/Amplitudes set"},
       {"force_curve_omega_zero", "subsection Damping\n set Modal ratio = 0.01\nend\nsubsection Forcing\n set Omegas = 0\n set Amplitude max = 1e-5\nend\n", "Forcing/Omegas", "numbers in (0, 1e20]"},
       {"force_curve_too_many", "subsection Damping\n set Modal ratio = 0.01\nend\nsubsection Forcing\n set Amplitude max = 1e-5\n set Omegas = " +
-         [] { std::string list = "1.9"; for (int i = 0; i < 100; ++i) list += ", 1.9"; return list; }() + "\nend\n",
+         [] { std::string list = "1.9"; for (int i = 0; i < 100; ++i) list += ", " + std::to_string(i + 2); return list; }() + "\nend\n",
        "Forcing/Omegas", "at most 100 numbers"},
       {"force_curve_max_negative", "subsection Forcing\n set Amplitude max = -1\nend\n", "Forcing/Amplitude max", "[0, 1e+20]"},
       {"damping_ratio_large", "subsection Damping\n set Modal ratio = 2\nend\n", "Damping/Modal ratio", "a number in [0, 1]"},
       {"forcing_too_many", "subsection Damping\n set Modal ratio = 0.01\nend\nsubsection Forcing\n set Amplitudes = " +
-         [] { std::string list = "1e-5"; for (int i = 0; i < 100; ++i) list += ", 1e-5"; return list; }() + "\nend\n",
+         [] { std::string list = "1e-5"; for (int i = 0; i < 100; ++i) list += ", " + std::to_string(i + 2) + "e-5"; return list; }() + "\nend\n",
        "Forcing/Amplitudes", "at most 100 numbers"},
       {"sign_unknown", "subsection Contact\n set Force sign = attractive\nend\n", "Contact/Force sign", "one of physical, seed-eq5"},
       {"degree_zero", "subsection Discretisation\n set Degree = 0\nend\n", "Discretisation/Degree", "[1, 20]"},

@@ -35,6 +35,12 @@ namespace nsm::continuation_constants
   /// many times (forced_response.h): on the seed bar's curves each corner
   /// needs one.
   constexpr unsigned int forced_restarts = 50;
+  /// Where nothing else goes on from a forced curve's stall, Min step is
+  /// made a tenth and the restarts are tried again, at most this many
+  /// times: a fold sharper than Min step resolves (the seed bar's curve in F
+  /// at W = 1.97 turns 1.2e-7 of its load past grazing, where the scene's
+  /// Min step over a range of 0.5 is 2e-6) is turned with a finer one.
+  constexpr unsigned int forced_min_step_refinements = 2;
   /// A forced curve's stepper has come back along the curve where this
   /// many points in a row run back along the path traced before them, each
   /// within retrace_share of a chord's length from a chord between two

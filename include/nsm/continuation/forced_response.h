@@ -57,6 +57,9 @@ namespace nsm
     /// Points dropped where the stepper came back along the curve after
     /// turning at a corner onto the branch it came on.
     unsigned int retraced = 0;
+    /// Times Min step was made a tenth at a stall nothing else went on
+    /// from (continuation_constants::forced_min_step_refinements).
+    unsigned int min_step_refinements = 0;
     /// Not traced whole because Continuation/Max steps points were written.
     bool         out_of_steps = false;
     /// Where the trace from the range's near end stopped before its far
