@@ -449,11 +449,13 @@ namespace nsm
         ++curve_.min_step_refinements;
         continuation_.min_step /= 10;
         origins_.clear();
+        // Two of the segment's points stay: the restarts leave the one
+        // before the last behind.
         const unsigned int segment = curve_.points.back().segment;
-        std::size_t        back    = 0;
-        while (back < travel_points && curve_.points.size() - back > 2 &&
-               curve_.points[curve_.points.size() - back - 2].segment == segment)
-          ++back;
+        std::size_t        own     = 0;
+        while (own < curve_.points.size() && curve_.points[curve_.points.size() - 1 - own].segment == segment)
+          ++own;
+        const std::size_t back = own > 2 ? std::min(travel_points, own - 2) : 0;
         set_aside_.emplace_back(curve_.points.end() - back, curve_.points.end());
         curve_.points.erase(curve_.points.end() - back, curve_.points.end());
         return true;
