@@ -417,46 +417,43 @@ namespace nsm
 
     private:
       /// Restarts at corners, entries into contact and leaps from the
-      /// curve's last point while every step fails there; leaps onto
-      /// another motion only if `onto_other_motions`.
+      /// curve's last point while every step fails there (leaps onto
+      /// another motion only if `onto_other_motions`), and where none goes
+      /// on, a finer Min step (refine_min_step).
       void go_on_at_stalls(const bool onto_other_motions)
       {
         set_aside_.clear();
-        std::vector<std::size_t> kept;
         while (!curve_.finished && curve_.restarts + curve_.leaps < continuation_constants::forced_restarts &&
                curve_.points.size() >= 2 && steps_left() > 0 &&
                (restart_at_corner() || enter_contact() || enter_at_grazing() || leap(onto_other_motions) ||
-                (refine_min_step() && (kept.push_back(curve_.points.size()), true))))
+                refine_min_step()))
           {}
-        // The points refine_min_step set aside, back where nothing went on
-        // from where it left the curve.
-        for (std::size_t i = set_aside_.size(); i-- > 0;)
-          if (curve_.points.size() == kept[i])
-            curve_.points.insert(curve_.points.end(), set_aside_[i].begin(), set_aside_[i].end());
+        // The points refine_min_step set aside go back, the last set aside
+        // first, while nothing went on from where each left the curve.
+        for (std::size_t i = set_aside_.size(); i-- > 0 && curve_.points.size() == set_aside_[i].kept;)
+          curve_.points.insert(curve_.points.end(), set_aside_[i].points.begin(), set_aside_[i].points.end());
       }
 
       /// Where nothing else goes on, the stall may be a fold sharper than
-      /// Min step resolves: Min step a tenth (at most
-      /// forced_min_step_refinements times), and the curve's last
-      /// travel_points points within the segment set aside, for the restarts
-      /// to approach the fold again with the finer step (go_on_at_stalls puts
-      /// them back where nothing went on).
+      /// Min step resolves: Min step divided by forced_min_step_division
+      /// (at most forced_min_step_refinements times; the finer step holds
+      /// for the rest of the curve, its trace from the far end included),
+      /// and up to travel_points of the segment's last points set aside (two
+      /// stay), for the restarts to approach the fold again with the finer
+      /// step (go_on_at_stalls puts them back where nothing went on).
       bool refine_min_step()
       {
-        if (refinements_ == continuation_constants::forced_min_step_refinements)
+        if (curve_.min_step_refinements == continuation_constants::forced_min_step_refinements)
           return false;
-        ++refinements_;
         ++curve_.min_step_refinements;
-        continuation_.min_step /= 10;
+        continuation_.min_step /= continuation_constants::forced_min_step_division;
         origins_.clear();
-        // Two of the segment's points stay: the restarts leave the one
-        // before the last behind.
         const unsigned int segment = curve_.points.back().segment;
         std::size_t        own     = 0;
         while (own < curve_.points.size() && curve_.points[curve_.points.size() - 1 - own].segment == segment)
           ++own;
         const std::size_t back = own > 2 ? std::min(travel_points, own - 2) : 0;
-        set_aside_.emplace_back(curve_.points.end() - back, curve_.points.end());
+        set_aside_.push_back({{curve_.points.end() - back, curve_.points.end()}, curve_.points.size() - back});
         curve_.points.erase(curve_.points.end() - back, curve_.points.end());
         return true;
       }
@@ -887,8 +884,14 @@ namespace nsm
       double                           low_, high_;
       ForcedCurve                      curve_;
       std::vector<double>              origins_; ///< the parameter at every restart
-      unsigned int                     refinements_ = 0; ///< of Min step (refine_min_step)
-      std::vector<std::vector<ForcedPoint>> set_aside_; ///< by refine_min_step, in go_on_at_stalls
+      /// Points refine_min_step set aside, and how many points the curve
+      /// kept before them.
+      struct SetAside
+      {
+        std::vector<ForcedPoint> points;
+        std::size_t              kept;
+      };
+      std::vector<SetAside> set_aside_; ///< in the current go_on_at_stalls
     };
   } // namespace
 

@@ -1,4 +1,5 @@
 #include <nsm/base/text.h>
+#include <nsm/continuation/constants.h>
 #include <nsm/output/forced_response_table.h>
 
 #include <algorithm>
@@ -209,8 +210,9 @@ namespace nsm
         text += ", " + counted(curve.restarts, "restart") + " at corners, " + counted(curve.leaps, "leap") +
                 " past stalls";
       if (curve.min_step_refinements > 0)
-        text += ", Continuation/Min step made a tenth at " + counted(curve.min_step_refinements, "stall") +
-                " (a fold sharper than it resolves)";
+        text += ", Continuation/Min step divided by " +
+                significant(continuation_constants::forced_min_step_division, 3) + " " +
+                counted(curve.min_step_refinements, "time") + " where nothing else went on";
       if (curve.rejected > 0)
         text += ", " + counted(curve.rejected, "step") + " above the tolerance not written";
       if (curve.retraced > 0)

@@ -259,7 +259,7 @@ def check_force_curves_whatever_the_range(force_rows):
     check(run.returncode == 0, f"the curves in F over the range 1 to 1.5: exit {run.returncode}: {run.stderr[-300:]}")
     if run.returncode != 0:
         return
-    check("Continuation/Min step made a tenth at 1 stall (a fold sharper than it resolves)" in run.stdout,
+    check("Continuation/Min step divided by 10 1 time where nothing else went on" in run.stdout,
           "the curve in F at 1.97 over the range 1 to 1.5 does not say its Min step was made a tenth")
     with open(os.path.join(out, "force_response.csv")) as f:
         short = list(csv.DictReader(f))
@@ -592,7 +592,7 @@ def check_at_80_harmonics():
         return
     _, stdout, rows = ran
     line = next((l for l in stdout.split("\n") if "forced response F = 1e-05" in l), "")
-    check("stopped before the range's end" not in line and "Continuation/Min step made a tenth" in line and
+    check("stopped before the range's end" not in line and "Continuation/Min step divided by 10" in line and
           not re.search(r"\b[1-9][0-9]* leaps? past stalls", line), f"the stall at M = 80: {line[:300]}")
     omegas = [float(r["Omega"]) for r in rows]
     check(min(omegas) == 1.85 and abs(max(omegas) - 2.05) < 1e-9,

@@ -41,6 +41,8 @@ namespace nsm::continuation_constants
   /// at W = 1.97 turns 1.2e-7 of its load past grazing, where the scene's
   /// Min step over a range of 0.5 is 2e-6) is turned with a finer one.
   constexpr unsigned int forced_min_step_refinements = 2;
+  /// Each such refinement divides Min step by this.
+  constexpr double forced_min_step_division = 10;
   /// A forced curve's stepper has come back along the curve where this
   /// many points in a row run back along the path traced before them, each
   /// within retrace_share of a chord's length from a chord between two
