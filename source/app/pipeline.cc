@@ -1012,7 +1012,7 @@ namespace nsm
         std::string text = std::string("interrupted by ") + stop_signal_name(report.stopped_by) +
                            ": the output holds what was computed before";
         for (const std::string &s : skipped)
-          text += (&s == &skipped.front() ? "; left out: " : ", ") + s;
+          text += (&s == &skipped.front() ? "; left out: " : "; ") + s;
         note(text);
         run.write_checkpoints(output.staging());
       }

@@ -159,7 +159,7 @@ def verification_stop(executable):
     if "left out: the forced response's verification in time from F = 1e-05, Omega = " not in stdout:
         failures.append(f"verification: the summary does not say where it stopped: {stdout[-500:]}")
     # The curve in F after it is left out too, and said so.
-    if ", force response's curves from Omega = 1.97 on" not in stdout or \
+    if "; force response's curves from Omega = 1.97 on" not in stdout or \
             os.path.exists("verified-stopped/force_response.csv"):
         failures.append(f"verification: the curve in F after the stop is not named left out: {stdout[-500:]}")
     with open("verified-whole/frc.csv") as f:
