@@ -385,6 +385,7 @@ namespace nsm
         , sweep_(sweep)
         , harmonic_balance_(harmonic_balance)
         , continuation_(continuation)
+        , scene_min_step_(continuation.min_step)
         , low_(low)
         , high_(high)
       {}
@@ -436,15 +437,16 @@ namespace nsm
 
       /// Where nothing else goes on, the stall may be a fold sharper than
       /// Min step resolves: Min step divided by forced_min_step_division
-      /// (at most forced_min_step_refinements times; the finer step holds
-      /// for the rest of the curve, its trace from the far end included),
+      /// (at most forced_min_step_refinements times per trace; the finer
+      /// step holds for the rest of the trace),
       /// and up to travel_points of the segment's last points set aside (two
       /// stay), for the restarts to approach the fold again with the finer
       /// step (go_on_at_stalls puts them back where nothing went on).
       bool refine_min_step()
       {
-        if (curve_.min_step_refinements == continuation_constants::forced_min_step_refinements)
+        if (trace_refinements_ == continuation_constants::forced_min_step_refinements)
           return false;
+        ++trace_refinements_;
         ++curve_.min_step_refinements;
         continuation_.min_step /= continuation_constants::forced_min_step_division;
         origins_.clear();
@@ -466,6 +468,10 @@ namespace nsm
       /// (a corner neither stepper turns: the two traces meet).
       void trace_from_far_end()
       {
+        // A trace of its own: the scene's Min step, refined again only at
+        // its own stalls.
+        continuation_.min_step = scene_min_step_;
+        trace_refinements_     = 0;
         // Where the start at the near end converged nowhere (its linear
         // response's guess far from the curve, next to the resonance), the
         // trace from the far end is the whole curve if it reaches the near end.
@@ -881,6 +887,8 @@ namespace nsm
       const HarmonicBalanceParameters &harmonic_balance_;
       /// The scene's, but for Min step, which refine_min_step() divides.
       ContinuationParameters           continuation_;
+      double                           scene_min_step_;
+      unsigned int                     trace_refinements_ = 0; ///< of the current trace (the curve's are counted in it)
       double                           low_, high_;
       ForcedCurve                      curve_;
       std::vector<double>              origins_; ///< the parameter at every restart

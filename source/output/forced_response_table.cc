@@ -172,7 +172,8 @@ namespace nsm
       for (std::size_t i = curve.points.size() - std::min(far_points, curve.points.size()); i < curve.points.size();
            ++i)
         lowest = std::min(lowest, curve.points[i].omega);
-      return lowest < reached ? " (after turning at Omega " + significant(lowest, 6) + ")" : "";
+      const std::string turn = significant(lowest, 6);
+      return turn != significant(reached, 6) ? " (after turning at Omega " + turn + ")" : "";
     }
 
     /// The curve's points, Omega extent, and how its tracing went.

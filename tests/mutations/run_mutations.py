@@ -238,7 +238,7 @@ MUTATIONS = [
      "const bool met = std::abs(sweep_.value(reached) - sweep_.value(stopped)) <= continuation_.initial_step &&",
      "const bool met = false &&"),
     ("forced curve: no finer Min step at a stall nothing else goes on from", "source/continuation/forced_response.cc",
-     "if (curve_.min_step_refinements == continuation_constants::forced_min_step_refinements)\n          return false;",
+     "if (trace_refinements_ == continuation_constants::forced_min_step_refinements)\n          return false;",
      "if (true)\n          return false;"),
     ("forced curve: the points set aside for a finer Min step lost where nothing went on",
      "source/continuation/forced_response.cc",
