@@ -435,6 +435,16 @@ namespace nsm
           curve_.points.insert(curve_.points.end(), set_aside_[i].points.begin(), set_aside_[i].points.end());
       }
 
+      /// How many of the curve's last points lie in its last point's segment.
+      std::size_t own_points() const
+      {
+        std::size_t own = 0;
+        while (own < curve_.points.size() &&
+               curve_.points[curve_.points.size() - 1 - own].segment == curve_.points.back().segment)
+          ++own;
+        return own;
+      }
+
       /// Where nothing else goes on, the stall may be a fold sharper than
       /// Min step resolves: Min step divided by forced_min_step_division
       /// (at most forced_min_step_refinements times per trace; the finer
@@ -450,10 +460,7 @@ namespace nsm
         ++curve_.min_step_refinements;
         continuation_.min_step /= continuation_constants::forced_min_step_division;
         origins_.clear();
-        const unsigned int segment = curve_.points.back().segment;
-        std::size_t        own     = 0;
-        while (own < curve_.points.size() && curve_.points[curve_.points.size() - 1 - own].segment == segment)
-          ++own;
+        const std::size_t own  = own_points();
         const std::size_t back = own > 2 ? std::min(travel_points, own - 2) : 0;
         set_aside_.push_back({{curve_.points.end() - back, curve_.points.end()}, curve_.points.size() - back});
         curve_.points.erase(curve_.points.end() - back, curve_.points.end());
@@ -846,11 +853,7 @@ namespace nsm
         const ForcedPoint &last    = curve_.points.back();
         // Over the last points of its own segment (a second trace's first
         // points follow the first trace's last).
-        std::size_t first = curve_.points.size() - 1;
-        while (first > 0 && curve_.points.size() - first < travel_points &&
-               curve_.points[first - 1].segment == last.segment)
-          --first;
-        const ForcedPoint &earlier = curve_.points[first];
+        const ForcedPoint &earlier = curve_.points[curve_.points.size() - std::min(own_points(), travel_points)];
         const double       travel  = sweep_.value(last) >= sweep_.value(earlier) ? 1.0 : -1.0;
         const double       step    = continuation_.initial_step;
         const auto same_motion = [&](const ForcedPoint &next) {

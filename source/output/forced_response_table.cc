@@ -71,16 +71,23 @@ namespace nsm
       return swept_value(curve, peak) == swept_value(curve, low) || swept_value(curve, peak) == swept_value(curve, high);
     }
 
-    /// "E / main - 1 = d (main points b apart)", or why there is none.
+    /// Why an energy is not read against the main branch there.
+    constexpr const char *no_main_bracket_text = ", no main backbone point on both sides";
+
+    /// "E / main - 1 = d (main points b apart)".
+    std::string distance_text(const double distance, const double bracket)
+    {
+      return ", against the backbone's main branch " + significant(100 * distance, 3) + " % (its main points " +
+             significant(bracket, 2) + " apart there)";
+    }
+
+    /// The energy at omega against the main branch, or why there is none.
     std::string against_backbone(const Backbone *backbone, const double omega, const double energy)
     {
       if (!backbone)
         return "";
       const std::optional<MainEnergy> main = main_energy_at(*backbone, omega);
-      if (!main)
-        return ", no main backbone point on both sides";
-      return ", against the backbone's main branch " + significant(100 * (energy / main->energy - 1), 3) +
-             " % (its main points " + significant(main->bracket, 2) + " apart there)";
+      return main ? distance_text(energy / main->energy - 1, main->bracket) : no_main_bracket_text;
     }
   } // namespace
 
@@ -152,13 +159,19 @@ namespace nsm
       return found;
     }
 
+    /// The index of the first of the curve's last `far_points` points (the
+    /// trace from Omega max).
+    std::size_t far_begin(const ForcedCurve &curve, const std::size_t far_points)
+    {
+      return curve.points.size() - std::min(far_points, curve.points.size());
+    }
+
     /// How the trace from Omega max, the curve's last `far_points` points,
     /// is split: "a segment of its own" or "N segments of their own".
     std::string far_segments(const ForcedCurve &curve, const std::size_t far_points)
     {
       std::size_t segments = 0;
-      for (std::size_t i = curve.points.size() - std::min(far_points, curve.points.size()); i < curve.points.size();
-           ++i)
+      for (std::size_t i = far_begin(curve, far_points); i < curve.points.size(); ++i)
         segments += i == 0 || curve.points[i].segment != curve.points[i - 1].segment;
       return segments == 1 ? "a segment of its own" : std::to_string(segments) + " segments of their own";
     }
@@ -169,8 +182,7 @@ namespace nsm
     std::string far_turn(const ForcedCurve &curve, const std::size_t far_points, const double reached)
     {
       double lowest = reached;
-      for (std::size_t i = curve.points.size() - std::min(far_points, curve.points.size()); i < curve.points.size();
-           ++i)
+      for (std::size_t i = far_begin(curve, far_points); i < curve.points.size(); ++i)
         lowest = std::min(lowest, curve.points[i].omega);
       const std::string turn = significant(lowest, 6);
       return turn != significant(reached, 6) ? " (after turning at Omega " + turn + ")" : "";
@@ -420,10 +432,9 @@ namespace nsm
       switch (peak.left_out)
         {
           case PeakLeftOut::none:
-            return ", against the backbone's main branch " + significant(100 * *peak.distance, 3) +
-                   " % (its main points " + significant(*peak.bracket, 2) + " apart there)";
+            return distance_text(*peak.distance, *peak.bracket);
           case PeakLeftOut::no_main_bracket:
-            return ", no main backbone point on both sides";
+            return no_main_bracket_text;
           case PeakLeftOut::linear:
             return ", never touching the wall: the linear response, not compared with the backbone";
           case PeakLeftOut::not_whole:

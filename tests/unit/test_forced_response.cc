@@ -452,6 +452,21 @@ namespace
     double contact = 0;
   };
 
+  /// A backbone whose main branch runs from 1.8 to 2.2 at energy 1e-6.
+  nsm::Backbone flat_main_branch()
+  {
+    nsm::Backbone backbone;
+    for (const double omega : {1.8, 2.2})
+      {
+        nsm::BackbonePoint p{};
+        p.omega           = omega;
+        p.measures.energy = 1e-6;
+        p.branch          = nsm::Branch::main;
+        backbone.points.push_back(p);
+      }
+    return backbone;
+  }
+
   /// A curve in W of amplitude `forcing`, traced whole through `points`
   /// (one segment).
   nsm::ForcedCurve whole_curve(const double forcing, const std::vector<SummaryPoint> &points)
@@ -536,15 +551,7 @@ TEST(ForcedPeak, OneVerdictDecidesWhetherAPeakIsComparedForTheResultLineAndTheSt
   // stretch neither trace reached may hold the peak; beyond the main points
   // nothing brackets it. Each is left out by forced_peak, which the study
   // reads (its distance unset), and the Result line says why.
-  nsm::Backbone backbone;
-  for (const double omega : {1.8, 2.2})
-    {
-      nsm::BackbonePoint p{};
-      p.omega           = omega;
-      p.measures.energy = 1e-6;
-      p.branch          = nsm::Branch::main;
-      backbone.points.push_back(p);
-    }
+  const nsm::Backbone backbone = flat_main_branch();
   const auto curve_with = [](const double contact, const double peak_omega) {
     return whole_curve(1e-5, {{1.5, 1e-9, 0, true, contact}, {peak_omega, 1.1e-6, 1.5, true, contact},
                               {2.5, 1e-9, 1.55, true, contact}});
@@ -592,15 +599,7 @@ TEST(ForcedSummary, APhaseResonanceOfTheLinearResponseIsNotComparedWithTheBackbo
   // resonance (the seed bar's 1.91914 at F = 1e-7): that crossing is the
   // linear response's, not compared with the backbone's main branch; the
   // same crossing with contact is.
-  nsm::Backbone backbone;
-  for (const double omega : {1.8, 2.2})
-    {
-      nsm::BackbonePoint p{};
-      p.omega           = omega;
-      p.measures.energy = 1e-6;
-      p.branch          = nsm::Branch::main;
-      backbone.points.push_back(p);
-    }
+  const nsm::Backbone backbone = flat_main_branch();
   const auto line_of = [&](const double contact) {
     return nsm::forced_response_summary(
       {whole_curve(1e-7, {{1.5, 1e-9, 0.1, true, contact}, {1.9, 2e-6, 1.5, true, contact},
