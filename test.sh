@@ -6,7 +6,7 @@
 #   ./test.sh --all        the suite under AddressSanitizer and UBSan
 #                          (build-sanitize/)
 #   ./test.sh --all K/N    the same, with only the K-th of N parts of that suite
-#                          (every N-th test from the K-th: CI runs it in thirds)
+#                          (every N-th test from the K-th: CI runs it in fifths)
 # With --debug or --all, every test runs once: in the checked build, or in the
 # Release build where the checked suite leaves it out (the tests excluded
 # below, and with K/N the other parts), so that each CI turn stays under 25
