@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <optional>
 
@@ -201,18 +202,23 @@ namespace nsm
     class GuardedStep : public NOX::StatusTest::Generic
     {
     public:
+      /// Once `ended` is set every step fails at once: LOCA shortens it to
+      /// Min step and the run ends there.
       GuardedStep(Teuchos::RCP<NOX::StatusTest::Generic> newton, ForcedHarmonicBalance &hb, const Sweep &sweep,
-                  const ContinuationParameters &continuation, const LastPoint &last)
+                  const ContinuationParameters &continuation, const LastPoint &last, const bool &ended)
         : newton_(newton)
         , hb_(hb)
         , sweep_(sweep)
         , continuation_(continuation)
         , last_(last)
+        , ended_(ended)
       {}
 
       NOX::StatusTest::StatusType checkStatus(const NOX::Solver::Generic &problem,
                                               NOX::StatusTest::CheckType  type) override
       {
+        if (ended_)
+          return status_ = NOX::StatusTest::Failed;
         status_ = newton_->checkStatus(problem, type);
         if (status_ != NOX::StatusTest::Converged || std::isnan(last_.contact))
           return status_;
@@ -239,6 +245,7 @@ namespace nsm
       const Sweep                           &sweep_;
       const ContinuationParameters          &continuation_;
       const LastPoint                       &last_;
+      const bool                            &ended_;
       NOX::StatusTest::StatusType            status_ = NOX::StatusTest::Unevaluated;
     };
 
@@ -313,7 +320,8 @@ namespace nsm
     /// whether it reached an end of the range.
     bool run_stepper(ForcedHarmonicBalance &hb, const Sweep &sweep, const HarmonicBalanceParameters &harmonic_balance,
                      const ContinuationParameters &continuation, const double low, const double high,
-                     const StepperStart &start, std::vector<ForcedPoint> &points, unsigned int &rejected)
+                     const StepperStart &start, std::vector<ForcedPoint> &points, unsigned int &rejected,
+                     const std::function<bool()> &ends = {})
     {
       ContinuationParameters c = continuation;
       c.initial_step           = start.step;
@@ -324,6 +332,7 @@ namespace nsm
       if (!start.keep_start)
         last = last_point(hb, sweep, start.value, start.x);
       bool       finished      = false;
+      bool       ended         = false;
       {
         ForcedInterface interface(hb, sweep, start.x, {{low - continuation.max_step, high + continuation.max_step}});
         auto            group = Teuchos::rcp(new DenseLuGroup(data, interface));
@@ -348,11 +357,12 @@ namespace nsm
           else
             {
               points.push_back(point_of(hb, start.segment, x, norm));
-              last = {points.back().measures.contact_fraction, hb.displacement(x)};
+              last  = {points.back().measures.contact_fraction, hb.displacement(x)};
+              ended = ends && ends();
             }
         };
         const auto status = Teuchos::rcp(
-          new GuardedStep(newton_status(harmonic_balance), hb, sweep, continuation, last));
+          new GuardedStep(newton_status(harmonic_balance), hb, sweep, continuation, last, ended));
         LOCA::Stepper stepper(data, group, status, params);
         finished = stepper.run() == LOCA::Abstract::Iterator::Finished;
       }
@@ -493,7 +503,8 @@ namespace nsm
             curve_.from_far_end         = ForcedCurve::FromFarEnd{
               std::numeric_limits<double>::quiet_NaN(),
               curve_.points.empty() ? std::numeric_limits<double>::quiet_NaN() : curve_.points.back().omega,
-              unsigned(curve_.points.size()), reached_near_end};
+              unsigned(curve_.points.size()),
+              reached_near_end ? ForcedCurve::Meeting::near_end : ForcedCurve::Meeting::none};
             return;
           }
         const ForcedPoint stopped = curve_.points.back();
@@ -510,24 +521,41 @@ namespace nsm
         if (written == 0)
           {
             curve_.from_far_end =
-              ForcedCurve::FromFarEnd{sweep_.value(stopped), std::numeric_limits<double>::quiet_NaN(), 0, false};
+              ForcedCurve::FromFarEnd{sweep_.value(stopped), std::numeric_limits<double>::quiet_NaN(), 0,
+                                      ForcedCurve::Meeting::none};
             return;
           }
-        // The traces meet where their last points lie within Initial step of
-        // W and within the step's guard of each other: as two consecutive
-        // points of one trace may (at a corner or fold neither stepper turns;
-        // measured: 4e-6 and 6e-7 of W apart on the two meetings of a scan of
-        // 40 curves, and 2e-3 to 6e-2 on the traces that did not meet).
+        // The traces meet where the far trace's last point lies within
+        // Initial step of W and within the step's guard of the first trace's
+        // last point, as two consecutive points of one trace may (at a corner
+        // or fold neither stepper turns; measured: 4e-6 and 6e-7 of W apart
+        // on the two meetings of a scan of 40 curves, and 2e-3 to 6e-2 on the
+        // traces that did not meet), or of any point of the first trace: a
+        // far trace that runs along the first trace's path is cut where it
+        // joins it (cut_retrace), beyond where the first trace stopped.
         const ForcedPoint &reached = curve_.points.back();
-        const bool met = std::abs(sweep_.value(reached) - sweep_.value(stopped)) <= continuation_.initial_step &&
-                         within_guard(hb_, sweep_, continuation_, stopped, reached);
-        curve_.from_far_end = ForcedCurve::FromFarEnd{sweep_.value(stopped), sweep_.value(reached), written, met};
+        const auto         meets   = [&](const ForcedPoint &p) {
+          return std::abs(sweep_.value(p) - sweep_.value(reached)) <= continuation_.initial_step &&
+                 within_guard(hb_, sweep_, continuation_, p, reached);
+        };
+        const auto meeting = meets(stopped) ? ForcedCurve::Meeting::last_points :
+                             std::any_of(curve_.points.begin(), curve_.points.begin() + before, meets) ?
+                                              ForcedCurve::Meeting::on_first_trace :
+                                              ForcedCurve::Meeting::none;
+        curve_.from_far_end = ForcedCurve::FromFarEnd{sweep_.value(stopped), sweep_.value(reached), written, meeting};
       }
 
+      /// A run onto the curve ends as soon as it runs along the path traced
+      /// before it (cut_retrace then cuts it): LOCA would go on along that
+      /// path, or round a loop again, up to Max steps.
       bool run(const StepperStart &start, std::vector<ForcedPoint> &points)
       {
+        if (&points != &curve_.points)
+          return run_stepper(hb_, sweep_, harmonic_balance_, continuation_, low_, high_, start, points,
+                             curve_.rejected);
+        RetraceCount count;
         return run_stepper(hb_, sweep_, harmonic_balance_, continuation_, low_, high_, start, points,
-                           curve_.rejected);
+                           curve_.rejected, [&] { return count.add(traced_path_beside(curve_.points.size() - 1)); });
       }
 
       unsigned int steps_left() const
@@ -579,24 +607,31 @@ namespace nsm
       }
 
       /// Where the stepper has come back along the curve (retrace_points
-      /// points in a row on the path traced before them, share_off_traced_path
-      /// at most retrace_share), it turned at a corner onto the branch it came
-      /// on: the points after that turn (the last turn of the swept parameter
-      /// before them; with none in the run, after the run's first point, or
-      /// the whole run where that point already retraces) are dropped and
-      /// counted. Returns whether it cut.
+      /// points in a row on the path traced before them, traced_path_beside
+      /// at most retrace_share, against its direction), it turned at a corner
+      /// onto the branch it came on: the points after that turn (the last turn
+      /// of the swept parameter before them; with none in the run, after the
+      /// run's first point, or the whole run where that point already
+      /// retraces) are dropped and counted. Where they run along that path in
+      /// its own direction, the stepper has gone round a closed loop of the
+      /// curve and begun it again: they and the points after them are
+      /// dropped and counted. Returns whether it cut.
       bool cut_retrace(const std::size_t before)
       {
         using namespace continuation_constants;
-        std::size_t in_a_row = 0, found = curve_.points.size();
+        RetraceCount count;
+        std::size_t  found = curve_.points.size();
         for (std::size_t i = before; i < curve_.points.size() && found == curve_.points.size(); ++i)
-          {
-            in_a_row = share_off_traced_path(i) <= retrace_share ? in_a_row + 1 : 0;
-            if (in_a_row == retrace_points)
-              found = i + 1 - retrace_points;
-          }
+          if (count.add(traced_path_beside(i)))
+            found = i + 1 - retrace_points;
         if (found == curve_.points.size())
           return false;
+        if (count.back < retrace_points)
+          {
+            curve_.retraced += curve_.points.size() - found;
+            curve_.points.resize(found);
+            return true;
+          }
         std::size_t turn = found - 1;
         while (turn > before && turn + 1 < curve_.points.size() &&
                (sweep_.value(curve_.points[turn]) - sweep_.value(curve_.points[turn - 1])) *
@@ -607,16 +642,38 @@ namespace nsm
         return true;
       }
 
-      /// The least distance of the curve's point `index` from the path
-      /// between two consecutive points of one segment, of its verdict, that
-      /// it runs back along (the step into it points against theirs, and it
-      /// lies beside them, not beyond either), among the curve's points before
-      /// index - 2, over that pair's distance (the stepper's metric); infinity
-      /// if none.
-      double share_off_traced_path(const std::size_t index) const
+      /// How near the curve's point `index` runs along a path traced before.
+      struct TracedPath
       {
-        const ForcedPoint &p     = curve_.points[index];
-        double             least = std::numeric_limits<double>::infinity();
+        /// The least distance from the path between two consecutive points of
+        /// one segment, of its verdict, that it lies beside (not beyond
+        /// either), among the curve's points before index - 2, over that
+        /// pair's distance (the stepper's metric), over the pairs the step
+        /// into it runs against and along; infinity if none.
+        double back    = std::numeric_limits<double>::infinity();
+        double forward = std::numeric_limits<double>::infinity();
+      };
+
+      /// Points in a row on the path traced before them, against it and
+      /// along it.
+      struct RetraceCount
+      {
+        std::size_t back = 0, along = 0;
+        /// Counts the next point; true once either count reaches
+        /// retrace_points.
+        bool add(const TracedPath &on)
+        {
+          using namespace continuation_constants;
+          back  = on.back <= retrace_share ? back + 1 : 0;
+          along = on.forward <= retrace_share ? along + 1 : 0;
+          return back == retrace_points || along == retrace_points;
+        }
+      };
+
+      TracedPath traced_path_beside(const std::size_t index) const
+      {
+        const ForcedPoint &p = curve_.points[index];
+        TracedPath         least;
         if (index == 0 || curve_.points[index - 1].segment != p.segment)
           return least;
         const ForcedPoint &previous = curve_.points[index - 1];
@@ -636,14 +693,16 @@ namespace nsm
               continue;
             const double length2 = dot(b, a, b, a);
             const double t       = length2 > 0 ? dot(p, a, b, a) / length2 : -1;
-            if (t < 0 || t > 1 || dot(p, previous, b, a) >= 0)
+            const double along   = dot(p, previous, b, a);
+            if (t < 0 || t > 1 || along == 0)
               continue;
             // |(p - a) - t (b - a)|^2, term by term.
             const double dv = (sweep_.value(p) - sweep_.value(a)) - t * (sweep_.value(b) - sweep_.value(a));
             double       d  = dv * dv;
             for (std::size_t k = 0; k < p.x.size(); ++k)
               d += ((p.x[k] - a.x[k]) - t * (b.x[k] - a.x[k])) * ((p.x[k] - a.x[k]) - t * (b.x[k] - a.x[k]));
-            least = std::min(least, std::sqrt(d / length2));
+            double &share = along > 0 ? least.forward : least.back;
+            share         = std::min(share, std::sqrt(d / length2));
           }
         return least;
       }

@@ -203,11 +203,16 @@ namespace nsm
       else if (const auto &far = curve.from_far_end; far && std::isnan(far->stopped))
         text += std::string(", the start at Omega min converged nowhere: traced from Omega max = ") +
                 significant(high, 6) +
-                (far->met ? " down to Omega min" : " until it stopped at Omega " + significant(far->reached, 6));
-      else if (!curve.finished && far && far->met)
+                (far->met() ? " down to Omega min" : " until it stopped at Omega " + significant(far->reached, 6));
+      else if (!curve.finished && far && far->meeting == ForcedCurve::Meeting::last_points)
         text += ", traced from both ends of the range, the two traces meeting at Omega " +
                 significant(far->stopped, 6) + ", a corner neither goes on from (" + counted(far->points, "point") +
                 " from Omega max = " + significant(high, 6) + ", " + far_segments(curve, far->points) + ")";
+      else if (!curve.finished && far && far->met())
+        text += ", traced from both ends of the range, the trace from Omega min stopping at Omega " +
+                significant(far->stopped, 6) + " and the one from Omega max = " + significant(high, 6) +
+                " at Omega " + significant(far->reached, 6) + " on the first's points (" +
+                counted(far->points, "point") + ", " + far_segments(curve, far->points) + ")";
       else if (!curve.finished && far && far->points == 0)
         text += ", stopped before the range's end at Omega " + significant(far->stopped, 6) +
                 " (no step, restart or leap went on); traced again from Omega max, no point converged there";
@@ -230,7 +235,7 @@ namespace nsm
         text += ", " + counted(curve.rejected, "step") + " above the tolerance not written";
       if (curve.retraced > 0)
         text += ", " + counted(curve.retraced, "point") +
-                " not written where the stepper came back along the curve past a corner";
+                " not written where the stepper came back along the curve past a corner or went round a loop of it again";
       const auto unstable =
         std::count_if(curve.points.begin(), curve.points.end(), [](const ForcedPoint &p) { return !p.stable; });
       text += "; " + std::to_string(unstable) + " unstable by the fold test";

@@ -474,6 +474,51 @@ def check_from_both_ends():
     check_stability(rows)
 
 
+def check_loop_traced_once():
+    """The uniform load at M = 20, damping 0.002, F = 4e-5: from a corner at
+    1.93325 (the contact fraction falls from 0.10 to 0.08) the curve runs
+    forward to a fold at 1.94127 and back down its unstable branch to the
+    corner: a closed loop, which the stepper would go round again and again.
+    Checked: no motion is written twice (check_no_retrace, which reads any
+    run along the curve traced before, either way), so the loop is traced
+    once; the trace from Omega max (the last segment, from 2.2 on the linear
+    response) stops where it joins the first trace's path: its last point
+    lies between two consecutive points of the first trace within Initial
+    step of W, energy within 1 % and contact fraction within 0.01 of the
+    first trace's nearest point (measured 3.3e-5, 1e-3 and 2.5e-4), and the
+    Result line says the curve is whole that way; together the traces cover
+    [1.5, 2.2]; continuous, and the fold test's verdicts as on every curve."""
+    ran = forced_run("forced-loop", ["Damping/Modal ratio=0.002", "Forcing/Amplitudes=4e-5", "Forcing/Shape=uniform",
+                                     "Harmonic balance/Harmonics=20"] + CURVES_IN_W, "the loop's run")
+    if not ran:
+        return
+    _, stdout, rows = ran
+    check_no_retrace(rows)
+    near_rows, far_rows = traces(rows)
+    if not near_rows or not far_rows:
+        check(False, "the loop's curve is not traced from both ends")
+        return
+    line = next((l for l in stdout.split("\n") if "forced response F = 4e-05" in l), "")
+    check(f"traced from both ends of the range, the trace from Omega min stopping at Omega "
+          f"{float(near_rows[-1]['Omega']):.6g} and the one from Omega max = 2.2 at Omega "
+          f"{float(far_rows[-1]['Omega']):.6g} on the first's points" in line,
+          f"the loop's Result line does not say where the traces meet: {line[:300]}")
+    end = far_rows[-1]
+    nearest = min(near_rows, key=lambda r: abs(float(r["Omega"]) - float(end["Omega"]))
+                  + abs(float(r["contact_fraction"]) - float(end["contact_fraction"])))
+    check(abs(float(nearest["Omega"]) - float(end["Omega"])) <= 1e-3
+          and abs(float(nearest["energy"]) / float(end["energy"]) - 1) <= 0.01
+          and abs(float(nearest["contact_fraction"]) - float(end["contact_fraction"])) <= 0.01,
+          f"the trace from Omega max ends off the first trace: {[end[k] for k in ('Omega', 'energy', 'contact_fraction')]}"
+          f" against {[nearest[k] for k in ('Omega', 'energy', 'contact_fraction')]}")
+    near = [float(r["Omega"]) for r in near_rows]
+    far = [float(r["Omega"]) for r in far_rows]
+    check(min(near) == 1.5 and abs(max(far) - 2.2) <= 1e-12 and min(far) <= max(near),
+          f"the loop's traces cover [{min(near)}, {max(near)}] and [{min(far)}, {max(far)}], not [1.5, 2.2]")
+    check_continuity(rows)
+    check_stability(rows)
+
+
 def check_within_the_range():
     """Omega from 1.9 to 1.95 (the curves end on their climb, before the
     peaks) with the curves in F at 1.97 and 2.0 up to Amplitude max =
@@ -701,6 +746,7 @@ def main():
         check_stability(light_rows)
     check_uniform_load()
     check_from_both_ends()
+    check_loop_traced_once()
     check_within_the_range()
     check_start_next_to_the_resonance()
     check_entry_at_grazing()

@@ -43,8 +43,9 @@ namespace nsm::continuation_constants
   constexpr unsigned int forced_min_step_refinements = 2;
   /// Each such refinement divides Min step by this.
   constexpr double forced_min_step_division = 10;
-  /// A forced curve's stepper has come back along the curve where this
-  /// many points in a row run back along the path traced before them, each
+  /// A forced curve's stepper has come back along the curve (or gone round
+  /// a loop of it again) where this many points in a row run along the path
+  /// traced before them against its direction (or in it), each
   /// within retrace_share of a chord's length from a chord between two
   /// earlier consecutive points of its verdict (the stepper's metric). Measured on prm/forced.prm
   /// and its uniform drive: points that retrace lie 0.001 to 0.27 of a

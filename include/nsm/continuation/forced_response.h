@@ -65,23 +65,33 @@ namespace nsm
     /// Where the trace from the range's near end stopped before its far
     /// end (or its start converged nowhere): the curve traced again from
     /// the far end towards it, as a segment of its own (trace_forced_curve).
+    /// Where two traces of a curve meet.
+    enum class Meeting
+    {
+      none,
+      last_points,    ///< both stalled there: a corner neither turns
+      on_first_trace, ///< the far trace stopped on a point the first passed
+      near_end        ///< no first trace: the far trace reached the near end
+    };
     struct FromFarEnd
     {
       double       stopped;  ///< the swept parameter where the trace from the near end stopped (NaN: its start converged nowhere)
       double       reached;  ///< where the trace from the far end stopped (NaN: it wrote no point)
       unsigned int points;   ///< the points it wrote
-      /// The two traces' last points lie within Initial step of each
-      /// other and within the step's guard: the curve is whole, and both
-      /// stalled where it turns at a corner; with no trace from the near
-      /// end, the trace from the far end reached it.
-      bool met;
+      /// Whether and where the traces meet (the curve is whole): the far
+      /// trace's last point lies within Initial step of W and within the
+      /// step's guard of the first trace's last point or of another of its
+      /// points; with no trace from the near end, the trace from the far end
+      /// reached it.
+      Meeting meeting;
+      bool    met() const { return meeting != Meeting::none; }
     };
     std::optional<FromFarEnd> from_far_end;
 
     /// Traced over its whole range: to its far end, or from both ends to a
     /// meeting, and with no leap (which jumps over a stretch). A curve with a
     /// stretch no trace reached may have its peak there.
-    bool whole() const { return (finished && leaps == 0) || (from_far_end && from_far_end->met && leaps == 0); }
+    bool whole() const { return (finished && leaps == 0) || (from_far_end && from_far_end->met() && leaps == 0); }
   };
 
   /// The curve of amplitude `forcing` over [omega_min, omega_max], from the
