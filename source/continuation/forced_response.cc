@@ -434,7 +434,8 @@ namespace nsm
       void go_on_at_stalls(const bool onto_other_motions)
       {
         set_aside_.clear();
-        while (!curve_.finished && curve_.restarts + curve_.leaps < continuation_constants::forced_restarts &&
+        while (!curve_.finished && !joined_ &&
+               curve_.restarts + curve_.leaps < continuation_constants::forced_restarts &&
                curve_.points.size() >= 2 && steps_left() > 0 &&
                (restart_at_corner() || enter_contact() || enter_at_grazing() || leap(onto_other_motions) ||
                 refine_min_step()))
@@ -509,6 +510,7 @@ namespace nsm
           }
         const ForcedPoint stopped = curve_.points.back();
         const std::size_t before  = curve_.points.size();
+        far_from_                 = before;
         run_on({high_, std::vector<double>(hb_.n_unknowns(), 0.0), -continuation_.initial_step, steps_left(), true,
                 stopped.segment + 1});
         // Its own restarts need two points of its own (the direction they
@@ -525,23 +527,10 @@ namespace nsm
                                       ForcedCurve::Meeting::none};
             return;
           }
-        // The traces meet where the far trace's last point lies within
-        // Initial step of W and within the step's guard of the first trace's
-        // last point, as two consecutive points of one trace may (at a corner
-        // or fold neither stepper turns; measured: 4e-6 and 6e-7 of W apart
-        // on the two meetings of a scan of 40 curves, and 2e-3 to 6e-2 on the
-        // traces that did not meet), or of any point of the first trace: a
-        // far trace that runs along the first trace's path is cut where it
-        // joins it (cut_retrace), beyond where the first trace stopped.
+        // The traces meet where the far trace runs along the first trace's
+        // path (cut_retrace): the curve is whole.
         const ForcedPoint &reached = curve_.points.back();
-        const auto         meets   = [&](const ForcedPoint &p) {
-          return std::abs(sweep_.value(p) - sweep_.value(reached)) <= continuation_.initial_step &&
-                 within_guard(hb_, sweep_, continuation_, p, reached);
-        };
-        const auto meeting = meets(stopped) ? ForcedCurve::Meeting::last_points :
-                             std::any_of(curve_.points.begin(), curve_.points.begin() + before, meets) ?
-                                              ForcedCurve::Meeting::on_first_trace :
-                                              ForcedCurve::Meeting::none;
+        const auto         meeting = joined_ ? ForcedCurve::Meeting::joined : ForcedCurve::Meeting::none;
         curve_.from_far_end = ForcedCurve::FromFarEnd{sweep_.value(stopped), sweep_.value(reached), written, meeting};
       }
 
@@ -615,17 +604,26 @@ namespace nsm
       /// retraces) are dropped and counted. Where they run along that path in
       /// its own direction, the stepper has gone round a closed loop of the
       /// curve and begun it again: they and the points after them are
-      /// dropped and counted. Returns whether it cut.
+      /// dropped and counted. Where a trace from the far end runs so along
+      /// the first trace's path (either way), it has joined it: they and the
+      /// points after them are dropped, and the trace ends there (joined_).
+      /// Returns whether it cut.
       bool cut_retrace(const std::size_t before)
       {
         using namespace continuation_constants;
         RetraceCount count;
-        std::size_t  found = curve_.points.size();
+        std::size_t  found = curve_.points.size(), end = found;
         for (std::size_t i = before; i < curve_.points.size() && found == curve_.points.size(); ++i)
           if (count.add(traced_path_beside(i)))
-            found = i + 1 - retrace_points;
+            found = i + 1 - retrace_points, end = i + 1;
         if (found == curve_.points.size())
           return false;
+        if (count.first == retrace_points)
+          {
+            joined_ = true;
+            curve_.points.resize(end - count.first_run);
+            return true;
+          }
         if (count.back < retrace_points)
           {
             curve_.retraced += curve_.points.size() - found;
@@ -652,21 +650,32 @@ namespace nsm
         /// into it runs against and along; infinity if none.
         double back    = std::numeric_limits<double>::infinity();
         double forward = std::numeric_limits<double>::infinity();
+        /// For a point of the trace from the far end: the least of either
+        /// way over the first trace's pairs (infinity otherwise).
+        double first = std::numeric_limits<double>::infinity();
       };
 
       /// Points in a row on the path traced before them, against it and
       /// along it.
       struct RetraceCount
       {
-        std::size_t back = 0, along = 0;
-        /// Counts the next point; true once either count reaches
-        /// retrace_points.
+        std::size_t back = 0, along = 0, first = 0;
+        /// The points of the run on the first trace's path: those counted
+        /// in `first`, and between them those within retrace_share_most.
+        std::size_t first_run = 0;
+        /// Counts the next point; true once a count reaches retrace_points.
         bool add(const TracedPath &on)
         {
           using namespace continuation_constants;
           back  = on.back <= retrace_share ? back + 1 : 0;
           along = on.forward <= retrace_share ? along + 1 : 0;
-          return back == retrace_points || along == retrace_points;
+          if (on.first <= retrace_share)
+            ++first, ++first_run;
+          else if (on.first <= retrace_share_most && first > 0)
+            ++first_run;
+          else
+            first = first_run = 0;
+          return back == retrace_points || along == retrace_points || first == retrace_points;
         }
       };
 
@@ -692,17 +701,25 @@ namespace nsm
             if (a.segment != b.segment || a.stable != p.stable || b.stable != p.stable)
               continue;
             const double length2 = dot(b, a, b, a);
-            const double t       = length2 > 0 ? dot(p, a, b, a) / length2 : -1;
-            const double along   = dot(p, previous, b, a);
+            if (!(length2 > 0))
+              continue;
+            const double t     = dot(p, a, b, a) / length2;
+            const double along = dot(p, previous, b, a);
+            // The distance from the chord's nearest point over its length.
+            const auto share_at = [&](const double s) {
+              const double dv = (sweep_.value(p) - sweep_.value(a)) - s * (sweep_.value(b) - sweep_.value(a));
+              double       d  = dv * dv;
+              for (std::size_t k = 0; k < p.x.size(); ++k)
+                d += ((p.x[k] - a.x[k]) - s * (b.x[k] - a.x[k])) * ((p.x[k] - a.x[k]) - s * (b.x[k] - a.x[k]));
+              return std::sqrt(d / length2);
+            };
+            // The first trace's path is a polyline: beside its points too.
+            if (i < far_from_ && index >= far_from_)
+              least.first = std::min(least.first, share_at(std::clamp(t, 0.0, 1.0)));
             if (t < 0 || t > 1 || along == 0)
               continue;
-            // |(p - a) - t (b - a)|^2, term by term.
-            const double dv = (sweep_.value(p) - sweep_.value(a)) - t * (sweep_.value(b) - sweep_.value(a));
-            double       d  = dv * dv;
-            for (std::size_t k = 0; k < p.x.size(); ++k)
-              d += ((p.x[k] - a.x[k]) - t * (b.x[k] - a.x[k])) * ((p.x[k] - a.x[k]) - t * (b.x[k] - a.x[k]));
             double &share = along > 0 ? least.forward : least.back;
-            share         = std::min(share, std::sqrt(d / length2));
+            share         = std::min(share, share_at(t));
           }
         return least;
       }
@@ -962,6 +979,10 @@ namespace nsm
         std::size_t              kept;
       };
       std::vector<SetAside> set_aside_; ///< in the current go_on_at_stalls
+      /// The first point of the trace from the far end (none before it).
+      std::size_t far_from_ = std::numeric_limits<std::size_t>::max();
+      /// That trace ran along the first trace's path (cut_retrace).
+      bool joined_ = false;
     };
   } // namespace
 

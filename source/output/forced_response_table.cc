@@ -204,14 +204,10 @@ namespace nsm
         text += std::string(", the start at Omega min converged nowhere: traced from Omega max = ") +
                 significant(high, 6) +
                 (far->met() ? " down to Omega min" : " until it stopped at Omega " + significant(far->reached, 6));
-      else if (!curve.finished && far && far->meeting == ForcedCurve::Meeting::last_points)
-        text += ", traced from both ends of the range, the two traces meeting at Omega " +
-                significant(far->stopped, 6) + ", a corner neither goes on from (" + counted(far->points, "point") +
-                " from Omega max = " + significant(high, 6) + ", " + far_segments(curve, far->points) + ")";
       else if (!curve.finished && far && far->met())
         text += ", traced from both ends of the range, the trace from Omega min stopping at Omega " +
                 significant(far->stopped, 6) + " and the one from Omega max = " + significant(high, 6) +
-                " at Omega " + significant(far->reached, 6) + " on the first's points (" +
+                " joining its path at Omega " + significant(far->reached, 6) + " (" +
                 counted(far->points, "point") + ", " + far_segments(curve, far->points) + ")";
       else if (!curve.finished && far && far->points == 0)
         text += ", stopped before the range's end at Omega " + significant(far->stopped, 6) +

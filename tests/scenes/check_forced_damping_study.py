@@ -21,8 +21,8 @@ Runs the study (the seed bar's three forced curves at modal damping 0.01,
   study.csv holds them; at 0.01 the F = 2e-4 curve, still climbing at Omega
   max, is whole but not compared (no peak inside the range);
 - a row's curves not traced whole (forced_curves - forced_curves_whole) are
-  those a single run at that damping says stopped (none at 0.002, 1 of 3 at
-  0.001), and only whole curves' peaks are compared;
+  those a single run at that damping says stopped (none at 0.002 and
+  0.001, measured), and only whole curves' peaks are compared;
 - study_forced.png is drawn, and summary.txt holds the command and the
   summary as printed;
 - a Backbone omega on a tongue between main segments (1.95: backbone.csv of
@@ -158,8 +158,8 @@ def main():
         single = single_run(ratio, amplitudes)
         study = float(rows[ratio]["forced_peak_distance_max"])
         check(abs(study / single - 1) <= 1e-9, f"{ratio}: the study's largest distance {study}, a single run's {single}")
-    # A curve not traced whole is one whose single run says it stopped (at
-    # 0.001, measured: 1 of 3), and its peak is not compared.
+    # A curve not traced whole is one whose single run says it stopped (none
+    # at 0.002 and 0.001, measured), and its peak is not compared.
     for ratio, amplitudes in ((0.002, "1e-5, 2e-5, 4e-5"), (0.001, "5e-6, 1e-5, 2e-5")):
         single_run(ratio, amplitudes)
         r = rows[ratio]

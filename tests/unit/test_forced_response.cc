@@ -637,29 +637,26 @@ TEST(ForcedSummary, ALagFallingThroughPiOverTwoOnTheLinearResponseIsAnAntiResona
 
 TEST(ForcedSummary, TheTraceFromOmegaMaxCountsItsSegments)
 {
-  // A curve traced from both ends: its last points are the trace from Omega
-  // max, one segment, or two where a restart at a corner split it.
+  // A curve traced from both ends, the trace from Omega max joining the
+  // first trace's path: whole; its last points are the trace from Omega max,
+  // one segment, or two where a restart at a corner split it.
   nsm::ForcedCurve curve = whole_curve(1e-5, {{1.5, 1e-9, 0, true}, {1.6, 2e-9, 0, true}, {1.8, 2e-9, 0, true},
                                               {1.7, 2e-9, 0, true}, {1.65, 2e-9, 0, true}});
   curve.finished     = false;
-  curve.from_far_end = nsm::ForcedCurve::FromFarEnd{1.6, 1.65, 3, nsm::ForcedCurve::Meeting::last_points};
+  curve.from_far_end = nsm::ForcedCurve::FromFarEnd{1.6, 1.65, 3, nsm::ForcedCurve::Meeting::joined};
   for (std::size_t i = 2; i < 5; ++i)
     curve.points[i].segment = 1;
-  std::string line = nsm::forced_response_summary({curve}, nullptr)[0];
-  EXPECT_NE(line.find("(3 points from Omega max = 1.8, a segment of its own)"), std::string::npos) << line;
-  curve.points[4].segment = 2;
-  line                    = nsm::forced_response_summary({curve}, nullptr)[0];
-  EXPECT_NE(line.find("(3 points from Omega max = 1.8, 2 segments of their own)"), std::string::npos) << line;
-  // A far trace that stopped on a point of the first trace, past where the
-  // first stopped: whole, and said so with both ends.
-  curve.from_far_end->meeting = nsm::ForcedCurve::Meeting::on_first_trace;
   EXPECT_TRUE(curve.whole());
-  line = nsm::forced_response_summary({curve}, nullptr)[0];
+  std::string line = nsm::forced_response_summary({curve}, nullptr)[0];
   EXPECT_NE(line.find("traced from both ends of the range, the trace from Omega min stopping at Omega 1.6 and the "
-                      "one from Omega max = 1.8 at Omega 1.65 on the first's points (3 points, 2 segments of their "
-                      "own)"),
+                      "one from Omega max = 1.8 joining its path at Omega 1.65 (3 points, a segment of its own)"),
             std::string::npos)
     << line;
+  curve.points[4].segment = 2;
+  line                    = nsm::forced_response_summary({curve}, nullptr)[0];
+  EXPECT_NE(line.find("joining its path at Omega 1.65 (3 points, 2 segments of their own)"), std::string::npos)
+    << line;
+  // Traces that do not meet leave the curve not whole.
   curve.from_far_end->meeting = nsm::ForcedCurve::Meeting::none;
   EXPECT_FALSE(curve.whole());
 }

@@ -47,13 +47,21 @@ namespace nsm::continuation_constants
   /// a loop of it again) where this many points in a row run along the path
   /// traced before them against its direction (or in it), each
   /// within retrace_share of a chord's length from a chord between two
-  /// earlier consecutive points of its verdict (the stepper's metric). Measured on prm/forced.prm
-  /// and its uniform drive: points that retrace lie 0.001 to 0.27 of a
-  /// chord off it, mostly below 0.1; a curve's own folds and ripples come
-  /// within 0.065 to 0.3 of its other side at one to three points in a
-  /// row.
+  /// earlier consecutive points of its verdict (the stepper's metric).
+  /// Measured against the direction on prm/forced.prm and its uniform drive:
+  /// points that retrace lie 0.001 to 0.27 of a chord off it, mostly below
+  /// 0.1; a curve's own folds and ripples come within 0.065 to 0.3 of its
+  /// other side at one to three points in a row. In the direction, on a
+  /// scan of 72 curves (doc/log.md, stop 77): the cut acts on the one curve
+  /// that goes round a loop and leaves every other curve's points as they
+  /// were.
   constexpr unsigned int retrace_points = 5;
   constexpr double       retrace_share  = 0.1;
+  /// A trace from the far end joins the first trace where retrace_points of
+  /// its points lie within retrace_share of the first trace's path, and
+  /// between them points within this, the most that retracing points
+  /// measured lie off it (above): the join begins at the first of them.
+  constexpr double retrace_share_most = 0.3;
   /// The first move of the contact force's mean (over F_s = g0 / gamma(0),
   /// the force that closes the gap statically) by which a forced curve
   /// leaves a corner whose branch turns back (then tenths of it, to 1e-4

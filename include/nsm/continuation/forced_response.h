@@ -55,34 +55,30 @@ namespace nsm
     /// at growing distances ahead (up to Search reach) starts a new segment.
     unsigned int leaps = 0;
     /// Points dropped where the stepper came back along the curve after
-    /// turning at a corner onto the branch it came on.
+    /// turning at a corner onto the branch it came on, or went round a
+    /// closed loop of the curve again.
     unsigned int retraced = 0;
     /// Times Min step was made a tenth at a stall nothing else went on
     /// from (continuation_constants::forced_min_step_refinements).
     unsigned int min_step_refinements = 0;
     /// Not traced whole because Continuation/Max steps points were written.
     bool         out_of_steps = false;
-    /// Where the trace from the range's near end stopped before its far
-    /// end (or its start converged nowhere): the curve traced again from
-    /// the far end towards it, as a segment of its own (trace_forced_curve).
     /// Where two traces of a curve meet.
     enum class Meeting
     {
       none,
-      last_points,    ///< both stalled there: a corner neither turns
-      on_first_trace, ///< the far trace stopped on a point the first passed
-      near_end        ///< no first trace: the far trace reached the near end
+      joined,  ///< the far trace ran along the first trace's path, and ends where it joins it
+      near_end ///< no first trace: the far trace reached the near end
     };
+    /// Where the trace from the range's near end stopped before its far
+    /// end (or its start converged nowhere): the curve traced again from
+    /// the far end towards it, as a segment of its own (trace_forced_curve).
     struct FromFarEnd
     {
       double       stopped;  ///< the swept parameter where the trace from the near end stopped (NaN: its start converged nowhere)
       double       reached;  ///< where the trace from the far end stopped (NaN: it wrote no point)
       unsigned int points;   ///< the points it wrote
-      /// Whether and where the traces meet (the curve is whole): the far
-      /// trace's last point lies within Initial step of W and within the
-      /// step's guard of the first trace's last point or of another of its
-      /// points; with no trace from the near end, the trace from the far end
-      /// reached it.
+      /// Whether and where the traces meet (the curve is whole).
       Meeting meeting;
       bool    met() const { return meeting != Meeting::none; }
     };
