@@ -482,8 +482,8 @@ namespace nsm
       /// back towards where the trace from the near end stopped, as a new
       /// segment, on at its own stalls; it ends where it lands back on the
       /// curve's linear response or comes back along the curve, as any run,
-      /// or where it stalls too, which may be where the first trace stopped
-      /// (a corner neither stepper turns: the two traces meet).
+      /// where it stalls too, or where it joins the first trace's path
+      /// (cut_retrace: the two traces meet and the curve is whole).
       void trace_from_far_end()
       {
         // A trace of its own: the scene's Min step, refined again only at
