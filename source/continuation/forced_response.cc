@@ -536,15 +536,21 @@ namespace nsm
 
       /// A run onto the curve ends as soon as it runs along the path traced
       /// before it (cut_retrace then cuts it): LOCA would go on along that
-      /// path, or round a loop again, up to Max steps.
+      /// path, or round a loop again, up to Max steps. Its points are counted
+      /// as they come (run_retrace_).
       bool run(const StepperStart &start, std::vector<ForcedPoint> &points)
       {
         if (&points != &curve_.points)
           return run_stepper(hb_, sweep_, harmonic_balance_, continuation_, low_, high_, start, points,
                              curve_.rejected);
-        RetraceCount count;
+        run_retrace_ = {};
         return run_stepper(hb_, sweep_, harmonic_balance_, continuation_, low_, high_, start, points,
-                           curve_.rejected, [&] { return count.add(traced_path_beside(curve_.points.size() - 1)); });
+                           curve_.rejected, [&] {
+                             if (run_retrace_.end == 0 &&
+                                 run_retrace_.count.add(traced_path_beside(curve_.points.size() - 1)))
+                               run_retrace_.end = curve_.points.size();
+                             return run_retrace_.end != 0;
+                           });
       }
 
       unsigned int steps_left() const
@@ -611,13 +617,13 @@ namespace nsm
       bool cut_retrace(const std::size_t before)
       {
         using namespace continuation_constants;
-        RetraceCount count;
-        std::size_t  found = curve_.points.size(), end = found;
-        for (std::size_t i = before; i < curve_.points.size() && found == curve_.points.size(); ++i)
-          if (count.add(traced_path_beside(i)))
-            found = i + 1 - retrace_points, end = i + 1;
-        if (found == curve_.points.size())
+        // The run's count (run()); points cut off its end since (onto the
+        // linear response) leave the count's last points out.
+        const RetraceCount &count = run_retrace_.count;
+        const std::size_t   end   = run_retrace_.end;
+        if (end == 0 || end > curve_.points.size())
           return false;
+        const std::size_t found = end - retrace_points;
         if (count.first == retrace_points)
           {
             joined_ = true;
@@ -983,6 +989,13 @@ namespace nsm
       std::size_t far_from_ = std::numeric_limits<std::size_t>::max();
       /// That trace ran along the first trace's path (cut_retrace).
       bool joined_ = false;
+      /// The last run's points counted on the paths traced before them, and
+      /// one past the point where a count reached retrace_points (0: none).
+      struct RunRetrace
+      {
+        RetraceCount count;
+        std::size_t  end = 0;
+      } run_retrace_;
     };
   } // namespace
 
