@@ -398,6 +398,15 @@ def traces(rows):
     return [r for r in rows if int(r["segment"]) < last], [r for r in rows if int(r["segment"]) == last]
 
 
+def check_traces_cover(near_rows, far_rows, what):
+    """The trace from Omega min starts at 1.5, the one from Omega max at 2.2,
+    and they overlap: together they cover the range [1.5, 2.2]."""
+    near = [float(r["Omega"]) for r in near_rows]
+    far = [float(r["Omega"]) for r in far_rows]
+    check(min(near) == 1.5 and abs(max(far) - 2.2) <= 1e-12 and min(far) <= max(near),
+          f"{what} cover [{min(near)}, {max(near)}] and [{min(far)}, {max(far)}], not [1.5, 2.2]")
+
+
 def check_uniform_load():
     """The same bar driven by F cos(W t) per unit length (Forcing/Shape =
     uniform), F = 1e-5 and 4e-5: each curve over the whole range (F = 4e-5
@@ -468,10 +477,7 @@ def check_from_both_ends():
           and abs(float(reached["contact_fraction"]) - float(stopped["contact_fraction"])) <= 0.01,
           f"the traces end apart: {[stopped[k] for k in ('Omega', 'energy', 'phase', 'contact_fraction')]} and "
           f"{[reached[k] for k in ('Omega', 'energy', 'phase', 'contact_fraction')]}")
-    near = [float(r["Omega"]) for r in near_rows]
-    far = [float(r["Omega"]) for r in far_rows]
-    check(min(near) == 1.5 and abs(max(far) - 2.2) <= 1e-12 and min(far) <= max(near),
-          f"the traces cover [{min(near)}, {max(near)}] and [{min(far)}, {max(far)}], not [1.5, 2.2]")
+    check_traces_cover(near_rows, far_rows, "the traces")
     check_continuity(rows)
     check_stability(rows)
 
@@ -516,10 +522,7 @@ def check_loop_traced_once():
           f"the trace from Omega max ends away from the first trace: "
           f"{[end[k] for k in ('Omega', 'energy', 'phase', 'contact_fraction', 'stable')]} against "
           f"{[nearest[k] for k in ('Omega', 'energy', 'phase', 'contact_fraction')] if nearest else None}")
-    near = [float(r["Omega"]) for r in near_rows]
-    far = [float(r["Omega"]) for r in far_rows]
-    check(min(near) == 1.5 and abs(max(far) - 2.2) <= 1e-12 and min(far) <= max(near),
-          f"the loop's traces cover [{min(near)}, {max(near)}] and [{min(far)}, {max(far)}], not [1.5, 2.2]")
+    check_traces_cover(near_rows, far_rows, "the loop's traces")
     check_continuity(rows)
     check_stability(rows)
 
